@@ -1,0 +1,64 @@
+// Node-to-rigid penalty friction contact (SPEC §5, thesis §4.2.2, eqs. 4.25-4.31). PETSc-free.
+//
+// A contact pair joins a film node S to a point M of a rigid support. Its local frame R (rows
+// x0, y0, z0; z0 the outward normal of the support) maps global vectors to local ones. The gap
+// g = R (u_S - u_M) (local); w = g[2] < 0 is penetration. The pair's force f (local) is the
+// spring force: the slave node's internal-force residual gets R^T f and its tangent
+// R^T (df/dg) R. In compression f[2] < 0.
+#pragma once
+
+namespace etfe {
+
+enum ContactStatus : int { CONTACT_OPEN = 0, CONTACT_STICK = 1, CONTACT_SLIP = 2 };
+
+struct ContactParameters {
+  double kn;  // normal penalty [N/mm]
+  double kt;  // tangential penalty [N/mm]
+  double mu;  // Coulomb coefficient (>= 0)
+};
+
+// Committed state of a pair at the start of a load step.
+struct ContactState {
+  double g[3];   // gap at the start of the step (local)
+  double f[3];   // force at the start of the step (local)
+  int status;    // ContactStatus used for the step (lagged law) / found at the last commit
+};
+
+// Thesis law (eqs. 4.27, 4.29, 4.31): the status of the step is the committed one (decided from
+// the forces at t). dg = g - committed.g.
+//   stick: f = f_n + diag(kt, kt, kn) dg
+//   slip : f_x = f_n,x - mu cos(a) kn dw, f_y = f_n,y - mu sin(a) kn dw, f_z = f_n,z + kn dw,
+//          a = direction of (f_n,x, f_n,y) at t. The thesis prints "+ mu cos(a) kn dw" with the
+//          pressure taken positive (Box 4.1); with f_z < 0 the minus makes |f_t| grow with |f_z|
+//          and keeps a pair on the cone exactly on it. dfdg = [[0,0,-mu kn c],[0,0,-mu kn s],
+//          [0,0,kn]] (eq. 4.31 with the normal axis flipped). A slip state with f_n,t = 0 and
+//          mu > 0 has no direction: the step uses the stick springs tangentially.
+//   open : f = 0, zero tangent; also when f_z would become >= 0 within the step (lift-off).
+// f (3) and dfdg (3x3 row-major, df_i/dg_j at [3i+j], non-symmetric for slip; may be null).
+void ContactLaggedForce(const ContactParameters &p, const ContactState &committed,
+                        const double g[3], double f[3], double dfdg[9]);
+
+// Between load steps (thesis Fig. 4.4): from the converged force f, the status of the next step
+// (stick if |f_t| < mu |f_z| (1 - 1e-12), else slip; open if f_z >= 0) and the force put back on
+// the cone (|f_t| = mu |f_z|, same direction) when it overshot. Writes next (g = the converged
+// gap). f_z >= 0 with a penetrating gap (w < 0) re-closes the pair: stick, f = (0, 0, kn w).
+// Also serves as the commit of the implicit law. Start pairs from {g, f = 0, STICK}: committing
+// f = 0 at w = 0 gives OPEN, which the lagged law keeps force-free for a whole step.
+void ContactLaggedCommit(const ContactParameters &p, const double g[3], const double f[3],
+                         ContactState *next);
+
+// Implicit law: Coulomb return map on the friction cone at the current gap.
+//   normal: f_z = kn min(w, 0)              (open, f = 0, when w >= 0: lift-off)
+//   trial : f_t* = f_n,t + kt (g_t - g_n,t)
+//   stick if |f_t*| <= mu |f_z|, else slip: f_t = mu |f_z| f_t*/|f_t*|
+//   (committed OPEN: f_n,t = 0 and g_n,t = committed g_t, the point where the pair touched down)
+// f, dfdg (consistent, non-symmetric in slip; may be null) and the status found. With mu = 0
+// the tangential force is zero (frictionless, status SLIP); a fixed support is the
+// lagged/implicit law with mu = infinity (use ContactFixedForce).
+int ContactImplicitForce(const ContactParameters &p, const ContactState &committed,
+                         const double g[3], double f[3], double dfdg[9]);
+
+// No slide: f = diag(kt, kt, kn) g, always closed (the thesis's "fixed" arch case).
+void ContactFixedForce(const ContactParameters &p, const double g[3], double f[3], double dfdg[9]);
+
+} // namespace etfe

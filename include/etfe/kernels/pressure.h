@@ -1,0 +1,12 @@
+// Follower pressure on a three-node membrane (SPEC §3, thesis §5.4). PETSc-free.
+// The load acts along the current normal n = (x2-x1)x(x3-x1)/|..| (positive p pushes along n):
+//   f_a = p/6 (x2-x1)x(x3-x1)   for each node a
+// Its derivative L = df/dx (9x9 row-major, not symmetric) is the load stiffness; the assembler
+// adds -L to the tangent because the residual is f_int - f_ext.
+#pragma once
+
+namespace etfe {
+
+void PressureLoad(double p, const double x[9], double f[9], double L[81]);
+
+} // namespace etfe

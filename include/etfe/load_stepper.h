@@ -1,0 +1,35 @@
+// The outer load-stepping loop (TS-like, options -load_*): increments over the stages of the
+// scene's schedules, a Newton solve per increment, the increment cut back on divergence and
+// grown again on easy steps, history committed after convergence only, output as it goes.
+#pragma once
+#include <petscsnes.h>
+
+#include "etfe/output.h"
+#include "etfe/problem.h"
+
+namespace etfe {
+
+struct LoadStepperOptions {
+  PetscInt increments = 10;      // over the whole schedule, split evenly over the stages
+  PetscInt max_cutbacks = 6;     // halvings of one increment before the run stops
+  PetscInt grow_after = 2;       // easy increments in a row before the increment doubles
+  PetscInt easy_iterations = 5;  // Newton iterations that count as easy
+  PetscBool extrapolate = PETSC_TRUE;
+  PetscInt monitor = 1;
+  PetscInt stop_after = -1;      // end cleanly after this many increments (-1: never)
+};
+
+struct LoadStepperResult {
+  PetscInt steps = 0, cutbacks = 0, newton_iterations = 0;
+  double time = 0.0, wall = 0.0;
+  PetscBool completed = PETSC_FALSE;
+  std::string failure;  // why it stopped, when it did not complete
+};
+
+PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptions *o);
+// Runs the schedule. On failure writes the last converged state (if not yet written) and
+// returns with result->completed false and the reason; the caller decides the exit code.
+PetscErrorCode LoadStepperRun(Problem *problem, SNES snes, OutputFile *out,
+                              const LoadStepperOptions &o, LoadStepperResult *result);
+
+} // namespace etfe

@@ -1,0 +1,36 @@
+// Constitutive laws behind one interface: GL strain (and committed history) in, PK2 stress and
+// tangent (and trial history) out. Registered by name (-material_type). An elastic law keeps no
+// history, so a scene without plasticity allocates none.
+#pragma once
+#include <petscsys.h>
+
+#include <memory>
+
+namespace etfe {
+
+class Material {
+public:
+  virtual ~Material() = default;
+  virtual const char *Name() const = 0;
+  // Doubles of history per element; 0 means no history arrays are allocated.
+  virtual int HistorySize() const { return 0; }
+  virtual void InitHistory(double *hist) const {}
+  // S, D from E = (Exx, Eyy, 2Exy) in the element frame. hist_old/hist_new are nullptr when
+  // HistorySize() == 0. Returns a KernelStatus.
+  virtual int Evaluate(const double E[3], const double *hist_old, double *hist_new, double S[3],
+                       double D[9]) const = 0;
+  // Plastic strain (Voigt) and its equivalent value from a history record, if the law has one.
+  virtual bool PlasticStrain(const double *hist, double ep[3], double *ep_bar) const {
+    return false;
+  }
+  // Young's modulus and Poisson's ratio (every law here has an elastic part).
+  virtual void ElasticConstants(double *young, double *nu) const = 0;
+  virtual PetscErrorCode View(MPI_Comm comm) const = 0;
+};
+
+typedef PetscErrorCode (*MaterialCreator)(std::unique_ptr<Material> *);
+
+PetscErrorCode MaterialRegisterAll(void);
+PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material);
+
+} // namespace etfe

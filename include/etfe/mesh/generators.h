@@ -1,0 +1,20 @@
+// Structured mesh generators for the scenes (any density by option). PETSc-free.
+#pragma once
+#include "etfe/mesh/mesh_data.h"
+
+namespace etfe {
+
+enum class DiagonalPattern { Right, Left, Alternate, Crossed };
+
+// Rectangle [x0, x0+lx] x [y0, y0+ly] in the plane z = 0 with nx x ny cells, each split into two
+// triangles (four with Crossed: a centre node per cell). perturb moves interior nodes randomly
+// by up to perturb * cell size (deterministic, seed) to make irregular meshes for patch tests.
+// Node sets: left, right, bottom, top, corner_ll, corner_lr, corner_ul, corner_ur, all.
+MeshData MakeRectangleMesh(double x0, double y0, double lx, double ly, int nx, int ny,
+                           DiagonalPattern pattern, double perturb, unsigned seed);
+
+// Disc of radius r centred at the origin in z = 0 with `rings` rings of nodes (ring i has 6 i
+// nodes): 6 rings^2 triangles of near-equal size. Node sets: rim, centre, all.
+MeshData MakeDiscMesh(double radius, int rings);
+
+} // namespace etfe

@@ -1,0 +1,41 @@
+// Results file: HDF5 (written in parallel with MPI-IO) plus an XDMF index that ParaView opens
+// as a time series. Layout (stable, documented in the README):
+//   /                      attributes: format "etfe-results-1", scene, status
+//                          ("running" | "complete" | "failed: <why>"), steps_written
+//   /mesh/coordinates      (N, 3) float64  reference coordinates, scene node order
+//   /mesh/triangles        (E, 3) int32    0-based node ids, scene element order
+//   /steps/<k:06d>/        attributes: step, time (load time), stage, load_factor (time - stage)
+//     displacement (N,3); reaction (N,3); nodal_mises (N)
+//     stress (E,3) Sxx Syy Sxy [MPa, element MD/TD frame, PK2]; strain (E,3) Exx Eyy Exy (GL,
+//     tensor shear); mises (E); min_principal_stress (E); min_principal_strain (E);
+//     area_ratio (E); plastic_strain (E,3) and plastic_strain_eq (E) with a plastic material.
+// A step's group is complete once it is listed in the XDMF file (rewritten atomically after the
+// step is flushed) and counted in steps_written.
+#pragma once
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+#include "etfe/problem.h"
+
+namespace etfe {
+
+struct OutputFile;
+
+struct OutputOptions {
+  char path[PETSC_MAX_PATH_LEN] = "";
+  PetscInt every = 1;
+  PetscBool enabled = PETSC_TRUE;
+};
+
+PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, OutputOptions *o);
+PetscErrorCode OutputOpen(Problem *problem, const OutputOptions &o, OutputFile **out);
+PetscErrorCode OutputWriteStep(OutputFile *out, Problem *problem, Vec U, PetscInt step,
+                               double time);
+// status: "complete" or "failed: ..."; closes the file.
+PetscErrorCode OutputClose(OutputFile **out, const std::string &status);
+PetscInt OutputLastStep(const OutputFile *out);
+PetscInt OutputEvery(const OutputFile *out);
+
+} // namespace etfe

@@ -1,0 +1,64 @@
+// A scene is data plus a small builder: mesh, supports, loads, schedule, outputs. Builders are
+// registered by name (-scene <name>, -scene_list) and fill a SceneSpec from their options.
+#pragma once
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+#include "etfe/mesh/mesh_data.h"
+#include "etfe/schedule.h"
+
+namespace etfe {
+
+struct Problem;
+
+// Prescribed displacement of one DOF of one node (node id in the scene's mesh numbering).
+struct DofConstraint {
+  int node;
+  int comp;  // 0 = X, 1 = Y, 2 = Z
+  ScheduledValue value;
+};
+
+// Follower pressure on a set of elements (empty set = all elements).
+struct PressureSpec {
+  bool active = false;
+  std::vector<int> elements;
+  ScheduledValue value;  // MPa
+};
+
+struct SceneSpec {
+  std::string name;
+  MeshData mesh;
+  double md_axis[3] = {1.0, 0.0, 0.0};   // MD direction for the element frames
+  double thickness = 0.25;               // film thickness [mm] (-membrane_thickness overrides)
+  std::vector<Schedule> schedules;       // every schedule has the same number of stages
+  std::vector<DofConstraint> constraints;
+  PressureSpec pressure;
+  std::vector<double> initial_guess;     // 3 per node or empty (zero displacement)
+  std::string initial_guess_note;        // printed in the header when a guess is used
+  // Called once after the last increment (collective): prints the scene's own quantities of
+  // interest (e.g. Hencky's centre deflection against the closed form).
+  PetscErrorCode (*report)(Problem *, void *) = nullptr;
+  void *report_ctx = nullptr;
+  void (*report_ctx_destroy)(void *) = nullptr;
+
+  int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }
+  int AddSchedule(const Schedule &s) {
+    schedules.push_back(s);
+    return (int)schedules.size() - 1;
+  }
+};
+
+typedef PetscErrorCode (*SceneBuilder)(MPI_Comm, SceneSpec *);
+
+PetscErrorCode SceneRegisterAll(void);
+PetscErrorCode SceneRegister(const char name[], SceneBuilder builder);
+// Builds the scene named by -scene (collective). Unknown names list the registered ones.
+PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene);
+
+// Reads the mesh named by -mesh_file on rank 0 and broadcasts it; used by scenes that accept a
+// Gmsh file instead of their generator.
+PetscErrorCode MeshReadAndBroadcast(MPI_Comm comm, const char path[], MeshData *mesh);
+
+} // namespace etfe

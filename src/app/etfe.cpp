@@ -1,0 +1,208 @@
+// etfe: the ETFE membrane solver. Everything at run time comes from PETSc options
+// (-options_file, command line); -help lists them all.
+static const char help[] =
+    "ETFE membrane solver: total-Lagrangian membranes on PETSc (SNES + MUMPS), load stepping,\n"
+    "HDF5/XDMF results. Usage: etfe -options_file options/<scene>.opts [-option value ...]\n"
+    "  -scene_list lists the scenes; -help lists every option with its prefix.\n\n";
+
+#include <petscsnes.h>
+
+#include <cstring>
+
+#include "etfe/linesearch.h"
+#include "etfe/load_stepper.h"
+#include "etfe/material.h"
+#include "etfe/output.h"
+#include "etfe/problem.h"
+#include "etfe/scene.h"
+
+using namespace etfe;
+
+namespace {
+
+PetscErrorCode ReadMembraneOptions(MPI_Comm comm, Problem *P) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Membrane element", "Membrane");
+  PetscCall(PetscOptionsReal("-membrane_thickness", "Film thickness h0 [mm]", "", P->thickness,
+                             &P->thickness, nullptr));
+  PetscCall(PetscOptionsReal("-membrane_min_area_ratio",
+                             "Smallest current/reference area before an element counts as collapsed",
+                             "", P->min_area_ratio, &P->min_area_ratio, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(P->thickness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-membrane_thickness %g: the film thickness must be positive (mm)", P->thickness);
+  PetscFunctionReturn(0);
+}
+
+// Solver defaults (Newton + the etfe line search + MUMPS LU); options files override them.
+PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
+  KSP ksp;
+  PC pc;
+  SNESLineSearch ls;
+  Vec F;
+  PetscFunctionBeginUser;
+  PetscCall(SNESCreate(P->comm, snes));
+  PetscCall(VecDuplicate(P->U, &F));
+  PetscCall(SNESSetFunction(*snes, F, FormResidual, P));
+  PetscCall(VecDestroy(&F));
+  PetscCall(SNESSetJacobian(*snes, P->J, P->J, FormJacobian, P));
+  PetscCall(SNESSetType(*snes, SNESNEWTONLS));
+  PetscCall(SNESSetTolerances(*snes, 1e-9, 1e-10, 1e-14, 30, 10000));
+  PetscCall(SNESGetKSP(*snes, &ksp));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(SNESGetLineSearch(*snes, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
+  PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(SNESGetLineSearch(*snes, &ls));
+  PetscCall(SNESLineSearchEtfeSetProblem(ls, P));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PrintHeader(Problem *P, SNES snes) {
+  KSP ksp;
+  PC pc;
+  KSPType ktype;
+  PCType ptype;
+  MatSolverType stype = nullptr;
+  SNESLineSearch ls;
+  SNESLineSearchType lstype;
+  PetscInt emin, emax, nmin, nmax;
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetType(ksp, &ktype));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCGetType(pc, &ptype));
+  PetscCall(PCFactorGetMatSolverType(pc, &stype));
+  PetscCall(SNESGetLineSearch(snes, &ls));
+  PetscCall(SNESLineSearchGetType(ls, &lstype));
+  PetscCallMPI(MPI_Allreduce(&P->mesh.num_elements, &emin, 1, MPIU_INT, MPI_MIN, P->comm));
+  PetscCallMPI(MPI_Allreduce(&P->mesh.num_elements, &emax, 1, MPIU_INT, MPI_MAX, P->comm));
+  PetscCallMPI(MPI_Allreduce(&P->mesh.num_owned, &nmin, 1, MPIU_INT, MPI_MIN, P->comm));
+  PetscCallMPI(MPI_Allreduce(&P->mesh.num_owned, &nmax, 1, MPIU_INT, MPI_MAX, P->comm));
+  PetscCall(PetscPrintf(P->comm, "etfe: scene %s\n", P->scene.name.c_str()));
+  PetscCall(PetscPrintf(P->comm, "  mesh: %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT
+                        " triangles, %" PetscInt_FMT " DOF\n",
+                        P->scene.mesh.source.c_str(), P->mesh.num_nodes_global,
+                        P->mesh.num_elements_global, 3 * P->mesh.num_nodes_global));
+  PetscCall(PetscPrintf(P->comm, "  ranks: %d (METIS), elements per rank %" PetscInt_FMT "-%" PetscInt_FMT
+                        ", owned nodes per rank %" PetscInt_FMT "-%" PetscInt_FMT " (imbalance %.3f)\n",
+                        P->size, emin, emax, nmin, nmax,
+                        emax * (double)P->size / std::max<PetscInt>(1, P->mesh.num_elements_global)));
+  PetscCall(PetscPrintf(P->comm, "  physics: membrane (TL, h0 = %g mm), %s material%s, %zu constrained DOF\n",
+                        P->thickness, P->material->Name(),
+                        P->has_pressure ? ", follower pressure" : "", P->scene.constraints.size()));
+  PetscCall(P->material->View(P->comm));
+  PetscCall(PetscPrintf(P->comm, "  solver: SNES newtonls, line search %s, KSP %s, PC %s%s%s\n", lstype,
+                        ktype, ptype, stype ? " " : "", stype ? stype : ""));
+  if (!P->scene.initial_guess_note.empty())
+    PetscCall(PetscPrintf(P->comm, "  initial guess: %s\n", P->scene.initial_guess_note.c_str()));
+  PetscFunctionReturn(0);
+}
+
+// Unused options are mistakes (typos, options of another scene): refuse them before computing.
+// Options read only when a solver is first used (MUMPS, hypre, ...) are checked at the end.
+PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool final_check) {
+  PetscInt n;
+  char **names, **values;
+  PetscBool allow = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-options_allow_unused", &allow, nullptr));
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  std::string list;
+  const char *lazy[] = {"mat_mumps_", "mat_superlu", "pc_hypre_", "pc_gamg_", "mg_", "sub_",
+                        "log", "options_left", "malloc", "fp_trap", "info", "history", "viewer_",
+                        "on_error", "check_pointer", "memory_view", "objects_dump", "mat_view"};
+  for (PetscInt i = 0; i < n; ++i) {
+    bool skip = false;
+    if (!final_check)
+      for (const char *p : lazy) skip |= std::strncmp(names[i], p, std::strlen(p)) == 0;
+    if (!skip) list += std::string(" -") + names[i];
+  }
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  if (!list.empty() && !allow)
+    SETERRQ(comm, PETSC_ERR_USER_INPUT,
+            "unknown or unused option(s):%s. Check the spelling against -help, or add "
+            "-options_allow_unused to accept them",
+            list.c_str());
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscBool help_only = PETSC_FALSE, list = PETSC_FALSE;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-help", &help_only));
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-scene_list", &list));
+
+  // 1. Registries: scenes, materials, the etfe line search.
+  PetscCall(SceneRegisterAll());
+  PetscCall(MaterialRegisterAll());
+  PetscCall(SNESLineSearchRegisterEtfe());
+
+  // 2. The scene: mesh, supports, loads, schedule.
+  SceneSpec scene;
+  PetscCall(SceneCreateFromOptions(comm, &scene));
+  if (list) {
+    PetscCall(PetscFinalize());
+    return 0;
+  }
+
+  // 3. Material and membrane options, then the distributed problem.
+  std::unique_ptr<Material> material;
+  PetscCall(MaterialCreateFromOptions(comm, &material));
+  auto *P = new Problem();
+  P->thickness = scene.thickness;
+  PetscCall(ReadMembraneOptions(comm, P));
+  PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), P));
+
+  // 4. Solver, load stepping and output options.
+  SNES snes;
+  PetscCall(CreateSolver(P, &snes));
+  LoadStepperOptions lso;
+  PetscCall(LoadStepperOptionsFromCommandLine(comm, &lso));
+  OutputOptions oo;
+  PetscCall(OutputOptionsFromCommandLine(comm, P->scene.name.c_str(), &oo));
+  if (help_only) {
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(ProblemDestroy(P));
+    delete P;
+    PetscCall(PetscFinalize());
+    return 0;
+  }
+  PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
+  PetscCall(PrintHeader(P, snes));
+
+  // 5. Run the schedule, writing results as it goes.
+  OutputFile *out = nullptr;
+  if (oo.enabled) PetscCall(OutputOpen(P, oo, &out));
+  LoadStepperResult res;
+  PetscCall(LoadStepperRun(P, snes, out, lso, &res));
+  PetscCall(PetscPrintf(comm, "etfe: %s after %" PetscInt_FMT " increments (load time %.6g), %" PetscInt_FMT
+                        " Newton iterations, %" PetscInt_FMT " cut-backs, %.3f s\n",
+                        res.completed ? "completed" : "STOPPED", res.steps, res.time,
+                        res.newton_iterations, res.cutbacks, res.wall));
+
+  // 6. The scene's own quantities of interest, then close the results.
+  if (P->scene.report && res.completed) PetscCall(P->scene.report(P, P->scene.report_ctx));
+  if (out) {
+    PetscCall(OutputClose(&out, res.completed ? "complete" : "failed: " + res.failure));
+    PetscCall(PetscPrintf(comm, "etfe: results in %s (+ .xmf for ParaView)\n", oo.path));
+  }
+  PetscCall(SNESDestroy(&snes));
+  PetscCall(ProblemDestroy(P));
+  delete P;
+  PetscCheck(res.completed, comm, PETSC_ERR_NOT_CONVERGED,
+             "%s. The last converged increment is in the results. Ways out: more increments "
+             "(-load_increments), more cut-backs (-load_max_cutbacks), or check the supports and "
+             "loads of the scene",
+             res.failure.c_str());
+  PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
+  PetscCall(PetscFinalize());
+  return 0;
+}

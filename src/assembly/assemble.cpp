@@ -1,0 +1,344 @@
+// Residual and Jacobian of the membrane (+ follower pressure) as SNES callbacks.
+//
+// R(u) = f_int(u) - f_ext(u) on free DOFs; R = u - u_prescribed(t) on constrained DOFs. The
+// Jacobian drops the rows and columns of constrained DOFs element by element and puts 1 on their
+// diagonal, so a symmetric operator stays symmetric; this is exact because every Newton iterate
+// already carries the prescribed values (ApplyConstraints before each increment).
+// Values go through ghosted vectors: element contributions to ghost nodes are added to their
+// owners by the reverse scatter; matrix entries of ghost rows travel in PETSc's stash.
+#include <cmath>
+
+#include "etfe/kernels/pressure.h"
+#include "etfe/kernels/status.h"
+#include "etfe/problem.h"
+
+namespace etfe {
+
+namespace {
+
+inline void GatherCoordinates(const LocalMesh &m, PetscInt e, const PetscScalar *u, double x[9]) {
+  for (int a = 0; a < 3; ++a) {
+    const int l = m.tri[3 * e + a];
+    for (int i = 0; i < 3; ++i) x[3 * a + i] = m.X[3 * l + i] + u[3 * l + i];
+  }
+}
+
+inline bool AllFinite(const double *v, int n) {
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(v[i])) return false;
+  return true;
+}
+
+// Evaluates one membrane element at x. Returns a KernelStatus.
+inline int MembraneElement(const Problem *P, PetscInt e, const double x[9], double S[3],
+                           double D[9], double F[6], double E[3]) {
+  const MembraneReference &ref = P->mesh.ref[e];
+  if (!AllFinite(x, 9)) return KERNEL_NONFINITE;
+  MembraneKinematics(ref, x, F, E);
+  if (MembraneAreaRatio(ref, x, nullptr) < P->min_area_ratio) return KERNEL_COLLAPSED;
+  const int nh = P->material->HistorySize();
+  double hist_new[16];
+  const double *hist_old = nh ? &P->history[(size_t)nh * e] : nullptr;
+  return P->material->Evaluate(E, hist_old, nh ? hist_new : nullptr, S, D);
+}
+
+PetscErrorCode ScatterToLocal(Vec global, Vec ghosted) {
+  PetscFunctionBeginUser;
+  if (global != ghosted) PetscCall(VecCopy(global, ghosted));
+  PetscCall(VecGhostUpdateBegin(ghosted, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(ghosted, INSERT_VALUES, SCATTER_FORWARD));
+  PetscFunctionReturn(0);
+}
+
+// Agrees on the worst element status over all ranks and remembers which element it was.
+PetscErrorCode ReduceStatus(Problem *P, int status, PetscInt element) {
+  int local[2] = {status, (int)element}, global[2];
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(local, global, 1, MPI_2INT, MPI_MAXLOC, P->comm));
+  P->bad_status = global[0];
+  P->bad_element = -1;
+  if (global[0] != KERNEL_OK) {
+    // MAXLOC returned the rank holding the worst status; fetch its element id from there.
+    PetscInt id = status == global[0] ? element : -1, g;
+    PetscCallMPI(MPI_Allreduce(&id, &g, 1, MPIU_INT, MPI_MAX, P->comm));
+    P->bad_element = g;
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ApplyConstraints(Problem *P, double t, Vec U) {
+  PetscScalar *u;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(U, &u));
+  for (size_t k = 0; k < P->con_owned_dof.size(); ++k)
+    u[P->con_owned_dof[k]] = P->con_owned_value[k].At(P->scene.schedules, t);
+  PetscCall(VecRestoreArray(U, &u));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
+  Problem *P = (Problem *)ctx;
+  const LocalMesh &m = P->mesh;
+  Vec Ul, Fl;
+  const PetscScalar *u;
+  PetscScalar *f;
+  int status = KERNEL_OK;
+  PetscInt bad = -1;
+  PetscFunctionBeginUser;
+  PetscCall(ScatterToLocal(U, P->U_work));
+  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
+  PetscCall(VecGhostGetLocalForm(P->F_work, &Fl));
+  PetscCall(VecZeroEntries(Fl));
+  PetscCall(VecGetArrayRead(Ul, &u));
+  PetscCall(VecGetArray(Fl, &f));
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double x[9], F[6], E[3], S[3], D[9], fe[9];
+    GatherCoordinates(m, e, u, x);
+    int st = MembraneElement(P, e, x, S, D, F, E);
+    if (st != KERNEL_OK) {
+      if (st > status) status = st, bad = m.element_natural[e];
+      continue;
+    }
+    MembraneForce(m.ref[e], P->thickness, F, S, nullptr, fe, nullptr);
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] += fe[3 * a + i];
+  }
+  if (P->has_pressure) {
+    const double p = P->pressure_value.At(P->scene.schedules, P->time);
+    for (PetscInt e : P->pressure_elements) {
+      double x[9], fe[9], L[81];
+      GatherCoordinates(m, e, u, x);
+      PressureLoad(p, x, fe, L);
+      for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] -= fe[3 * a + i];
+    }
+  }
+  PetscCall(VecRestoreArray(Fl, &f));
+  PetscCall(VecRestoreArrayRead(Ul, &u));
+  PetscCall(VecGhostRestoreLocalForm(P->F_work, &Fl));
+  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(VecGhostUpdateBegin(P->F_work, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGhostUpdateEnd(P->F_work, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecCopy(P->F_work, Fout));
+
+  // Constrained DOFs: keep the internal force as the reaction, then R = u - u_prescribed.
+  {
+    PetscScalar *fo, *r;
+    const PetscScalar *ug;
+    PetscCall(VecGetArray(Fout, &fo));
+    PetscCall(VecGetArray(P->reaction, &r));
+    PetscCall(VecGetArrayRead(U, &ug));
+    for (PetscInt i = 0; i < 3 * m.num_owned; ++i) r[i] = 0.0;
+    for (size_t k = 0; k < P->con_owned_dof.size(); ++k) {
+      const PetscInt d = P->con_owned_dof[k];
+      r[d] = fo[d];
+      fo[d] = ug[d] - P->con_owned_value[k].At(P->scene.schedules, P->time);
+    }
+    PetscCall(VecRestoreArrayRead(U, &ug));
+    PetscCall(VecRestoreArray(P->reaction, &r));
+    PetscCall(VecRestoreArray(Fout, &fo));
+  }
+  PetscCall(ReduceStatus(P, status, bad));
+  if (P->bad_status != KERNEL_OK && snes && !P->in_linesearch) PetscCall(SNESSetFunctionDomainError(snes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
+  Problem *P = (Problem *)ctx;
+  const LocalMesh &m = P->mesh;
+  Vec Ul;
+  const PetscScalar *u;
+  int status = KERNEL_OK;
+  PetscInt bad = -1;
+  PetscFunctionBeginUser;
+  PetscCall(ScatterToLocal(U, P->U_work));
+  PetscCall(MatZeroEntries(Pmat));
+  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
+  PetscCall(VecGetArrayRead(Ul, &u));
+  const double p = P->has_pressure ? P->pressure_value.At(P->scene.schedules, P->time) : 0.0;
+  std::vector<char> loaded;
+  if (P->has_pressure && p != 0.0) {
+    loaded.assign(m.num_elements, 0);
+    for (PetscInt e : P->pressure_elements) loaded[e] = 1;
+  }
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double x[9], F[6], E[3], S[3], D[9], fe[9], K[81];
+    GatherCoordinates(m, e, u, x);
+    int st = MembraneElement(P, e, x, S, D, F, E);
+    if (st != KERNEL_OK) {
+      if (st > status) status = st, bad = m.element_natural[e];
+      continue;
+    }
+    MembraneForce(m.ref[e], P->thickness, F, S, D, fe, K);
+    if (!loaded.empty() && loaded[e]) {
+      double L[81];
+      PressureLoad(p, x, fe, L);
+      for (int k = 0; k < 81; ++k) K[k] -= L[k];
+    }
+    const int *tri = &m.tri[3 * e];
+    for (int r = 0; r < 9; ++r) {
+      if (!P->dof_constrained[3 * tri[r / 3] + r % 3]) continue;
+      for (int c = 0; c < 9; ++c) K[9 * r + c] = K[9 * c + r] = 0.0;
+    }
+    const PetscInt idx[3] = {tri[0], tri[1], tri[2]};
+    PetscCall(MatSetValuesBlockedLocal(Pmat, 3, idx, 3, idx, K, ADD_VALUES));
+  }
+  PetscCall(VecRestoreArrayRead(Ul, &u));
+  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  for (PetscInt d : P->con_owned_dof) {
+    const PetscScalar one = 1.0;
+    PetscCall(MatSetValuesLocal(Pmat, 1, &d, 1, &d, &one, ADD_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(Pmat, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Pmat, MAT_FINAL_ASSEMBLY));
+  if (J != Pmat) {
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  PetscCall(ReduceStatus(P, status, bad));
+  PetscCheck(P->bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
+             "Jacobian: element %" PetscInt_FMT ": %s (the residual at the same state passed)",
+             P->bad_element, KernelStatusName(P->bad_status));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckStep(Problem *P, Vec X, Vec W, PetscBool *ok) {
+  const LocalMesh &m = P->mesh;
+  Vec Xl, Wl;
+  const PetscScalar *xa, *wa;
+  int status = KERNEL_OK;
+  PetscInt bad = -1;
+  PetscFunctionBeginUser;
+  PetscCall(ScatterToLocal(X, P->F_work));
+  PetscCall(ScatterToLocal(W, P->U_work));
+  PetscCall(VecGhostGetLocalForm(P->F_work, &Xl));
+  PetscCall(VecGhostGetLocalForm(P->U_work, &Wl));
+  PetscCall(VecGetArrayRead(Xl, &xa));
+  PetscCall(VecGetArrayRead(Wl, &wa));
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double x0[9], x1[9], n0[3], n1[3];
+    GatherCoordinates(m, e, xa, x0);
+    GatherCoordinates(m, e, wa, x1);
+    MembraneAreaRatio(m.ref[e], x0, n0);
+    const double ratio = MembraneAreaRatio(m.ref[e], x1, n1);
+    const bool flipped = n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2] <= 0.0;
+    if (!(ratio >= P->min_area_ratio) || flipped) {
+      status = KERNEL_COLLAPSED;
+      bad = m.element_natural[e];
+      break;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(Wl, &wa));
+  PetscCall(VecRestoreArrayRead(Xl, &xa));
+  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Wl));
+  PetscCall(VecGhostRestoreLocalForm(P->F_work, &Xl));
+  PetscCall(ReduceStatus(P, status, bad));
+  *ok = P->bad_status == KERNEL_OK ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CommitHistory(Problem *P, Vec U) {
+  const LocalMesh &m = P->mesh;
+  const int nh = P->material->HistorySize();
+  Vec Ul;
+  const PetscScalar *u;
+  int status = KERNEL_OK;
+  PetscInt bad = -1;
+  PetscFunctionBeginUser;
+  if (nh == 0) PetscFunctionReturn(0);
+  PetscCall(ScatterToLocal(U, P->U_work));
+  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
+  PetscCall(VecGetArrayRead(Ul, &u));
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double x[9], F[6], E[3], S[3], D[9];
+    GatherCoordinates(m, e, u, x);
+    MembraneKinematics(m.ref[e], x, F, E);
+    int st = P->material->Evaluate(E, &P->history[(size_t)nh * e],
+                                   &P->history_trial[(size_t)nh * e], S, D);
+    if (st != KERNEL_OK) status = st, bad = m.element_natural[e];
+  }
+  PetscCall(VecRestoreArrayRead(Ul, &u));
+  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(ReduceStatus(P, status, bad));
+  PetscCheck(P->bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
+             "committing the history: element %" PetscInt_FMT ": %s", P->bad_element,
+             KernelStatusName(P->bad_status));
+  P->history.swap(P->history_trial);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
+  const LocalMesh &m = P->mesh;
+  const PetscInt ne = m.num_elements;
+  const int nh = P->material->HistorySize();
+  Vec Ul, acc, accl;
+  const PetscScalar *u;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  c->stress.assign(3 * ne, 0);
+  c->strain.assign(3 * ne, 0);
+  c->mises.assign(ne, 0);
+  c->smin.assign(ne, 0);
+  c->emin.assign(ne, 0);
+  c->area_ratio.assign(ne, 0);
+  bool plastic = false;
+  if (nh) {
+    double h0[16] = {0}, ep[3], epb;
+    plastic = P->material->PlasticStrain(h0, ep, &epb);
+  }
+  c->ep.assign(plastic ? 3 * ne : 0, 0);
+  c->ep_bar.assign(plastic ? ne : 0, 0);
+  // Nodal averages: (sum, count) per node in a ghosted block-2 vector.
+  std::vector<PetscInt> ghost_ids(m.num_ghost);
+  for (PetscInt g = 0; g < m.num_ghost; ++g) ghost_ids[g] = m.global_id[m.num_owned + g];
+  PetscCall(VecCreateGhostBlock(P->comm, 2, 2 * m.num_owned, PETSC_DECIDE, m.num_ghost,
+                                ghost_ids.data(), &acc));
+  PetscCall(VecGhostGetLocalForm(acc, &accl));
+  PetscCall(VecZeroEntries(accl));
+  PetscCall(VecGetArray(accl, &a));
+  PetscCall(ScatterToLocal(U, P->U_work));
+  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
+  PetscCall(VecGetArrayRead(Ul, &u));
+  for (PetscInt e = 0; e < ne; ++e) {
+    double x[9], F[6], E[3], S[3], D[9], hist[16];
+    GatherCoordinates(m, e, u, x);
+    MembraneKinematics(m.ref[e], x, F, E);
+    const double *h = nh ? &P->history[(size_t)nh * e] : nullptr;
+    P->material->Evaluate(E, h, nh ? hist : nullptr, S, D);
+    for (int i = 0; i < 3; ++i) c->stress[3 * e + i] = S[i];
+    c->strain[3 * e + 0] = E[0];
+    c->strain[3 * e + 1] = E[1];
+    c->strain[3 * e + 2] = 0.5 * E[2];
+    c->mises[e] = MisesPlaneStress(S);
+    c->smin[e] = MinPrincipalStress(S);
+    c->emin[e] = MinPrincipalStrain(E);
+    c->area_ratio[e] = MembraneAreaRatio(m.ref[e], x, nullptr);
+    if (plastic) {
+      double ep[3], epb;
+      P->material->PlasticStrain(h, ep, &epb);
+      c->ep[3 * e] = ep[0], c->ep[3 * e + 1] = ep[1], c->ep[3 * e + 2] = 0.5 * ep[2];
+      c->ep_bar[e] = epb;
+    }
+    for (int k = 0; k < 3; ++k) {
+      a[2 * m.tri[3 * e + k]] += c->mises[e];
+      a[2 * m.tri[3 * e + k] + 1] += 1.0;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(Ul, &u));
+  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(VecRestoreArray(accl, &a));
+  PetscCall(VecGhostRestoreLocalForm(acc, &accl));
+  PetscCall(VecGhostUpdateBegin(acc, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGhostUpdateEnd(acc, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGetArray(acc, &a));
+  c->nodal_mises.assign(m.num_owned, 0);
+  for (PetscInt l = 0; l < m.num_owned; ++l)
+    c->nodal_mises[l] = a[2 * l + 1] > 0 ? a[2 * l] / a[2 * l + 1] : 0.0;
+  PetscCall(VecRestoreArray(acc, &a));
+  PetscCall(VecDestroy(&acc));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,147 @@
+// Material registry (-material_type) and the two laws: plane-stress St. Venant-Kirchhoff and the
+// ETFE elasto-plastic law (SPEC §4). Parameters come from -material_* options.
+#include <petscsys.h>
+
+#include <cstring>
+
+#include "etfe/kernels/elastic.h"
+#include "etfe/kernels/plasticity.h"
+#include "etfe/kernels/status.h"
+#include "etfe/material.h"
+
+namespace etfe {
+
+namespace {
+
+PetscFunctionList material_list = nullptr;
+
+class ElasticMaterial : public Material {
+public:
+  double young = 800.0, nu = 0.43;
+  const char *Name() const override { return "elastic"; }
+  void ElasticConstants(double *e, double *n) const override { *e = young, *n = nu; }
+  int Evaluate(const double E[3], const double *, double *, double S[3],
+               double D[9]) const override {
+    ElasticPlaneStress(young, nu, E, S, D);
+    return KERNEL_OK;
+  }
+  PetscErrorCode View(MPI_Comm comm) const override {
+    PetscFunctionBeginUser;
+    PetscCall(PetscPrintf(comm, "  material: elastic (plane-stress St. Venant-Kirchhoff), E = %g MPa, nu = %g\n",
+                          young, nu));
+    PetscFunctionReturn(0);
+  }
+};
+
+class PlasticMaterialLaw : public Material {
+public:
+  PlasticMaterial m{};
+  const char *Name() const override { return "plastic"; }
+  void ElasticConstants(double *e, double *n) const override { *e = m.young, *n = m.nu; }
+  int HistorySize() const override { return 4; }
+  void InitHistory(double *h) const override { h[0] = h[1] = h[2] = h[3] = 0.0; }
+  int Evaluate(const double E[3], const double *hold, double *hnew, double S[3],
+               double D[9]) const override {
+    PlasticState committed, trial;
+    std::memcpy(&committed, hold, sizeof committed);
+    int st = PlasticReturnMap(m, E, committed, &trial, S, D);
+    if (hnew) std::memcpy(hnew, &trial, sizeof trial);
+    return st;
+  }
+  bool PlasticStrain(const double *h, double ep[3], double *ep_bar) const override {
+    ep[0] = h[0], ep[1] = h[1], ep[2] = h[2];
+    *ep_bar = h[3];
+    return true;
+  }
+  PetscErrorCode View(MPI_Comm comm) const override {
+    PetscFunctionBeginUser;
+    PetscCall(PetscPrintf(comm, "  material: plastic (plane-stress von Mises, %d hardening segments), E = %g MPa, nu = %g\n",
+                          m.nseg, m.young, m.nu));
+    for (int k = 0; k < m.nseg; ++k)
+      PetscCall(PetscPrintf(comm, "    segment %d: yield %g MPa, plastic modulus %g MPa\n", k,
+                            m.yield[k], m.H[k]));
+    PetscFunctionReturn(0);
+  }
+};
+
+PetscErrorCode ReadElasticConstants(double *young, double *nu) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Material", "Material");
+  PetscCall(PetscOptionsReal("-material_young", "Young's modulus [MPa]", "", *young, young, nullptr));
+  PetscCall(PetscOptionsReal("-material_poisson", "Poisson's ratio", "", *nu, nu, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(*young > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+             "-material_young %g: Young's modulus must be positive (MPa)", *young);
+  PetscCheck(*nu > -1.0 && *nu < 0.5, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+             "-material_poisson %g: Poisson's ratio must lie in (-1, 0.5)", *nu);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CreateElastic(std::unique_ptr<Material> *out) {
+  auto mat = std::make_unique<ElasticMaterial>();
+  PetscFunctionBeginUser;
+  PetscCall(ReadElasticConstants(&mat->young, &mat->nu));
+  *out = std::move(mat);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CreatePlastic(std::unique_ptr<Material> *out) {
+  auto mat = std::make_unique<PlasticMaterialLaw>();
+  PlasticMaterial &m = mat->m;
+  PetscFunctionBeginUser;
+  m.young = 800.0;
+  m.nu = 0.43;
+  PetscCall(ReadElasticConstants(&m.young, &m.nu));
+  // Thesis Table 4.2 (case 1): first yield 13.28 MPa with H' = 80.5, second 23.04 with H' = 3.
+  PetscReal yield[kMaxHardeningSegments] = {13.28, 23.04}, H[kMaxHardeningSegments] = {80.5, 3.0};
+  PetscInt ny = kMaxHardeningSegments, nH = kMaxHardeningSegments;
+  PetscBool sety = PETSC_FALSE, setH = PETSC_FALSE;
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Plastic material", "Material");
+  PetscCall(PetscOptionsRealArray("-material_yield", "Yield stresses where the hardening segments start [MPa]",
+                                  "", yield, &ny, &sety));
+  PetscCall(PetscOptionsRealArray("-material_hardening", "Plastic modulus H' of each segment [MPa]", "", H,
+                                  &nH, &setH));
+  PetscOptionsEnd();
+  if (!sety) ny = 2;
+  if (!setH) nH = 2;
+  PetscCheck(ny == nH && ny >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ,
+             "-material_yield has %" PetscInt_FMT " values but -material_hardening has %" PetscInt_FMT
+             "; give one plastic modulus per yield stress",
+             ny, nH);
+  m.nseg = (int)ny;
+  for (int k = 0; k < m.nseg; ++k) m.yield[k] = yield[k], m.H[k] = H[k];
+  char msg[256] = "";
+  PetscCheck(PlasticMaterialCheck(m, msg, sizeof msg) == 0, PETSC_COMM_WORLD,
+             PETSC_ERR_ARG_OUTOFRANGE, "plastic material: %s (options -material_*)", msg);
+  *out = std::move(mat);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode MaterialRegisterAll(void) {
+  PetscFunctionBeginUser;
+  if (material_list) PetscFunctionReturn(0);
+  PetscCall(PetscFunctionListAdd(&material_list, "elastic", CreateElastic));
+  PetscCall(PetscFunctionListAdd(&material_list, "plastic", CreatePlastic));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material) {
+  char type[64] = "elastic";
+  PetscBool set;
+  MaterialCreator create = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(MaterialRegisterAll());
+  PetscOptionsBegin(comm, nullptr, "Material", "Material");
+  PetscCall(PetscOptionsFList("-material_type", "Constitutive law", "", material_list, type, type,
+                              sizeof type, &set));
+  PetscOptionsEnd();
+  PetscCall(PetscFunctionListFind(material_list, type, &create));
+  PetscCheck(create, comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
+             "-material_type %s is unknown; the registered laws are: elastic, plastic", type);
+  PetscCall(create(material));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,278 @@
+// From the global scene to the distributed Problem.
+//
+// Every rank holds the scene's global mesh during set-up (generators run everywhere; a file is
+// read on rank 0 and broadcast). Rank 0 partitions the elements with METIS and broadcasts the
+// part of each element; a node belongs to the lowest rank among its elements. PETSc ids number
+// nodes rank by rank (owned nodes contiguous), keeping the scene's order inside a rank, so the
+// matrix rows of a rank are contiguous. Preallocation is exact: it is counted on the global
+// mesh, which also sees the elements of other ranks that touch an owned node.
+#include <petscsnes.h>
+
+#include <algorithm>
+#include <numeric>
+
+#include "etfe/kernels/status.h"
+#include "etfe/mesh/partition.h"
+#include "etfe/problem.h"
+
+namespace etfe {
+
+static PetscErrorCode PartitionAndBroadcast(MPI_Comm comm, const MeshData &mesh,
+                                            std::vector<int> *part) {
+  PetscMPIInt rank, size;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  part->assign(mesh.NumElements(), 0);
+  if (size == 1) PetscFunctionReturn(0);
+  int ok = 1;
+  std::string err;
+  if (rank == 0) ok = PartitionElementsMetis(mesh, size, part, &err) ? 1 : 0;
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+  PetscCheck(ok, comm, PETSC_ERR_LIB, "%s", err.c_str());
+  PetscCallMPI(MPI_Bcast(part->data(), (int)part->size(), MPI_INT, 0, comm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode BuildReferenceGeometry(Problem *P) {
+  LocalMesh &m = P->mesh;
+  PetscFunctionBeginUser;
+  m.ref.resize(m.num_elements);
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double X[9];
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) X[3 * a + i] = m.X[3 * m.tri[3 * e + a] + i];
+    int st = MembraneReferenceBuild(X, P->scene.md_axis, 0.0, &m.ref[e]);
+    PetscCheck(st == KERNEL_OK, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+               "%s: element %" PetscInt_FMT " (nodes %" PetscInt_FMT " %" PetscInt_FMT
+               " %" PetscInt_FMT "): %s; fix the mesh (remove or merge the element)",
+               P->scene.mesh.source.c_str(), m.element_natural[e],
+               m.natural_id[m.tri[3 * e]], m.natural_id[m.tri[3 * e + 1]],
+               m.natural_id[m.tri[3 * e + 2]], KernelStatusName(st));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateMatrix(Problem *P, const MeshData &gm, const std::vector<int> &owner,
+                                   const std::vector<PetscInt> &petsc_id) {
+  LocalMesh &m = P->mesh;
+  const PetscInt n = m.num_owned, start = m.owned_start;
+  PetscFunctionBeginUser;
+  // Neighbour lists of owned nodes over all elements of the global mesh.
+  std::vector<PetscInt> count(n + 1, 0);
+  const int ne = gm.NumElements();
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 3; ++a) {
+      PetscInt row = petsc_id[gm.triangles[3 * e + a]] - start;
+      if (row >= 0 && row < n) count[row + 1] += 3;
+    }
+  std::partial_sum(count.begin(), count.end(), count.begin());
+  std::vector<PetscInt> cols(count[n]), fill(count.begin(), count.end() - 1);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 3; ++a) {
+      PetscInt row = petsc_id[gm.triangles[3 * e + a]] - start;
+      if (row < 0 || row >= n) continue;
+      for (int b = 0; b < 3; ++b) cols[fill[row]++] = petsc_id[gm.triangles[3 * e + b]];
+    }
+  std::vector<PetscInt> d_nnz(n), o_nnz(n);
+  for (PetscInt r = 0; r < n; ++r) {
+    auto first = cols.begin() + count[r], last = cols.begin() + count[r + 1];
+    std::sort(first, last);
+    last = std::unique(first, last);
+    PetscInt d = 0, o = 0;
+    for (auto it = first; it != last; ++it) (*it >= start && *it < start + n) ? ++d : ++o;
+    d_nnz[r] = d;
+    o_nnz[r] = o;
+  }
+  (void)owner;
+  PetscCall(MatCreate(P->comm, &P->J));
+  PetscCall(MatSetSizes(P->J, 3 * n, 3 * n, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetBlockSize(P->J, 3));
+  PetscCall(MatSetType(P->J, MATAIJ));
+  PetscCall(MatSetOptionsPrefix(P->J, nullptr));
+  PetscCall(MatSetFromOptions(P->J));
+  PetscCall(MatXAIJSetPreallocation(P->J, 3, d_nnz.data(), o_nnz.data(), nullptr, nullptr));
+  PetscCall(MatSetLocalToGlobalMapping(P->J, P->l2g, P->l2g));
+  // A new nonzero would mean a wrong preallocation: make it a hard error, never a malloc.
+  PetscCall(MatSetOption(P->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, P->has_pressure ? PETSC_FALSE : PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material,
+                             Problem *P) {
+  PetscFunctionBeginUser;
+  P->comm = comm;
+  PetscCallMPI(MPI_Comm_rank(comm, &P->rank));
+  PetscCallMPI(MPI_Comm_size(comm, &P->size));
+  P->scene = std::move(scene);
+  P->material = std::move(material);
+  const MeshData &gm = P->scene.mesh;
+  LocalMesh &m = P->mesh;
+  const int nn = gm.NumNodes(), ne = gm.NumElements();
+  m.num_nodes_global = nn;
+  m.num_elements_global = ne;
+
+  std::vector<int> part;
+  PetscCall(PartitionAndBroadcast(comm, gm, &part));
+
+  // Node owner = lowest rank among its elements; PETSc ids rank by rank.
+  std::vector<int> owner(nn, P->size);
+  for (int e = 0; e < ne; ++e)
+    for (int a = 0; a < 3; ++a) {
+      int &o = owner[gm.triangles[3 * e + a]];
+      o = std::min(o, part[e]);
+    }
+  std::vector<PetscInt> first(P->size + 1, 0);
+  for (int i = 0; i < nn; ++i) first[owner[i] + 1]++;
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  std::vector<PetscInt> petsc_id(nn), next(first.begin(), first.end() - 1);
+  for (int i = 0; i < nn; ++i) petsc_id[i] = next[owner[i]]++;
+  m.owned_start = first[P->rank];
+  m.num_owned = first[P->rank + 1] - first[P->rank];
+
+  // Local elements and nodes.
+  std::vector<PetscInt> local_of(nn, -1);
+  m.natural_id.assign(m.num_owned, 0);
+  for (int i = 0; i < nn; ++i)
+    if (owner[i] == P->rank) {
+      local_of[i] = petsc_id[i] - m.owned_start;
+      m.natural_id[local_of[i]] = i;
+    }
+  std::vector<int> ghosts;
+  for (int e = 0; e < ne; ++e) {
+    if (part[e] != P->rank) continue;
+    m.element_natural.push_back(e);
+    for (int a = 0; a < 3; ++a) {
+      int v = gm.triangles[3 * e + a];
+      if (local_of[v] < 0) {
+        local_of[v] = -2;  // ghost, numbered below
+        ghosts.push_back(v);
+      }
+    }
+  }
+  std::sort(ghosts.begin(), ghosts.end(),
+            [&](int a, int b) { return petsc_id[a] < petsc_id[b]; });
+  m.num_ghost = (PetscInt)ghosts.size();
+  for (PetscInt g = 0; g < m.num_ghost; ++g) {
+    local_of[ghosts[g]] = m.num_owned + g;
+    m.natural_id.push_back(ghosts[g]);
+  }
+  const PetscInt nl = m.NumLocal();
+  m.global_id.resize(nl);
+  m.X.resize(3 * nl);
+  for (PetscInt l = 0; l < nl; ++l) {
+    m.global_id[l] = petsc_id[m.natural_id[l]];
+    for (int i = 0; i < 3; ++i) m.X[3 * l + i] = gm.coords[3 * m.natural_id[l] + i];
+  }
+  m.num_elements = (PetscInt)m.element_natural.size();
+  m.tri.resize(3 * m.num_elements);
+  for (PetscInt e = 0; e < m.num_elements; ++e)
+    for (int a = 0; a < 3; ++a)
+      m.tri[3 * e + a] = (int)local_of[gm.triangles[3 * m.element_natural[e] + a]];
+  PetscCallMPI(MPI_Exscan(&m.num_elements, &m.element_start, 1, MPIU_INT, MPI_SUM, comm));
+  if (P->rank == 0) m.element_start = 0;
+  PetscCall(BuildReferenceGeometry(P));
+
+  // History only when the material has one.
+  const int nh = P->material->HistorySize();
+  if (nh > 0) {
+    P->history.resize((size_t)nh * m.num_elements);
+    P->history_trial.resize((size_t)nh * m.num_elements);
+    for (PetscInt e = 0; e < m.num_elements; ++e) P->material->InitHistory(&P->history[nh * e]);
+  }
+
+  // Constraints: every local DOF (owned or ghost) knows whether it is constrained.
+  P->dof_constrained.assign(3 * nl, 0);
+  for (const DofConstraint &c : P->scene.constraints) {
+    PetscCheck(c.node >= 0 && c.node < nn && c.comp >= 0 && c.comp < 3, comm,
+               PETSC_ERR_ARG_OUTOFRANGE,
+               "scene %s: constraint on node %d component %d is outside the mesh (%d nodes)",
+               P->scene.name.c_str(), c.node, c.comp, nn);
+    PetscInt l = local_of[c.node];
+    if (l < 0) continue;
+    const PetscInt dof = 3 * l + c.comp;
+    if (l < m.num_owned && !P->dof_constrained[dof]) {
+      P->con_owned_dof.push_back(dof);
+      P->con_owned_value.push_back(c.value);
+    } else if (l < m.num_owned) {  // a later constraint on the same DOF wins
+      for (size_t k = 0; k < P->con_owned_dof.size(); ++k)
+        if (P->con_owned_dof[k] == dof) P->con_owned_value[k] = c.value;
+    }
+    P->dof_constrained[dof] = 1;
+  }
+
+  // Pressure only when the scene has it.
+  if (P->scene.pressure.active) {
+    P->has_pressure = true;
+    P->pressure_value = P->scene.pressure.value;
+    std::vector<char> loaded(ne, P->scene.pressure.elements.empty() ? 1 : 0);
+    for (int e : P->scene.pressure.elements) {
+      PetscCheck(e >= 0 && e < ne, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "scene %s: pressure element %d is outside the mesh (%d elements)",
+                 P->scene.name.c_str(), e, ne);
+      loaded[e] = 1;
+    }
+    for (PetscInt e = 0; e < m.num_elements; ++e)
+      if (loaded[m.element_natural[e]]) P->pressure_elements.push_back(e);
+  }
+
+  // Vectors and matrix.
+  std::vector<PetscInt> ghost_ids(m.num_ghost);
+  for (PetscInt g = 0; g < m.num_ghost; ++g) ghost_ids[g] = m.global_id[m.num_owned + g];
+  PetscCall(VecCreateGhostBlock(comm, 3, 3 * m.num_owned, PETSC_DECIDE, m.num_ghost,
+                                ghost_ids.data(), &P->U));
+  PetscCall(PetscObjectSetName((PetscObject)P->U, "displacement"));
+  PetscCall(VecDuplicate(P->U, &P->U_work));
+  PetscCall(VecDuplicate(P->U, &P->F_work));
+  PetscCall(VecDuplicate(P->U, &P->reaction));
+  PetscCall(ISLocalToGlobalMappingCreate(comm, 3, nl, m.global_id.data(), PETSC_COPY_VALUES,
+                                         &P->l2g));
+  PetscCall(CreateMatrix(P, gm, owner, petsc_id));
+
+  // Initial displacement (scene guess, then the prescribed values at t = 0).
+  if (!P->scene.initial_guess.empty()) {
+    PetscScalar *u;
+    PetscCall(VecGetArray(P->U, &u));
+    for (PetscInt l = 0; l < m.num_owned; ++l)
+      for (int i = 0; i < 3; ++i) u[3 * l + i] = P->scene.initial_guess[3 * m.natural_id[l] + i];
+    PetscCall(VecRestoreArray(P->U, &u));
+  }
+  PetscCall(ApplyConstraints(P, 0.0, P->U));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemDestroy(Problem *P) {
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&P->U));
+  PetscCall(VecDestroy(&P->U_work));
+  PetscCall(VecDestroy(&P->F_work));
+  PetscCall(VecDestroy(&P->reaction));
+  PetscCall(MatDestroy(&P->J));
+  PetscCall(ISLocalToGlobalMappingDestroy(&P->l2g));
+  if (P->scene.report_ctx && P->scene.report_ctx_destroy)
+    P->scene.report_ctx_destroy(P->scene.report_ctx);
+  P->scene.report_ctx = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemGetNodeDisplacement(Problem *P, Vec U, PetscInt node, double u[3]) {
+  double mine[3] = {0, 0, 0};
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U, &a));
+  for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
+    if (P->mesh.natural_id[l] == node)
+      for (int i = 0; i < 3; ++i) mine[i] = a[3 * l + i];
+  PetscCall(VecRestoreArrayRead(U, &a));
+  PetscCallMPI(MPI_Allreduce(mine, u, 3, MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemGetNodeCoordinates(Problem *P, PetscInt node, double X[3]) {
+  PetscFunctionBeginUser;
+  for (int i = 0; i < 3; ++i) X[i] = P->scene.mesh.coords[3 * node + i];
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

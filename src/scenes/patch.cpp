@@ -1,0 +1,125 @@
+// Patch scene: a flat rectangle (optionally an irregular mesh) stretched in its plane, uniaxial
+// (free lateral edge) or biaxial, with a stage schedule of stretch multipliers so loading,
+// unloading and reloading are one option (-patch_schedule 1,0,1.5). Every element must carry the
+// same stress; with an elastic material the scene prints the closed form too.
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "etfe/kernels/elastic.h"
+#include "etfe/mesh/generators.h"
+#include "etfe/problem.h"
+#include "etfe/scene.h"
+
+namespace etfe {
+
+namespace {
+
+struct PatchContext {
+  double ex, ey;  // engineering stretch - 1 at schedule value 1
+  bool biaxial;
+  double final_factor;
+};
+
+PetscErrorCode PatchReport(Problem *P, void *vctx) {
+  auto *ctx = (PatchContext *)vctx;
+  CellFields c;
+  PetscFunctionBeginUser;
+  PetscCall(ComputeCellFields(P, P->U, &c));
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, glo[3], ghi[3];
+  for (PetscInt e = 0; e < P->mesh.num_elements; ++e)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], c.stress[3 * e + i]);
+      hi[i] = std::max(hi[i], c.stress[3 * e + i]);
+    }
+  PetscCallMPI(MPI_Allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, P->comm));
+  PetscCallMPI(MPI_Allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, P->comm));
+  const double scale = std::max({std::fabs(ghi[0]), std::fabs(ghi[1]), std::fabs(glo[0]),
+                                 std::fabs(glo[1]), 1e-30});
+  const double spread = std::max({ghi[0] - glo[0], ghi[1] - glo[1], ghi[2] - glo[2]}) / scale;
+  PetscCall(PetscPrintf(P->comm,
+                        "patch: Sxx in [%.10e, %.10e], Syy in [%.10e, %.10e], Sxy in [%.3e, %.3e] MPa\n"
+                        "patch: stress_spread = %.3e (max - min over elements, relative)\n",
+                        glo[0], ghi[0], glo[1], ghi[1], glo[2], ghi[2], spread));
+  if (std::string(P->material->Name()) == "elastic") {
+    double young, nu, E[3], S[3], D[9];
+    P->material->ElasticConstants(&young, &nu);
+    const double lx = 1.0 + ctx->ex * ctx->final_factor;
+    E[0] = 0.5 * (lx * lx - 1.0);
+    E[2] = 0.0;
+    if (ctx->biaxial) {
+      const double ly = 1.0 + ctx->ey * ctx->final_factor;
+      E[1] = 0.5 * (ly * ly - 1.0);
+      ElasticPlaneStress(young, nu, E, S, D);
+    } else {
+      S[0] = young * E[0];  // uniaxial plane stress: Syy = 0
+      S[1] = 0.0;
+    }
+    const double err = std::max(std::fabs(ghi[0] - S[0]), std::fabs(glo[0] - S[0])) / std::fabs(S[0]);
+    PetscCall(PetscPrintf(P->comm, "patch: closed_form Sxx = %.10e Syy = %.10e, relative_error = %.3e\n",
+                          S[0], S[1], err));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
+  PetscReal lx = 1000.0, ly = 500.0, ex = 0.02, ey = 0.0, perturb = 0.0;
+  PetscReal schedule[32] = {1.0};
+  PetscInt nx = 8, ny = 4, refine = 0, nsched = 32;
+  PetscBool biaxial = PETSC_FALSE, sched_set = PETSC_FALSE;
+  char pattern[32] = "alternate";
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Patch scene: in-plane stretch of a rectangle", "Scene");
+  PetscCall(PetscOptionsReal("-patch_lx", "Length in X [mm]", "", lx, &lx, nullptr));
+  PetscCall(PetscOptionsReal("-patch_ly", "Width in Y [mm]", "", ly, &ly, nullptr));
+  PetscCall(PetscOptionsReal("-patch_strain_x", "Engineering strain in X at schedule value 1", "", ex, &ex, nullptr));
+  PetscCall(PetscOptionsReal("-patch_strain_y", "Engineering strain in Y (biaxial only)", "", ey, &ey, nullptr));
+  PetscCall(PetscOptionsBool("-patch_biaxial", "Prescribe Y on the top edge too (else it is free)", "",
+                             biaxial, &biaxial, nullptr));
+  PetscCall(PetscOptionsRealArray("-patch_schedule",
+                                  "Stretch multipliers at the end of each stage, e.g. 1,0,1.5", "",
+                                  schedule, &nsched, &sched_set));
+  PetscCall(PetscOptionsInt("-mesh_nx", "Cells in X", "", nx, &nx, nullptr));
+  PetscCall(PetscOptionsInt("-mesh_ny", "Cells in Y", "", ny, &ny, nullptr));
+  PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine, &refine, nullptr));
+  PetscCall(PetscOptionsReal("-mesh_perturb", "Random interior node shift, fraction of a cell", "", perturb,
+                             &perturb, nullptr));
+  PetscCall(PetscOptionsString("-mesh_pattern", "Diagonals: right, left, alternate, crossed", "", pattern,
+                               pattern, sizeof pattern, nullptr));
+  PetscOptionsEnd();
+  if (!sched_set) nsched = 1;
+  PetscCheck(nsched >= 1, comm, PETSC_ERR_ARG_SIZ, "-patch_schedule is empty: give at least one stage value");
+  PetscCheck(lx > 0 && ly > 0 && nx >= 1 && ny >= 1 && refine >= 0 && refine < 12, comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "patch: need positive -patch_lx/-patch_ly, -mesh_nx/-mesh_ny >= 1, 0 <= -mesh_refine < 12");
+  PetscCheck(perturb >= 0 && perturb < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_perturb %g: must lie in [0, 0.5) or elements may invert", perturb);
+  DiagonalPattern pat;
+  std::string ps = pattern;
+  if (ps == "right") pat = DiagonalPattern::Right;
+  else if (ps == "left") pat = DiagonalPattern::Left;
+  else if (ps == "alternate") pat = DiagonalPattern::Alternate;
+  else if (ps == "crossed") pat = DiagonalPattern::Crossed;
+  else SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-mesh_pattern %s: use right, left, alternate or crossed", pattern);
+  nx <<= refine;
+  ny <<= refine;
+  scene->mesh = MakeRectangleMesh(0.0, 0.0, lx, ly, (int)nx, (int)ny, pat, perturb, 12345u);
+  Schedule s{"stretch", 0.0, std::vector<double>(schedule, schedule + nsched)};
+  const int is = scene->AddSchedule(s);
+  const auto &sets = scene->mesh.node_sets;
+  for (int n : sets.at("all")) scene->constraints.push_back({n, 2, {}});
+  for (int n : sets.at("left")) scene->constraints.push_back({n, 0, {}});
+  for (int n : sets.at("bottom")) scene->constraints.push_back({n, 1, {}});
+  for (int n : sets.at("right")) scene->constraints.push_back({n, 0, {{ex * lx, 0.0}, {is, -1}}});
+  if (biaxial)
+    for (int n : sets.at("top")) scene->constraints.push_back({n, 1, {{ey * ly, 0.0}, {is, -1}}});
+  auto *ctx = new PatchContext{ex, ey, (bool)biaxial, schedule[nsched - 1]};
+  scene->report = PatchReport;
+  scene->report_ctx = ctx;
+  scene->report_ctx_destroy = [](void *c) { delete (PatchContext *)c; };
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

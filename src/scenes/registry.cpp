@@ -1,0 +1,122 @@
+// Scene registry (-scene, -scene_list) and the shared mesh input (-mesh_file).
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+#include "etfe/mesh/gmsh_reader.h"
+#include "etfe/scene.h"
+
+namespace etfe {
+
+PetscErrorCode SceneBuild_Hencky(MPI_Comm, SceneSpec *);
+PetscErrorCode SceneBuild_Patch(MPI_Comm, SceneSpec *);
+
+namespace {
+PetscFunctionList scene_list = nullptr;
+std::vector<std::string> scene_names;  // for -scene_list, in registration order
+}
+
+PetscErrorCode SceneRegister(const char name[], SceneBuilder builder) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscFunctionListAdd(&scene_list, name, builder));
+  scene_names.push_back(name);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SceneRegisterAll(void) {
+  PetscFunctionBeginUser;
+  if (scene_list) PetscFunctionReturn(0);
+  PetscCall(SceneRegister("hencky", SceneBuild_Hencky));
+  PetscCall(SceneRegister("patch", SceneBuild_Patch));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene) {
+  char name[64] = "";
+  PetscBool set = PETSC_FALSE, list = PETSC_FALSE;
+  SceneBuilder build = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(SceneRegisterAll());
+  PetscOptionsBegin(comm, nullptr, "Scene", "Scene");
+  PetscCall(PetscOptionsFList("-scene", "Scene to build", "", scene_list, name, name, sizeof name,
+                              &set));
+  PetscCall(PetscOptionsBool("-scene_list", "List the registered scenes and exit", "", list, &list,
+                             nullptr));
+  PetscOptionsEnd();
+  if (list) {
+    PetscCall(PetscPrintf(comm, "registered scenes:"));
+    for (const std::string &n : scene_names) PetscCall(PetscPrintf(comm, " %s", n.c_str()));
+    PetscCall(PetscPrintf(comm, "\n"));
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT,
+             "no scene given: add -scene <name> (or an options file that sets it); -scene_list "
+             "shows the registered scenes");
+  PetscCall(PetscFunctionListFind(scene_list, name, &build));
+  PetscCheck(build, comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
+             "-scene %s is not a registered scene; -scene_list shows them", name);
+  scene->name = name;
+  PetscCall(build(comm, scene));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MeshReadAndBroadcast(MPI_Comm comm, const char path[], MeshData *mesh) {
+  PetscMPIInt rank;
+  int ok = 1;
+  std::string err;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    ok = ReadGmshFile(path, mesh, &err) ? 1 : 0;
+    if (ok && !MeshCheck(*mesh, 0.0, &err)) ok = 0;
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+  if (!ok) {
+    int len = (int)err.size();
+    PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
+    err.resize(len);
+    PetscCallMPI(MPI_Bcast(err.data(), len, MPI_CHAR, 0, comm));
+    SETERRQ(comm, PETSC_ERR_FILE_READ, "%s", err.c_str());
+  }
+  // Broadcast coordinates, triangles and the named sets.
+  long long sizes[3] = {(long long)mesh->coords.size(), (long long)mesh->triangles.size(),
+                        (long long)mesh->node_sets.size() + (long long)mesh->element_sets.size()};
+  PetscCallMPI(MPI_Bcast(sizes, 3, MPI_LONG_LONG, 0, comm));
+  mesh->coords.resize(sizes[0]);
+  mesh->triangles.resize(sizes[1]);
+  PetscCallMPI(MPI_Bcast(mesh->coords.data(), (int)sizes[0], MPI_DOUBLE, 0, comm));
+  PetscCallMPI(MPI_Bcast(mesh->triangles.data(), (int)sizes[1], MPI_INT, 0, comm));
+  // Sets: serialise as (kind, name length, name, count, ids).
+  std::vector<int> buf;
+  if (rank == 0) {
+    for (int kind = 0; kind < 2; ++kind)
+      for (auto &kv : kind == 0 ? mesh->node_sets : mesh->element_sets) {
+        buf.push_back(kind);
+        buf.push_back((int)kv.first.size());
+        for (char c : kv.first) buf.push_back(c);
+        buf.push_back((int)kv.second.size());
+        buf.insert(buf.end(), kv.second.begin(), kv.second.end());
+      }
+  }
+  long long nbuf = (long long)buf.size();
+  PetscCallMPI(MPI_Bcast(&nbuf, 1, MPI_LONG_LONG, 0, comm));
+  buf.resize(nbuf);
+  PetscCallMPI(MPI_Bcast(buf.data(), (int)nbuf, MPI_INT, 0, comm));
+  if (rank != 0) {
+    size_t k = 0;
+    while (k < buf.size()) {
+      int kind = buf[k++], len = buf[k++];
+      std::string name(buf.begin() + k, buf.begin() + k + len);
+      k += len;
+      int n = buf[k++];
+      std::vector<int> ids(buf.begin() + k, buf.begin() + k + n);
+      k += n;
+      (kind == 0 ? mesh->node_sets : mesh->element_sets)[name] = std::move(ids);
+    }
+  }
+  mesh->source = path;
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,224 @@
+// The "etfe" line search. Newton on membranes fails in recognisable ways: a full step folds an
+// element through itself (a slack region), the linear solve is inaccurate (stiff penalties,
+// near-singular tangents), or the residual grows far from the solution. This line search
+//   1. checks the true residual |J y - F| / |F| of the Newton direction (warns, fails when large);
+//   2. caps the largest nodal update at -snes_linesearch_etfe_max_update (mm);
+//   3. halves the step while the trial collapses or flips an element or gives a non-finite
+//      residual (the "domain" of the membrane);
+//   4. backtracks on |F| (sufficient decrease, Armijo with c = 1e-4); if no step decreases it
+//      within max_it halvings the best decreasing one is taken, else the search fails and the
+//      load stepper cuts the increment back.
+// Registered like PETSc's own types (see linesearchbt.c): one file, a create function, options
+// under -snes_linesearch_etfe_.
+#include <petsc/private/linesearchimpl.h>
+#include <petsc/private/snesimpl.h>
+
+#include <cmath>
+
+#include "etfe/kernels/status.h"
+#include "etfe/linesearch.h"
+#include "etfe/problem.h"
+
+namespace etfe {
+
+namespace {
+
+struct EtfeLineSearch {
+  Problem *problem = nullptr;
+  PetscReal max_update = 0.0;  // mm; 0 = no cap
+  PetscReal linear_warn = 1e-6, linear_fail = 1e-2;
+  PetscBool check_linear = PETSC_TRUE;
+  PetscReal armijo = 1e-4;
+};
+
+// Largest nodal (3-vector) norm of y.
+PetscErrorCode MaxNodalNorm(Vec y, PetscReal *m) {
+  const PetscScalar *a;
+  PetscInt n;
+  PetscReal local = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(y, &n));
+  PetscCall(VecGetArrayRead(y, &a));
+  for (PetscInt i = 0; i + 2 < n; i += 3)
+    local = PetscMax(local, std::sqrt(a[i] * a[i] + a[i + 1] * a[i + 1] + a[i + 2] * a[i + 2]));
+  PetscCall(VecRestoreArrayRead(y, &a));
+  PetscCallMPI(MPI_Allreduce(&local, m, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)y)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckLinearResidual(SNESLineSearch ls, EtfeLineSearch *d, Vec F, Vec Y,
+                                   PetscReal fnorm, PetscBool *ok) {
+  SNES snes;
+  Mat J;
+  Vec r;
+  PetscReal rnorm;
+  PetscFunctionBeginUser;
+  *ok = PETSC_TRUE;
+  PetscCall(SNESLineSearchGetSNES(ls, &snes));
+  PetscCall(SNESGetJacobian(snes, &J, nullptr, nullptr, nullptr));
+  if (!J || fnorm == 0.0) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(F, &r));
+  PetscCall(MatMult(J, Y, r));
+  PetscCall(VecAXPY(r, -1.0, F));
+  PetscCall(VecNorm(r, NORM_2, &rnorm));
+  PetscCall(VecDestroy(&r));
+  const PetscReal rel = rnorm / fnorm;
+  if (!(rel <= d->linear_fail)) {
+    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ls),
+                          "  line search: linear solve inaccurate, |J y - F|/|F| = %.3e > %.1e "
+                          "(singular or ill-conditioned tangent: check supports, penalties, "
+                          "-pc_factor_mat_solver_type)\n",
+                          (double)rel, (double)d->linear_fail));
+    *ok = PETSC_FALSE;
+  } else if (rel > d->linear_warn) {
+    PetscCall(PetscInfo(ls, "linear solve residual |J y - F|/|F| = %g\n", (double)rel));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Apply(SNESLineSearch ls) {
+  EtfeLineSearch *d = (EtfeLineSearch *)ls->data;
+  SNES snes;
+  Vec X, F, Y, W, G;
+  PetscReal fnorm, xnorm, ynorm, lambda = 1.0, gnorm = 0.0;
+  PetscBool ok;
+  PetscFunctionBeginUser;
+  PetscCall(SNESLineSearchGetSNES(ls, &snes));
+  PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, &W, &G));
+  PetscCall(SNESLineSearchGetNorms(ls, &xnorm, &fnorm, &ynorm));
+  PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
+  if (ls->norms) PetscCall(VecNorm(F, NORM_2, &fnorm));
+
+  if (d->check_linear) {
+    PetscCall(CheckLinearResidual(ls, d, F, Y, fnorm, &ok));
+    if (!ok) {
+      PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_USER));
+      PetscFunctionReturn(0);
+    }
+  }
+  if (d->max_update > 0.0) {
+    PetscReal ymax;
+    PetscCall(MaxNodalNorm(Y, &ymax));
+    if (ymax > d->max_update) {
+      lambda = d->max_update / ymax;
+      PetscCall(PetscInfo(ls, "step capped: largest nodal update %g > %g\n", (double)ymax,
+                          (double)d->max_update));
+    }
+  }
+
+  Problem *P = d->problem;
+  PetscReal best_lambda = -1.0, best_norm = PETSC_MAX_REAL;
+  PetscBool accepted = PETSC_FALSE;
+  for (PetscInt it = 0; it <= ls->max_its && !accepted; ++it, lambda *= 0.5) {
+    PetscCall(VecWAXPY(W, -lambda, Y, X));
+    if (P) {
+      PetscCall(CheckStep(P, X, W, &ok));
+      if (!ok) {
+        PetscCall(PetscInfo(ls, "lambda %g refused: element %" PetscInt_FMT " would collapse or flip\n",
+                            (double)lambda, P->bad_element));
+        continue;
+      }
+      P->in_linesearch = PETSC_TRUE;
+    }
+    PetscCall((*ls->ops->snesfunc)(snes, W, G));
+    if (P) {
+      P->in_linesearch = PETSC_FALSE;
+      if (P->bad_status != KERNEL_OK) continue;
+    }
+    PetscCall(VecNorm(G, NORM_2, &gnorm));
+    if (PetscIsInfOrNanReal(gnorm)) continue;
+    if (gnorm <= (1.0 - d->armijo * lambda) * fnorm) {
+      accepted = PETSC_TRUE;
+      break;
+    }
+    if (gnorm < best_norm) best_norm = gnorm, best_lambda = lambda;
+  }
+  if (!accepted) {
+    if (best_lambda > 0.0 && best_norm < fnorm) {
+      lambda = best_lambda;
+      PetscCall(VecWAXPY(W, -lambda, Y, X));
+      PetscCall((*ls->ops->snesfunc)(snes, W, G));
+      PetscCall(VecNorm(G, NORM_2, &gnorm));
+    } else {
+      PetscCall(SNESLineSearchSetReason(ls, (P && P->bad_status != KERNEL_OK)
+                                                ? SNES_LINESEARCH_FAILED_DOMAIN
+                                                : SNES_LINESEARCH_FAILED_REDUCT));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(VecCopy(W, X));
+  PetscCall(VecCopy(G, F));
+  PetscCall(SNESLineSearchSetLambda(ls, lambda));
+  PetscCall(VecNorm(X, NORM_2, &xnorm));
+  PetscCall(VecNorm(Y, NORM_2, &ynorm));
+  PetscCall(SNESLineSearchSetNorms(ls, xnorm, gnorm, lambda * ynorm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SetFromOptions(SNESLineSearch ls, PetscOptionItems *PetscOptionsObject) {
+  EtfeLineSearch *d = (EtfeLineSearch *)ls->data;
+  PetscFunctionBeginUser;
+  PetscOptionsHeadBegin(PetscOptionsObject, "SNES line search etfe");
+  PetscCall(PetscOptionsReal("-snes_linesearch_etfe_max_update",
+                             "Largest nodal displacement update per Newton iteration [mm] (0: none)",
+                             "", d->max_update, &d->max_update, nullptr));
+  PetscCall(PetscOptionsBool("-snes_linesearch_etfe_check_linear",
+                             "Check the true residual of the linear solve", "", d->check_linear,
+                             &d->check_linear, nullptr));
+  PetscCall(PetscOptionsReal("-snes_linesearch_etfe_linear_fail",
+                             "Fail the step when |J y - F|/|F| exceeds this", "", d->linear_fail,
+                             &d->linear_fail, nullptr));
+  PetscOptionsHeadEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode View(SNESLineSearch ls, PetscViewer viewer) {
+  EtfeLineSearch *d = (EtfeLineSearch *)ls->data;
+  PetscBool ascii;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (ascii)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  max nodal update %g mm, linear check %s\n",
+                                     (double)d->max_update, d->check_linear ? "on" : "off"));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Destroy(SNESLineSearch ls) {
+  PetscFunctionBeginUser;
+  delete (EtfeLineSearch *)ls->data;
+  ls->data = nullptr;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Create(SNESLineSearch ls) {
+  PetscFunctionBeginUser;
+  ls->ops->apply = Apply;
+  ls->ops->destroy = Destroy;
+  ls->ops->setfromoptions = SetFromOptions;
+  ls->ops->view = View;
+  ls->ops->reset = nullptr;
+  ls->data = new EtfeLineSearch();
+  ls->max_its = 12;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SNESLineSearchRegisterEtfe(void) {
+  static bool done = false;
+  PetscFunctionBeginUser;
+  if (done) PetscFunctionReturn(0);
+  done = true;
+  PetscCall(SNESLineSearchRegister(SNESLINESEARCHETFE, Create));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SNESLineSearchEtfeSetProblem(SNESLineSearch ls, Problem *problem) {
+  PetscBool match;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectTypeCompare((PetscObject)ls, SNESLINESEARCHETFE, &match));
+  if (match) ((EtfeLineSearch *)ls->data)->problem = problem;
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

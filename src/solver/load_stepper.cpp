@@ -1,0 +1,191 @@
+// Load stepping (see load_stepper.h). Committed state = (U, material history, load time); a
+// failed Newton solve restores U from the committed copy (history is untouched until commit),
+// so a cut-back repeats the increment from exactly the state it started from.
+#include <cmath>
+#include <cstdio>
+
+#include "etfe/kernels/status.h"
+#include "etfe/load_stepper.h"
+
+namespace etfe {
+
+PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptions *o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Load stepping", "LoadStepper");
+  PetscCall(PetscOptionsInt("-load_increments",
+                            "Number of load increments over the whole schedule (split evenly over "
+                            "its stages)",
+                            "", o->increments, &o->increments, nullptr));
+  PetscCall(PetscOptionsInt("-load_max_cutbacks", "Halvings of one increment before giving up",
+                            "", o->max_cutbacks, &o->max_cutbacks, nullptr));
+  PetscCall(PetscOptionsInt("-load_grow_after",
+                            "Easy increments in a row before a cut increment doubles again", "",
+                            o->grow_after, &o->grow_after, nullptr));
+  PetscCall(PetscOptionsInt("-load_easy_iterations", "Newton iterations that count as easy", "",
+                            o->easy_iterations, &o->easy_iterations, nullptr));
+  PetscCall(PetscOptionsBool("-load_extrapolate",
+                             "Predict each increment by linear extrapolation of the last two", "",
+                             o->extrapolate, &o->extrapolate, nullptr));
+  PetscCall(PetscOptionsInt("-load_monitor", "Print one line per increment (0: quiet)", "",
+                            o->monitor, &o->monitor, nullptr));
+  PetscCall(PetscOptionsInt("-load_stop_after", "End the run cleanly after this many increments",
+                            "", o->stop_after, &o->stop_after, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(o->increments >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-load_increments %" PetscInt_FMT ": need at least one increment", o->increments);
+  PetscCheck(o->max_cutbacks >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-load_max_cutbacks %" PetscInt_FMT ": must be >= 0", o->max_cutbacks);
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// Scene node id of the largest residual entry, for failure messages.
+PetscErrorCode WorstNode(Problem *P, Vec F, PetscInt *node, double *value) {
+  Vec a;
+  PetscInt loc;
+  PetscReal v;
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(F, &a));
+  PetscCall(VecCopy(F, a));
+  PetscCall(VecAbs(a));
+  PetscCall(VecMax(a, &loc, &v));
+  PetscCall(VecDestroy(&a));
+  PetscInt mine = -1, n = loc / 3 - P->mesh.owned_start;
+  if (loc >= 0 && n >= 0 && n < P->mesh.num_owned) mine = P->mesh.natural_id[n];
+  PetscCallMPI(MPI_Allreduce(&mine, node, 1, MPIU_INT, MPI_MAX, P->comm));
+  *value = v;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o,
+                              LoadStepperResult *res) {
+  const int nstages = P->scene.NumStages();
+  const double t_end = nstages;
+  const PetscInt per_stage = (o.increments + nstages - 1) / nstages;
+  const double dt_nominal = 1.0 / per_stage, eps = 1e-12;
+  double t = 0.0, dt = dt_nominal, dt_last = 0.0;
+  // Extrapolate only from converged states: a scene's initial guess is not one.
+  PetscInt converged_states = P->scene.initial_guess.empty() ? 1 : 0;
+  PetscInt step = 0, easy = 0;
+  Vec U_committed, U_previous, F;
+  PetscLogDouble t0, t_inc;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(VecDuplicate(P->U, &U_committed));
+  PetscCall(VecDuplicate(P->U, &U_previous));
+  P->time = 0.0;
+  PetscCall(ApplyConstraints(P, 0.0, P->U));
+  PetscCall(VecCopy(P->U, U_committed));
+  PetscCall(VecCopy(P->U, U_previous));
+  PetscCall(SNESGetFunction(snes, &F, nullptr, nullptr));
+  {
+    // Reactions of the initial state, then the initial state itself as step 0.
+    Vec R;
+    PetscCall(VecDuplicate(P->U, &R));
+    PetscCall(FormResidual(nullptr, P->U, R, P));
+    PetscCall(VecDestroy(&R));
+    // A scene's initial guess is not an equilibrium state: only a true start state is step 0.
+    if (P->scene.initial_guess.empty()) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
+  }
+  res->completed = PETSC_FALSE;
+  while (t < t_end - eps) {
+    const double stage_end = std::floor(t + eps) + 1.0;
+    const double dt_try = std::min(dt, stage_end - t);
+    const double t_new = (stage_end - (t + dt_try) < eps) ? stage_end : t + dt_try;
+    PetscCall(PetscTime(&t_inc));
+    // Predictor: extrapolate the last converged increment, then impose the new prescribed values.
+    PetscCall(VecCopy(U_committed, P->U));
+    if (o.extrapolate && dt_last > 0.0 && converged_states >= 2)
+      PetscCall(VecAXPBYPCZ(P->U, (t_new - t) / dt_last, -(t_new - t) / dt_last, 1.0,
+                            U_committed, U_previous));
+    P->time = t_new;
+    PetscCall(ApplyConstraints(P, t_new, P->U));
+    PetscCall(SNESSolve(snes, nullptr, P->U));
+    SNESConvergedReason reason;
+    PetscInt its;
+    PetscReal fnorm;
+    PetscCall(SNESGetConvergedReason(snes, &reason));
+    PetscCall(SNESGetIterationNumber(snes, &its));
+    PetscCall(SNESGetFunctionNorm(snes, &fnorm));
+    res->newton_iterations += its;
+    if (reason > 0) {
+      PetscCall(CommitHistory(P, P->U));
+      PetscCall(VecCopy(U_committed, U_previous));
+      PetscCall(VecCopy(P->U, U_committed));
+      dt_last = t_new - t;
+      t = t_new;
+      ++converged_states;
+      ++step;
+      PetscLogDouble now;
+      PetscCall(PetscTime(&now));
+      if (o.monitor)
+        PetscCall(PetscPrintf(P->comm,
+                              "step %5" PetscInt_FMT "  t %8.5f  stage %d  dt %.3e  newton %2" PetscInt_FMT
+                              "  |R| %.3e  cutbacks %" PetscInt_FMT "  %.3f s\n",
+                              step, t, (int)std::min<double>(std::floor(t - eps), nstages - 1) + 1,
+                              dt_last, its, (double)fnorm, res->cutbacks, now - t_inc));
+      const bool last = t >= t_end - eps;
+      const bool stop = o.stop_after >= 0 && step >= o.stop_after;
+      if (out && (last || stop || step % OutputEvery(out) == 0))
+        PetscCall(OutputWriteStep(out, P, P->U, step, t));
+      if (its <= o.easy_iterations && dt < dt_nominal && ++easy >= o.grow_after) {
+        dt = std::min(2.0 * dt, dt_nominal);
+        easy = 0;
+      }
+      if (stop) break;
+      continue;
+    }
+    // Divergence: restore the committed state and halve the increment.
+    ++res->cutbacks;
+    easy = 0;
+    PetscInt node;
+    double worst = 0.0;
+    PetscCall(WorstNode(P, F, &node, &worst));
+    char why[512];
+    if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
+      std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual "
+                    "%.3e at node %lld)",
+                    SNESConvergedReasons[reason], (long long)P->bad_element,
+                    KernelStatusName(P->bad_status), worst, (long long)node);
+    else
+      std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at "
+                    "node %lld)",
+                    SNESConvergedReasons[reason], (long long)its, worst, (long long)node);
+    PetscCall(VecCopy(U_committed, P->U));
+    dt = 0.5 * dt_try;
+    if (o.monitor)
+      PetscCall(PetscPrintf(P->comm, "step %5" PetscInt_FMT "  t %8.5f -> %.5f failed: %s; cutting back to dt %.3e\n",
+                            step + 1, t, t_new, why, dt));
+    if (dt < dt_nominal / std::pow(2.0, (double)o.max_cutbacks) * (1 - 1e-9)) {
+      res->failure = std::string("increment ") + std::to_string(step + 1) + " (load time " +
+                     std::to_string(t) + " -> " + std::to_string(t_new) +
+                     ") did not converge after " + std::to_string(o.max_cutbacks) +
+                     " cut-backs: " + why;
+      break;
+    }
+  }
+  // The last converged state is always in the results.
+  P->time = t;
+  PetscCall(VecCopy(U_committed, P->U));
+  {
+    Vec R;
+    PetscCall(VecDuplicate(P->U, &R));
+    PetscCall(FormResidual(nullptr, P->U, R, P));
+    PetscCall(VecDestroy(&R));
+  }
+  if (OutputLastStep(out) != step) PetscCall(OutputWriteStep(out, P, P->U, step, t));
+  res->completed = res->failure.empty() ? PETSC_TRUE : PETSC_FALSE;
+  res->steps = step;
+  res->time = t;
+  PetscLogDouble t1;
+  PetscCall(PetscTime(&t1));
+  res->wall = t1 - t0;
+  PetscCall(VecDestroy(&U_committed));
+  PetscCall(VecDestroy(&U_previous));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,110 @@
+// Follower pressure load (src/kernels/pressure.cpp): the load stiffness is the exact derivative
+// of the load, the resultant is p times the area vector, and reversing the node order (the
+// normal) reverses the load.
+#include "etfe/kernels/pressure.h"
+
+#include "check.h"
+
+#include <cmath>
+#include <cstdint>
+
+namespace {
+
+// Deterministic generator so a failure reproduces (splitmix64 -> [-1, 1)).
+struct Rng {
+  std::uint64_t s;
+  double Next() {
+    std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    return 2.0 * static_cast<double>(z >> 11) * 0x1.0p-53 - 1.0;
+  }
+};
+
+double MaxAbs(const double *v, int n) {
+  double m = 0.0;
+  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(v[i]));
+  return m;
+}
+
+} // namespace
+
+int main() {
+  using etfe::PressureLoad;
+  Rng rng{12345};
+
+  for (int trial = 0; trial < 20; ++trial) {
+    double x[9];
+    const double scale = trial < 10 ? 1.0 : 1000.0;  // unit-size and mm-size (saddle) triangles
+    for (int k = 0; k < 9; ++k) x[k] = scale * rng.Next();
+    const double p = 0.002 * (1.0 + rng.Next());  // 0 .. 4 kPa in MPa
+
+    double f[9], L[81];
+    PressureLoad(p, x, f, L);
+
+    // f is quadratic in x: central differences are exact up to rounding.
+    double Lfd[81];
+    const double h = 1e-4 * scale;
+    for (int col = 0; col < 9; ++col) {
+      double xp[9], xm[9], fp[9], fm[9];
+      for (int k = 0; k < 9; ++k) xp[k] = xm[k] = x[k];
+      xp[col] += h;
+      xm[col] -= h;
+      PressureLoad(p, xp, fp, nullptr);
+      PressureLoad(p, xm, fm, nullptr);
+      for (int row = 0; row < 9; ++row) Lfd[9 * row + col] = (fp[row] - fm[row]) / (2.0 * h);
+    }
+    double diff[81];
+    for (int k = 0; k < 81; ++k) diff[k] = L[k] - Lfd[k];
+    const double rel = MaxAbs(diff, 81) / MaxAbs(L, 81);
+    CHECK(rel < 1e-7, "trial %d: |L - L_fd|/|L| = %g", trial, rel);
+
+    // Resultant = p * (area vector) = p * area * unit normal.
+    double a[3], b[3], n[3];
+    for (int i = 0; i < 3; ++i) {
+      a[i] = x[3 + i] - x[i];
+      b[i] = x[6 + i] - x[i];
+    }
+    n[0] = a[1] * b[2] - a[2] * b[1];
+    n[1] = a[2] * b[0] - a[0] * b[2];
+    n[2] = a[0] * b[1] - a[1] * b[0];
+    const double twice_area = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int i = 0; i < 3; ++i) {
+      const double total = f[i] + f[3 + i] + f[6 + i];
+      const double expect = p * 0.5 * twice_area * (n[i] / twice_area);
+      CHECK_CLOSE(total, expect, 1e-13, 1e-15 * p * twice_area);
+    }
+
+    // Swapping nodes 2 and 3 flips the normal and the load; the per-node load is the same.
+    double xs[9], fs[9];
+    for (int i = 0; i < 3; ++i) {
+      xs[i] = x[i];
+      xs[3 + i] = x[6 + i];
+      xs[6 + i] = x[3 + i];
+    }
+    PressureLoad(p, xs, fs, nullptr);
+    for (int k = 0; k < 9; ++k) CHECK_CLOSE(fs[k], -f[k], 1e-13, 1e-15 * p * twice_area);
+    // A cyclic renumbering keeps the orientation and hence the load.
+    double xc[9], fc[9];
+    for (int k = 0; k < 9; ++k) xc[k] = x[(k + 3) % 9];
+    PressureLoad(p, xc, fc, nullptr);
+    for (int k = 0; k < 9; ++k) CHECK_CLOSE(fc[k], f[k], 1e-12, 1e-14 * p * twice_area);
+  }
+
+  // Hand case: unit right triangle in the XY plane, counter-clockwise seen from +Z: the load on
+  // each node is p/6 along +Z.
+  {
+    const double x[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    double f[9], L[81];
+    PressureLoad(3.0, x, f, L);
+    for (int a = 0; a < 3; ++a) {
+      CHECK(f[3 * a] == 0.0 && f[3 * a + 1] == 0.0, "in-plane load at node %d", a);
+      CHECK_CLOSE(f[3 * a + 2], 0.5, 1e-15, 0.0);
+    }
+    // Lifting node 3 tilts the normal towards -Y: df_y/dz_3 = p/6 * (x2 - x1)_x * (-1).
+    CHECK_CLOSE(L[9 * 1 + 3 * 2 + 2], -0.5, 1e-15, 0.0);
+  }
+
+  TEST_MAIN_END();
+}
