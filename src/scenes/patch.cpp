@@ -16,11 +16,16 @@ namespace etfe {
 
 namespace {
 
+enum class PatchMode { Uniaxial, Biaxial, PureShear };
+
 struct PatchContext {
-  double ex, ey;  // engineering stretch - 1 at schedule value 1
-  bool biaxial;
+  double ex, ey;  // engineering strain at schedule value 1
+  PatchMode mode;
   double final_factor;
 };
+
+// Stretch in Y that makes Eyy = -Exx (pure shear in the principal axes).
+double PureShearStretchY(double lx) { return std::sqrt(std::max(0.0, 2.0 - lx * lx)); }
 
 PetscErrorCode PatchReport(Problem *P, void *vctx) {
   auto *ctx = (PatchContext *)vctx;
@@ -48,8 +53,9 @@ PetscErrorCode PatchReport(Problem *P, void *vctx) {
     const double lx = 1.0 + ctx->ex * ctx->final_factor;
     E[0] = 0.5 * (lx * lx - 1.0);
     E[2] = 0.0;
-    if (ctx->biaxial) {
-      const double ly = 1.0 + ctx->ey * ctx->final_factor;
+    if (ctx->mode != PatchMode::Uniaxial) {
+      const double ly = ctx->mode == PatchMode::Biaxial ? 1.0 + ctx->ey * ctx->final_factor
+                                                        : PureShearStretchY(lx);
       E[1] = 0.5 * (ly * ly - 1.0);
       ElasticPlaneStress(young, nu, E, S, D);
     } else {
@@ -69,16 +75,22 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
   PetscReal lx = 1000.0, ly = 500.0, ex = 0.02, ey = 0.0, perturb = 0.0;
   PetscReal schedule[32] = {1.0};
   PetscInt nx = 8, ny = 4, refine = 0, nsched = 32;
-  PetscBool biaxial = PETSC_FALSE, sched_set = PETSC_FALSE;
-  char pattern[32] = "alternate";
+  PetscBool sched_set = PETSC_FALSE, file_set = PETSC_FALSE;
+  char pattern[32] = "alternate", mode[32] = "uniaxial", mesh_file[PETSC_MAX_PATH_LEN] = "";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Patch scene: in-plane stretch of a rectangle", "Scene");
   PetscCall(PetscOptionsReal("-patch_lx", "Length in X [mm]", "", lx, &lx, nullptr));
   PetscCall(PetscOptionsReal("-patch_ly", "Width in Y [mm]", "", ly, &ly, nullptr));
   PetscCall(PetscOptionsReal("-patch_strain_x", "Engineering strain in X at schedule value 1", "", ex, &ex, nullptr));
   PetscCall(PetscOptionsReal("-patch_strain_y", "Engineering strain in Y (biaxial only)", "", ey, &ey, nullptr));
-  PetscCall(PetscOptionsBool("-patch_biaxial", "Prescribe Y on the top edge too (else it is free)", "",
-                             biaxial, &biaxial, nullptr));
+  PetscCall(PetscOptionsString("-patch_mode",
+                               "uniaxial (top edge free), biaxial (-patch_strain_y on the top edge), "
+                               "pureshear (Eyy = -Exx)",
+                               "", mode, mode, sizeof mode, nullptr));
+  PetscCall(PetscOptionsString("-mesh_file",
+                               "Gmsh mesh of the rectangle instead of the generator (node sets left, "
+                               "right, bottom, top)",
+                               "", mesh_file, mesh_file, sizeof mesh_file, &file_set));
   PetscCall(PetscOptionsRealArray("-patch_schedule",
                                   "Stretch multipliers at the end of each stage, e.g. 1,0,1.5", "",
                                   schedule, &nsched, &sched_set));
@@ -103,9 +115,24 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
   else if (ps == "alternate") pat = DiagonalPattern::Alternate;
   else if (ps == "crossed") pat = DiagonalPattern::Crossed;
   else SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-mesh_pattern %s: use right, left, alternate or crossed", pattern);
+  PatchMode pmode;
+  std::string ms = mode;
+  if (ms == "uniaxial") pmode = PatchMode::Uniaxial;
+  else if (ms == "biaxial") pmode = PatchMode::Biaxial;
+  else if (ms == "pureshear") pmode = PatchMode::PureShear;
+  else SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-patch_mode %s: use uniaxial, biaxial or pureshear", mode);
   nx <<= refine;
   ny <<= refine;
-  scene->mesh = MakeRectangleMesh(0.0, 0.0, lx, ly, (int)nx, (int)ny, pat, perturb, 12345u);
+  if (file_set) {
+    PetscCall(MeshReadAndBroadcast(comm, mesh_file, &scene->mesh));
+    for (const char *name : {"left", "right", "bottom", "top"})
+      PetscCheck(scene->mesh.node_sets.count(name), comm, PETSC_ERR_ARG_WRONG,
+                 "%s: the patch scene needs a physical group named \"%s\" (lines of that edge)", mesh_file, name);
+    scene->mesh.node_sets["all"].resize(scene->mesh.NumNodes());
+    for (int i = 0; i < scene->mesh.NumNodes(); ++i) scene->mesh.node_sets["all"][i] = i;
+  } else {
+    scene->mesh = MakeRectangleMesh(0.0, 0.0, lx, ly, (int)nx, (int)ny, pat, perturb, 12345u);
+  }
   Schedule s{"stretch", 0.0, std::vector<double>(schedule, schedule + nsched)};
   const int is = scene->AddSchedule(s);
   const auto &sets = scene->mesh.node_sets;
@@ -113,9 +140,17 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
   for (int n : sets.at("left")) scene->constraints.push_back({n, 0, {}});
   for (int n : sets.at("bottom")) scene->constraints.push_back({n, 1, {}});
   for (int n : sets.at("right")) scene->constraints.push_back({n, 0, {{ex * lx, 0.0}, {is, -1}}});
-  if (biaxial)
+  if (pmode == PatchMode::Biaxial)
     for (int n : sets.at("top")) scene->constraints.push_back({n, 1, {{ey * ly, 0.0}, {is, -1}}});
-  auto *ctx = new PatchContext{ex, ey, (bool)biaxial, schedule[nsched - 1]};
+  if (pmode == PatchMode::PureShear) {
+    // Eyy = -Exx is not linear in the schedule value, so each stage end gets its own value:
+    // a second schedule carries the Y stretch of each stage end, interpolated in between.
+    Schedule sy{"stretch_y", 0.0, {}};
+    for (PetscInt k = 0; k < nsched; ++k) sy.values.push_back(PureShearStretchY(1.0 + ex * schedule[k]) - 1.0);
+    const int iy = scene->AddSchedule(sy);
+    for (int n : sets.at("top")) scene->constraints.push_back({n, 1, {{ly, 0.0}, {iy, -1}}});
+  }
+  auto *ctx = new PatchContext{ex, ey, pmode, schedule[nsched - 1]};
   scene->report = PatchReport;
   scene->report_ctx = ctx;
   scene->report_ctx_destroy = [](void *c) { delete (PatchContext *)c; };

@@ -98,7 +98,10 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     PetscCall(PetscTime(&t_inc));
     // Predictor: extrapolate the last converged increment, then impose the new prescribed values.
     PetscCall(VecCopy(U_committed, P->U));
-    if (o.extrapolate && dt_last > 0.0 && converged_states >= 2)
+    // ... and only within a stage: at a stage end the load path turns (loading -> unloading).
+    const bool same_stage = std::floor(t - dt_last + eps) == std::floor(t + eps - 1e-9) &&
+                            std::fabs(t - std::round(t)) > eps;
+    if (o.extrapolate && dt_last > 0.0 && converged_states >= 2 && same_stage)
       PetscCall(VecAXPBYPCZ(P->U, (t_new - t) / dt_last, -(t_new - t) / dt_last, 1.0,
                             U_committed, U_previous));
     P->time = t_new;
@@ -145,7 +148,11 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     double worst = 0.0;
     PetscCall(WorstNode(P, F, &node, &worst));
     char why[512];
-    if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
+    if (reason == SNES_DIVERGED_LINE_SEARCH && P->bad_status == KERNEL_OK)
+      std::snprintf(why, sizeof why, "%s (no step along the Newton direction reduced the residual; "
+                    "largest residual %.3e at node %lld)",
+                    SNESConvergedReasons[reason], worst, (long long)node);
+    else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
       std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual "
                     "%.3e at node %lld)",
                     SNESConvergedReasons[reason], (long long)P->bad_element,
