@@ -9,6 +9,10 @@
 //     stress (E,3) Sxx Syy Sxy [MPa, element MD/TD frame, PK2]; strain (E,3) Exx Eyy Exy (GL,
 //     tensor shear); mises (E); min_principal_stress (E); min_principal_strain (E);
 //     area_ratio (E); plastic_strain (E,3) and plastic_strain_eq (E) with a plastic material.
+//   /steps/<k>/contact/    (only with contact; C pairs in scene node order)
+//     force (C,3) local (x0 tangent, y0, z0 normal; f_z < 0 in compression) [N];
+//     slide_local (C,2) and slide_global (C,2: X, Y) since t0 [mm]; status (C) int
+//     0 open, 1 stick, 2 slip; node (C) int film node id.
 // A step's group is complete once it is listed in the XDMF file (rewritten atomically after the
 // step is flushed) and counted in steps_written.
 #pragma once

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "etfe/contact.h"
 #include "etfe/kernels/membrane.h"
 #include "etfe/material.h"
 #include "etfe/scene.h"
@@ -49,6 +50,13 @@ struct Problem {
   bool has_pressure = false;
   std::vector<PetscInt> pressure_elements;  // local element ids
   ScheduledValue pressure_value;
+
+  // Dead nodal forces on owned DOFs (only when the scene has them).
+  std::vector<PetscInt> force_owned_dof;
+  std::vector<ScheduledValue> force_owned_value;
+
+  // Contact with rigid supports (nullptr when the scene has none).
+  ContactSet *contact = nullptr;
 
   double time = 0.0;  // load time at which residual and Jacobian are evaluated
 

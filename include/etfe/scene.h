@@ -27,6 +27,33 @@ struct PressureSpec {
   ScheduledValue value;  // MPa
 };
 
+// A dead nodal force (e.g. the tension T1 held on one end of the capstan strip).
+struct NodalForce {
+  int node;
+  int comp;
+  ScheduledValue value;  // N
+};
+
+// A rigid support: a circle of radius `radius` around the axis through `centre` (an arch, whose
+// contact line is its crown line) or a cylinder (a pipe). Both give the outward normal
+// n = radial direction from the axis, the tangent x0 = axis x n and y0 = n x x0 = axis.
+struct SupportSpec {
+  std::string name;
+  std::string type = "cylinder";  // "arch" or "cylinder"
+  double centre[3] = {0, 0, 0};
+  double axis[3] = {0, 1, 0};
+  double radius = 1.0;
+};
+
+// Contact candidates: the scene names the supports and the film nodes that may touch them
+// (a node set, or every node within the search tolerance of a support).
+struct ContactSpec {
+  bool active = false;
+  std::vector<SupportSpec> supports;
+  std::string node_set;      // empty: search all nodes
+  double search_tol = 1e-6;  // mm, | distance to the support surface | below this makes a pair
+};
+
 struct SceneSpec {
   std::string name;
   MeshData mesh;
@@ -35,11 +62,15 @@ struct SceneSpec {
   std::vector<Schedule> schedules;       // every schedule has the same number of stages
   std::vector<DofConstraint> constraints;
   PressureSpec pressure;
+  std::vector<NodalForce> nodal_forces;
+  ContactSpec contact;
   std::vector<double> initial_guess;     // 3 per node or empty (zero displacement)
   std::string initial_guess_note;        // printed in the header when a guess is used
   // Called once after the last increment (collective): prints the scene's own quantities of
   // interest (e.g. Hencky's centre deflection against the closed form).
   PetscErrorCode (*report)(Problem *, void *) = nullptr;
+  // Called after every converged increment (collective), e.g. to track a reaction force.
+  PetscErrorCode (*step_monitor)(Problem *, void *, PetscInt step, double time) = nullptr;
   void *report_ctx = nullptr;
   void (*report_ctx_destroy)(void *) = nullptr;
 

@@ -152,6 +152,27 @@ int main(int argc, char **argv) {
     PetscCall(PetscFinalize());
     return 0;
   }
+  if (help_only && scene.name.empty()) {
+    // -help without a scene: list the options of every component, then stop.
+    std::unique_ptr<Material> m;
+    Problem throwaway;
+    SNES snes;
+    SNESLineSearch ls;
+    PetscCall(PetscOptionsSetValue(nullptr, "-material_type", "plastic"));
+    PetscCall(MaterialCreateFromOptions(comm, &m));
+    PetscCall(ReadMembraneOptions(comm, &throwaway));
+    LoadStepperOptions lso;
+    PetscCall(LoadStepperOptionsFromCommandLine(comm, &lso));
+    OutputOptions oo;
+    PetscCall(OutputOptionsFromCommandLine(comm, "scene", &oo));
+    PetscCall(SNESCreate(comm, &snes));
+    PetscCall(SNESGetLineSearch(snes, &ls));
+    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
+    PetscCall(SNESSetFromOptions(snes));
+    PetscCall(SNESDestroy(&snes));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
 
   // 3. Material and membrane options, then the distributed problem.
   std::unique_ptr<Material> material;

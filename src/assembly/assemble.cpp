@@ -6,6 +6,7 @@
 // already carries the prescribed values (ApplyConstraints before each increment).
 // Values go through ghosted vectors: element contributions to ghost nodes are added to their
 // owners by the reverse scatter; matrix entries of ghost rows travel in PETSc's stash.
+#include <algorithm>
 #include <cmath>
 
 #include "etfe/kernels/pressure.h"
@@ -115,6 +116,19 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
         for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] -= fe[3 * a + i];
     }
   }
+  for (size_t k = 0; k < P->force_owned_dof.size(); ++k)
+    f[P->force_owned_dof[k]] -= P->force_owned_value[k].At(P->scene.schedules, P->time);
+  if (P->contact) {
+    for (ContactPair &pr : P->contact->pairs) {
+      const PetscInt l = pr.local_node;
+      double fg[3];
+      if (ContactEvaluate(*P->contact, pr, &u[3 * l], P->time, fg, nullptr)) {
+        status = std::max(status, (int)KERNEL_NONFINITE);
+        continue;
+      }
+      for (int i = 0; i < 3; ++i) f[3 * l + i] += fg[i];
+    }
+  }
   PetscCall(VecRestoreArray(Fl, &f));
   PetscCall(VecRestoreArrayRead(Ul, &u));
   PetscCall(VecGhostRestoreLocalForm(P->F_work, &Fl));
@@ -184,6 +198,17 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     }
     const PetscInt idx[3] = {tri[0], tri[1], tri[2]};
     PetscCall(MatSetValuesBlockedLocal(Pmat, 3, idx, 3, idx, K, ADD_VALUES));
+  }
+  if (P->contact) {
+    for (ContactPair &pr : P->contact->pairs) {
+      const PetscInt l = pr.local_node;
+      double fg[3], K[9];
+      ContactEvaluate(*P->contact, pr, &u[3 * l], P->time, fg, K);
+      for (int i = 0; i < 3; ++i)
+        if (P->dof_constrained[3 * l + i])
+          for (int j = 0; j < 3; ++j) K[3 * i + j] = K[3 * j + i] = 0.0;
+      PetscCall(MatSetValuesBlockedLocal(Pmat, 1, &l, 1, &l, K, ADD_VALUES));
+    }
   }
   PetscCall(VecRestoreArrayRead(Ul, &u));
   PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));

@@ -82,20 +82,33 @@ PetscErrorCode WriteRows(OutputFile *out, hid_t group, const char *name, hid_t t
 
 // Scatter owned values (PETSc order, ncomp per item) to natural order; returns the natural
 // vector whose local rows start at *row0.
-PetscErrorCode ToNatural(OutputFile *out, bool cells, int ncomp, const double *owned,
+enum Layout { kNodes = 0, kCells = 1, kPairs = 2 };
+
+PetscInt LayoutGlobalSize(const Problem *P, int layout) {
+  return layout == kCells ? P->mesh.num_elements_global
+                          : layout == kNodes ? P->mesh.num_nodes_global : P->contact->num_global;
+}
+
+PetscErrorCode ToNatural(OutputFile *out, int layout, int ncomp, const double *owned,
                          Vec *natural, PetscInt *row0, PetscInt *nrows) {
   Problem *P = out->problem;
   const LocalMesh &m = P->mesh;
-  auto key = std::make_pair(cells ? 1 : 0, ncomp);
+  auto key = std::make_pair(layout, ncomp);
   PetscFunctionBeginUser;
   if (!out->scatters.count(key)) {
-    const PetscInt nloc = cells ? m.num_elements : m.num_owned;
-    const PetscInt nglob = cells ? m.num_elements_global : m.num_nodes_global;
-    const PetscInt first = cells ? m.element_start : m.owned_start;
+    const PetscInt nloc = layout == kCells   ? m.num_elements
+                          : layout == kNodes ? m.num_owned
+                                             : (PetscInt)P->contact->pairs.size();
+    const PetscInt nglob = LayoutGlobalSize(P, layout);
+    const PetscInt first = layout == kCells   ? m.element_start
+                           : layout == kNodes ? m.owned_start
+                                              : P->contact->pair_start;
     std::vector<PetscInt> from(nloc), to(nloc);
     for (PetscInt i = 0; i < nloc; ++i) {
       from[i] = first + i;
-      to[i] = cells ? m.element_natural[i] : m.natural_id[i];
+      to[i] = layout == kCells   ? m.element_natural[i]
+              : layout == kNodes ? m.natural_id[i]
+                                 : P->contact->pairs[i].id;
     }
     Vec src, dst;
     IS isf, ist;
@@ -130,18 +143,50 @@ PetscErrorCode ToNatural(OutputFile *out, bool cells, int ncomp, const double *o
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode WriteField(OutputFile *out, hid_t group, const char *name, bool cells, int ncomp,
-                          const double *owned) {
+PetscErrorCode WriteField(OutputFile *out, hid_t group, const char *name, int layout, int ncomp,
+                          const double *owned, bool as_int = false) {
   Vec nat = nullptr;
   PetscInt row0 = 0, nrows = 0;
   const PetscScalar *a;
   PetscFunctionBeginUser;
-  PetscCall(ToNatural(out, cells, ncomp, owned, &nat, &row0, &nrows));
-  const LocalMesh &m = out->problem->mesh;
-  const hsize_t total = cells ? m.num_elements_global : m.num_nodes_global;
+  PetscCall(ToNatural(out, layout, ncomp, owned, &nat, &row0, &nrows));
+  const hsize_t total = LayoutGlobalSize(out->problem, layout);
   PetscCall(VecGetArrayRead(nat, &a));
-  PetscCall(WriteRows(out, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a));
+  if (as_int) {
+    std::vector<int> v(a, a + nrows * ncomp);
+    PetscCall(WriteRows(out, group, name, H5T_NATIVE_INT, total, ncomp, row0, nrows, v.data()));
+  } else {
+    PetscCall(WriteRows(out, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a));
+  }
   PetscCall(VecRestoreArrayRead(nat, &a));
+  PetscFunctionReturn(0);
+}
+
+// Contact pairs of a step: local force, slide (local and global X/Y), status, film node.
+PetscErrorCode WriteContact(OutputFile *out, hid_t step_group) {
+  const ContactSet &c = *out->problem->contact;
+  const size_t n = c.pairs.size();
+  std::vector<double> force(3 * n), slide_local(2 * n), slide_global(2 * n), status(n), node(n);
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < n; ++k) {
+    const ContactPair &pr = c.pairs[k];
+    const double s0 = pr.committed.g[0] - pr.g0[0], s1 = pr.committed.g[1] - pr.g0[1];
+    for (int i = 0; i < 3; ++i) force[3 * k + i] = pr.committed.f[i];
+    slide_local[2 * k] = s0;
+    slide_local[2 * k + 1] = s1;
+    slide_global[2 * k] = pr.R[0] * s0 + pr.R[3] * s1;
+    slide_global[2 * k + 1] = pr.R[1] * s0 + pr.R[4] * s1;
+    status[k] = pr.committed.status;
+    node[k] = (double)pr.natural_node;
+  }
+  hid_t g = H5Gcreate2(step_group, "contact", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  ETFE_H5CHECK(g, "contact group");
+  PetscCall(WriteField(out, g, "force", kPairs, 3, force.data()));
+  PetscCall(WriteField(out, g, "slide_local", kPairs, 2, slide_local.data()));
+  PetscCall(WriteField(out, g, "slide_global", kPairs, 2, slide_global.data()));
+  PetscCall(WriteField(out, g, "status", kPairs, 1, status.data(), true));
+  PetscCall(WriteField(out, g, "node", kPairs, 1, node.data(), true));
+  H5Gclose(g);
   PetscFunctionReturn(0);
 }
 
@@ -295,24 +340,25 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(WriteAttribute(out, g, "stage", H5T_NATIVE_INT, &stage));
   PetscCall(WriteAttribute(out, g, "load_factor", H5T_NATIVE_DOUBLE, &factor));
   PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(WriteField(out, g, "displacement", false, 3, u));
+  PetscCall(WriteField(out, g, "displacement", kNodes, 3, u));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecGetArrayRead(P->reaction, &r));
-  PetscCall(WriteField(out, g, "reaction", false, 3, r));
+  PetscCall(WriteField(out, g, "reaction", kNodes, 3, r));
   PetscCall(VecRestoreArrayRead(P->reaction, &r));
-  PetscCall(WriteField(out, g, "nodal_mises", false, 1, c.nodal_mises.data()));
-  PetscCall(WriteField(out, g, "stress", true, 3, c.stress.data()));
-  PetscCall(WriteField(out, g, "strain", true, 3, c.strain.data()));
-  PetscCall(WriteField(out, g, "mises", true, 1, c.mises.data()));
-  PetscCall(WriteField(out, g, "min_principal_stress", true, 1, c.smin.data()));
-  PetscCall(WriteField(out, g, "min_principal_strain", true, 1, c.emin.data()));
-  PetscCall(WriteField(out, g, "area_ratio", true, 1, c.area_ratio.data()));
+  PetscCall(WriteField(out, g, "nodal_mises", kNodes, 1, c.nodal_mises.data()));
+  PetscCall(WriteField(out, g, "stress", kCells, 3, c.stress.data()));
+  PetscCall(WriteField(out, g, "strain", kCells, 3, c.strain.data()));
+  PetscCall(WriteField(out, g, "mises", kCells, 1, c.mises.data()));
+  PetscCall(WriteField(out, g, "min_principal_stress", kCells, 1, c.smin.data()));
+  PetscCall(WriteField(out, g, "min_principal_strain", kCells, 1, c.emin.data()));
+  PetscCall(WriteField(out, g, "area_ratio", kCells, 1, c.area_ratio.data()));
   if (!c.ep_bar.empty() || !P->history.empty()) {
     c.ep.resize(3 * P->mesh.num_elements);
     c.ep_bar.resize(P->mesh.num_elements);
-    PetscCall(WriteField(out, g, "plastic_strain", true, 3, c.ep.data()));
-    PetscCall(WriteField(out, g, "plastic_strain_eq", true, 1, c.ep_bar.data()));
+    PetscCall(WriteField(out, g, "plastic_strain", kCells, 3, c.ep.data()));
+    PetscCall(WriteField(out, g, "plastic_strain_eq", kCells, 1, c.ep_bar.data()));
   }
+  if (P->contact) PetscCall(WriteContact(out, g));
   H5Gclose(g);
   out->steps.push_back({step, time});
   long long count = (long long)out->steps.size();

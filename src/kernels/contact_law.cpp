@@ -60,8 +60,9 @@ void ContactLaggedForce(const ContactParameters &p, const ContactState &committe
   const double dg[3] = {g[0] - committed.g[0], g[1] - committed.g[1], g[2] - committed.g[2]};
   const double fz = committed.f[2] + p.kn * dg[2];
   // The thesis forbids opening (eq. 4.25); we let the pair lift off instead of pulling the film
-  // back onto the support. Written as fz >= 0 (not !(fz < 0)) so a NaN gap propagates.
-  if (fz >= 0.0) return;
+  // back onto the support. fz = 0 stays closed (a film laid on the support starts with its
+  // springs). Written as fz > 0 (not !(fz <= 0)) so a NaN gap propagates.
+  if (fz > 0.0) return;
   f[2] = fz;
   if (dfdg) dfdg[8] = p.kn;
 
@@ -128,7 +129,8 @@ int ContactImplicitForce(const ContactParameters &p, const ContactState &committ
                          const double g[3], double f[3], double dfdg[9]) {
   ZeroForce(f, dfdg);
   const double w = g[2];
-  if (w >= 0.0) return CONTACT_OPEN;
+  if (w > 0.0) return CONTACT_OPEN;  // w = 0: closed with zero force, so a pair laid on
+                                      // the support starts with its springs (no singular start)
 
   const double pressure = -p.kn * w;  // |f_z|
   f[2] = p.kn * w;

@@ -66,7 +66,7 @@ public:
 
 PetscErrorCode ReadElasticConstants(double *young, double *nu) {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Material", "Material");
+  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Material: elastic constants", "Material");
   PetscCall(PetscOptionsReal("-material_young", "Young's modulus [MPa]", "", *young, young, nullptr));
   PetscCall(PetscOptionsReal("-material_poisson", "Poisson's ratio", "", *nu, nu, nullptr));
   PetscOptionsEnd();

@@ -217,6 +217,18 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
       if (loaded[m.element_natural[e]]) P->pressure_elements.push_back(e);
   }
 
+  // Dead nodal forces on owned DOFs.
+  for (const NodalForce &f : P->scene.nodal_forces) {
+    PetscCheck(f.node >= 0 && f.node < nn && f.comp >= 0 && f.comp < 3, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "scene %s: nodal force on node %d component %d is outside the mesh (%d nodes)",
+               P->scene.name.c_str(), f.node, f.comp, nn);
+    const PetscInt l = local_of[f.node];
+    if (l >= 0 && l < m.num_owned) {
+      P->force_owned_dof.push_back(3 * l + f.comp);
+      P->force_owned_value.push_back(f.value);
+    }
+  }
+
   // Vectors and matrix.
   std::vector<PetscInt> ghost_ids(m.num_ghost);
   for (PetscInt g = 0; g < m.num_ghost; ++g) ghost_ids[g] = m.global_id[m.num_owned + g];
@@ -229,6 +241,11 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   PetscCall(ISLocalToGlobalMappingCreate(comm, 3, nl, m.global_id.data(), PETSC_COPY_VALUES,
                                          &P->l2g));
   PetscCall(CreateMatrix(P, gm, owner, petsc_id));
+  if (P->scene.contact.active) {
+    PetscCall(ContactCreate(P, &P->contact));
+    if (P->contact->law != FrictionLaw::Fixed && P->contact->params.mu > 0)
+      PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));  // slip tangent, eq. 4.31
+  }
 
   // Initial displacement (scene guess, then the prescribed values at t = 0).
   if (!P->scene.initial_guess.empty()) {
@@ -250,6 +267,7 @@ PetscErrorCode ProblemDestroy(Problem *P) {
   PetscCall(VecDestroy(&P->reaction));
   PetscCall(MatDestroy(&P->J));
   PetscCall(ISLocalToGlobalMappingDestroy(&P->l2g));
+  if (P->contact) PetscCall(ContactDestroy(&P->contact));
   if (P->scene.report_ctx && P->scene.report_ctx_destroy)
     P->scene.report_ctx_destroy(P->scene.report_ctx);
   P->scene.report_ctx = nullptr;

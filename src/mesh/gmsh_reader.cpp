@@ -26,9 +26,11 @@ namespace {
 // limit turns garbage such as 2^40 into a clear error instead of a silent truncation.
 constexpr unsigned long long kMaxTag = INT_MAX;
 
-// Physical groups can make the sets far larger than the file (many groups on one big entity).
-// Past this many set entries per input byte the file is rejected instead of allocated.
+// Physical groups can make the sets far larger than the file (many groups on one big entity, or
+// a great many tiny groups, each of which costs a named set). Past this many set entries per
+// input byte, a group counting as kGroupCost entries, the file is rejected instead of allocated.
 constexpr size_t kSetEntriesPerByte = 8;
+constexpr size_t kGroupCost = 64;  // about the bytes of two map entries, in ints
 
 // Nodes per element of the element types in the Gmsh documentation; 0 = unknown, so a binary
 // record of that type cannot be skipped.
@@ -67,6 +69,13 @@ std::string Quote(std::string_view s) {
   }
   if (s.size() > n) out += "...";
   return out + "'";
+}
+
+// reserve() for a block whose count ReadCount has bounded; growing at least geometrically keeps
+// a file of many one-element blocks linear rather than copying the array once per block.
+template <typename T> void Grow(std::vector<T> *v, size_t extra) {
+  const size_t need = v->size() + extra;
+  if (need > v->capacity()) v->reserve(std::max(need, 2 * v->capacity()));
 }
 
 bool IsSpace(char c) {
@@ -479,9 +488,10 @@ class Reader {
         for (size_t k = 0; k < nphys; ++k) {
           long long p;
           if (!in_.ReadInt(&p, "physical tag", INT_MIN, INT_MAX)) return false;
-          // 0 is Gmsh's "no physical group" (as in MSH 2).
-          if (p != 0 && std::find(phys.begin(), phys.end(), p) == phys.end()) phys.push_back(p);
+          if (p != 0) phys.push_back(p);  // 0 is Gmsh's "no physical group" (as in MSH 2)
         }
+        std::sort(phys.begin(), phys.end());  // not a linear search per tag: nphys can be huge
+        phys.erase(std::unique(phys.begin(), phys.end()), phys.end());
         if (!entities_.emplace(Key(d, tag), std::move(phys)).second) {
           return in_.FailAt(tag_pos, "entity (dimension " + Str((long long)d) + ", tag " +
                                          Str(tag) + ") is listed twice in $Entities");
@@ -529,10 +539,9 @@ class Reader {
                         " nodes the $Nodes header gives");
       }
       total += n;
-      const size_t first = node_tags_.size();
-      node_tags_.reserve(first + n);
-      node_tag_pos_.reserve(first + n);
-      xyz_.reserve(xyz_.size() + 3 * n);
+      Grow(&node_tags_, n);
+      Grow(&node_tag_pos_, n);
+      Grow(&xyz_, 3 * n);
       for (size_t i = 0; i < n; ++i) {
         unsigned long long tag;
         if (!in_.ReadSize(&tag, "node tag", 1, kMaxTag)) return false;
@@ -696,7 +705,7 @@ class Reader {
                                             ", tag " + Str(entity) + "), which $Entities lacks");
         }
         carrier = &carriers_[Key((int)dim, entity)];
-        if (type == 2) tri_.reserve(tri_.size() + 3 * n);
+        if (type == 2) Grow(&tri_, 3 * n);
       } else {
         Skipped(type, n);
       }
@@ -824,13 +833,12 @@ class Reader {
     size_t entries = 0;
     const size_t limit = kSetEntriesPerByte * in_.size() + (1u << 20);
     for (const auto &g : groups) {
-      for (const Carrier *c : g.second) {
-        entries += c->nodes.size() + c->tris.size();
-        if (entries > limit) {
-          return in_.FailAt(elements_pos_, "the physical groups would need more than " +
-                                               Str((unsigned long long)limit) +
-                                               " set entries, too many for a file of this size");
-        }
+      entries += kGroupCost;
+      for (const Carrier *c : g.second) entries += c->nodes.size() + c->tris.size();
+      if (entries > limit) {
+        return in_.FailAt(elements_pos_, "the physical groups would need more than " +
+                                             Str((unsigned long long)limit) +
+                                             " set entries, too many for a file of this size");
       }
     }
     for (const auto &g : groups) {

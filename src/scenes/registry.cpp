@@ -11,6 +11,7 @@ namespace etfe {
 
 PetscErrorCode SceneBuild_Hencky(MPI_Comm, SceneSpec *);
 PetscErrorCode SceneBuild_Patch(MPI_Comm, SceneSpec *);
+PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -29,6 +30,7 @@ PetscErrorCode SceneRegisterAll(void) {
   if (scene_list) PetscFunctionReturn(0);
   PetscCall(SceneRegister("hencky", SceneBuild_Hencky));
   PetscCall(SceneRegister("patch", SceneBuild_Patch));
+  PetscCall(SceneRegister("capstan", SceneBuild_Capstan));
   PetscFunctionReturn(0);
 }
 
@@ -48,6 +50,18 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene) {
     PetscCall(PetscPrintf(comm, "registered scenes:"));
     for (const std::string &n : scene_names) PetscCall(PetscPrintf(comm, " %s", n.c_str()));
     PetscCall(PetscPrintf(comm, "\n"));
+    PetscFunctionReturn(0);
+  }
+  PetscBool help = PETSC_FALSE;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (!set && help) {
+    // -help without a scene: show every scene's options (each builder reads its own).
+    for (const std::string &n : scene_names) {
+      SceneSpec throwaway;
+      PetscCall(PetscFunctionListFind(scene_list, n.c_str(), &build));
+      PetscCall(build(comm, &throwaway));
+    }
+    scene->name.clear();
     PetscFunctionReturn(0);
   }
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT,

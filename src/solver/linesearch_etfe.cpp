@@ -126,6 +126,11 @@ PetscErrorCode Apply(SNESLineSearch ls) {
       if (P->bad_status != KERNEL_OK) continue;
     }
     PetscCall(VecNorm(G, NORM_2, &gnorm));
+    PetscViewer monitor;
+    PetscCall(SNESLineSearchGetDefaultMonitor(ls, &monitor));
+    if (monitor)
+      PetscCall(PetscViewerASCIIPrintf(monitor, "    Line search etfe: lambda %g |F| %.6e -> %.6e\n",
+                                       (double)lambda, (double)fnorm, (double)gnorm));
     if (PetscIsInfOrNanReal(gnorm)) continue;
     if (gnorm <= (1.0 - d->armijo * lambda) * fnorm) {
       accepted = PETSC_TRUE;

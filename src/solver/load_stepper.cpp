@@ -116,6 +116,8 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     res->newton_iterations += its;
     if (reason > 0) {
       PetscCall(CommitHistory(P, P->U));
+      PetscInt contact_counts[3] = {0, 0, 0};
+      if (P->contact) PetscCall(ContactCommit(P, contact_counts));
       PetscCall(VecCopy(U_committed, U_previous));
       PetscCall(VecCopy(P->U, U_committed));
       dt_last = t_new - t;
@@ -130,6 +132,10 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                               "  |R| %.3e  cutbacks %" PetscInt_FMT "  %.3f s\n",
                               step, t, (int)std::min<double>(std::floor(t - eps), nstages - 1) + 1,
                               dt_last, its, (double)fnorm, res->cutbacks, now - t_inc));
+      if (o.monitor && P->contact)
+        PetscCall(PetscPrintf(P->comm, "             contact: open %" PetscInt_FMT " stick %" PetscInt_FMT
+                              " slip %" PetscInt_FMT "\n", contact_counts[0], contact_counts[1], contact_counts[2]));
+      if (P->scene.step_monitor) PetscCall(P->scene.step_monitor(P, P->scene.report_ctx, step, t));
       const bool last = t >= t_end - eps;
       const bool stop = o.stop_after >= 0 && step >= o.stop_after;
       if (out && (last || stop || step % OutputEvery(out) == 0))

@@ -187,10 +187,17 @@ void TestImplicitCone() {
         stick, slip);
   std::printf("implicit cone: %d random gaps (open %d, stick %d, slip %d)\n", n, open, stick, slip);
 
-  // Exactly at w = 0 and beyond: open.
+  // Beyond w = 0: open. Exactly at w = 0 the pair is closed with zero force and keeps its
+  // normal spring, so a film laid on a support starts with a non-singular tangent.
   const ContactParameters p{1e6, 1e6, 0.3};
   const ContactState c = State(0, 0, -1e-6, 0.1, 0.0, -1.0, CONTACT_STICK);
-  for (double w : {0.0, 1e-12, 1e-3}) {
+  {
+    const double g[3] = {0.0, 0.0, 0.0};
+    double f[3], K[9];
+    CHECK(ContactImplicitForce(p, c, g, f, K) != CONTACT_OPEN, "w = 0 must be closed");
+    CHECK(f[2] == 0.0 && K[8] == p.kn, "w = 0: zero normal force, normal spring kn");
+  }
+  for (double w : {1e-12, 1e-3}) {
     const double g[3] = {1e-6, 2e-6, w};
     double f[3], K[9];
     CHECK(ContactImplicitForce(p, c, g, f, K) == CONTACT_OPEN, "w = %g must be open", w);

@@ -1,0 +1,57 @@
+// Node-to-rigid friction contact as a component of the problem (options -contact_*). Exists
+// only when the scene has supports: without contact no pairs, state or output are allocated.
+// Each pair lives on the rank that owns its film node; its frame is fixed at t0 (the thesis's
+// Assumption 1, -contact_normal frozen).
+#pragma once
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+#include "etfe/kernels/contact_law.h"
+#include "etfe/scene.h"
+
+namespace etfe {
+
+struct Problem;
+
+enum class FrictionLaw { Lagged, Implicit, None, Fixed };
+
+struct ContactPair {
+  PetscInt local_node;    // owned local node of the film
+  PetscInt natural_node;  // scene node id
+  PetscInt id;            // global pair id (pairs sorted by scene node id)
+  int support;
+  double M[3];            // master point on the support (global)
+  double R[9];            // rows x0, y0, z0 (z0 = outward normal)
+  double g0[3];           // gap at t0 (local), the origin of the reported slide
+  ContactState committed;
+  ContactState trial;     // at the last evaluation: g, f, status
+};
+
+struct ContactSet {
+  ContactParameters params{};
+  FrictionLaw law = FrictionLaw::Implicit;
+  std::vector<ContactPair> pairs;  // this rank's pairs, by id
+  PetscInt num_global = 0, pair_start = 0;
+  // Up to this load time the pairs are frictionless: a film laid slack on a support has no
+  // normal force, so its friction cone has no size; tensioning it first without friction (as
+  // hanging weights do in the capstan rig) gives every pair its normal force. 0: friction from
+  // the start.
+  PetscReal frictionless_until = 0.0;
+};
+
+// Reads -contact_* options and creates the pairs of the scene's supports (collective).
+PetscErrorCode ContactCreate(Problem *problem, ContactSet **contact);
+PetscErrorCode ContactDestroy(ContactSet **contact);
+// Force (global) and tangent of one pair at the film node's displacement u. The gap is
+// g0 + R u rather than R (x - M): penalty gaps are tiny (f/kn) next to the coordinates, and
+// the difference of positions would leave them with few significant digits.
+int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], double time,
+                    double fglobal[3], double Kglobal[9]);
+// After a converged increment: status update and cone correction (lagged), new committed state.
+// Counts (open, stick, slip) over all ranks; prints a line per newly opened pair.
+PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[3]);
+const char *FrictionLawName(FrictionLaw law);
+
+} // namespace etfe

@@ -1,0 +1,222 @@
+// Friction contact between film nodes and rigid supports (SPEC §5, thesis §4.2.2): pair
+// creation by distance to the support, evaluation through the pure contact laws of
+// kernels/contact_law.h in the pair's frozen frame, and the commit between load steps.
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "etfe/contact.h"
+#include "etfe/problem.h"
+
+namespace etfe {
+
+namespace {
+
+void Normalize(double v[3]) {
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (n > 0) v[0] /= n, v[1] /= n, v[2] /= n;
+}
+
+void Cross(const double a[3], const double b[3], double c[3]) {
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+// Signed distance of p to the support surface, and the pair's master point and frame.
+double SupportProject(const SupportSpec &s, const double p[3], double M[3], double R[9]) {
+  double a[3] = {s.axis[0], s.axis[1], s.axis[2]}, d[3], n[3], x0[3], y0[3];
+  Normalize(a);
+  for (int i = 0; i < 3; ++i) d[i] = p[i] - s.centre[i];
+  const double along = d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
+  for (int i = 0; i < 3; ++i) n[i] = d[i] - along * a[i];
+  const double r = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  Normalize(n);
+  for (int i = 0; i < 3; ++i) M[i] = s.centre[i] + along * a[i] + s.radius * n[i];
+  Cross(a, n, x0);
+  Cross(n, x0, y0);
+  for (int i = 0; i < 3; ++i) R[i] = x0[i], R[3 + i] = y0[i], R[6 + i] = n[i];
+  return r - s.radius;
+}
+
+void ToLocal(const double R[9], const double v[3], double out[3]) {
+  for (int i = 0; i < 3; ++i) out[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
+}
+
+} // namespace
+
+const char *FrictionLawName(FrictionLaw law) {
+  switch (law) {
+  case FrictionLaw::Lagged: return "lagged (thesis: status from the forces at the step start)";
+  case FrictionLaw::Implicit: return "implicit (Coulomb return map at every Newton iterate)";
+  case FrictionLaw::None: return "none (frictionless)";
+  case FrictionLaw::Fixed: return "fixed (no slide)";
+  }
+  return "?";
+}
+
+PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
+  auto *c = new ContactSet();
+  const ContactSpec &spec = P->scene.contact;
+  char law[32] = "implicit", normal[32] = "frozen";
+  double young, nu;
+  PetscReal tol = spec.search_tol;
+  PetscFunctionBeginUser;
+  P->material->ElasticConstants(&young, &nu);
+  // Default penalties: three orders above the axial film stiffness E h (the thesis's rule).
+  c->params.kn = 1e3 * young * P->thickness;
+  c->params.kt = -1.0;
+  c->params.mu = 0.3;
+  PetscOptionsBegin(P->comm, nullptr, "Friction contact with rigid supports", "Contact");
+  PetscCall(PetscOptionsString("-contact_friction", "Friction law: lagged, implicit, none, fixed", "",
+                               law, law, sizeof law, nullptr));
+  PetscCall(PetscOptionsReal("-contact_mu", "Coulomb friction coefficient", "", c->params.mu,
+                             &c->params.mu, nullptr));
+  PetscCall(PetscOptionsReal("-contact_kn", "Normal penalty [N/mm] (default 1e3 E h)", "",
+                             c->params.kn, &c->params.kn, nullptr));
+  PetscCall(PetscOptionsReal("-contact_kt", "Tangential penalty [N/mm] (default = kn)", "",
+                             c->params.kt, &c->params.kt, nullptr));
+  PetscCall(PetscOptionsString("-contact_normal", "Contact frame: frozen (thesis) or follow", "",
+                               normal, normal, sizeof normal, nullptr));
+  PetscCall(PetscOptionsReal("-contact_frictionless_until",
+                             "Load time (in stages) up to which the pairs are frictionless (tensioning)",
+                             "", c->frictionless_until, &c->frictionless_until, nullptr));
+  PetscCall(PetscOptionsReal("-contact_search_tol",
+                             "A film node within this distance of a support surface gets a pair [mm]",
+                             "", tol, &tol, nullptr));
+  PetscOptionsEnd();
+  if (c->params.kt < 0) c->params.kt = c->params.kn;
+  std::string ls = law;
+  if (ls == "lagged") c->law = FrictionLaw::Lagged;
+  else if (ls == "implicit") c->law = FrictionLaw::Implicit;
+  else if (ls == "none") c->law = FrictionLaw::None, c->params.mu = 0.0;
+  else if (ls == "fixed") c->law = FrictionLaw::Fixed;
+  else SETERRQ(P->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-contact_friction %s: use lagged, implicit, none or fixed", law);
+  PetscCheck(std::strcmp(normal, "frozen") == 0, P->comm, PETSC_ERR_SUP,
+             "-contact_normal %s: only the frozen frame of the thesis is implemented so far", normal);
+  PetscCheck(c->params.mu >= 0 && std::isfinite(c->params.mu), P->comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_mu %g: the friction coefficient must be >= 0", c->params.mu);
+  PetscCheck(c->params.kn > 0 && c->params.kt > 0 && std::isfinite(c->params.kn) && std::isfinite(c->params.kt),
+             P->comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_kn %g / -contact_kt %g: penalties must be positive",
+             c->params.kn, c->params.kt);
+  PetscCheck(tol > 0, P->comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_search_tol %g must be positive", tol);
+
+  // Candidates: a node set of the mesh, or every owned node.
+  const LocalMesh &m = P->mesh;
+  std::vector<char> candidate(m.num_nodes_global, spec.node_set.empty() ? 1 : 0);
+  if (!spec.node_set.empty()) {
+    auto it = P->scene.mesh.node_sets.find(spec.node_set);
+    PetscCheck(it != P->scene.mesh.node_sets.end(), P->comm, PETSC_ERR_ARG_WRONG,
+               "contact: the mesh has no node set \"%s\" (check its physical groups)", spec.node_set.c_str());
+    for (int n : it->second) candidate[n] = 1;
+  }
+  for (PetscInt l = 0; l < m.num_owned; ++l) {
+    if (!candidate[m.natural_id[l]]) continue;
+    for (size_t s = 0; s < spec.supports.size(); ++s) {
+      ContactPair pr{};
+      const double *X = &m.X[3 * l];
+      const double d = SupportProject(spec.supports[s], X, pr.M, pr.R);
+      if (std::fabs(d) > tol) continue;
+      pr.local_node = l;
+      pr.natural_node = m.natural_id[l];
+      pr.support = (int)s;
+      // A pair starts touching with zero gap (thesis: contact at t0); the offset d within the
+      // search tolerance is round-off or modelling slack, not a preload.
+      pr.g0[0] = pr.g0[1] = pr.g0[2] = 0.0;
+      pr.committed = ContactState{{pr.g0[0], pr.g0[1], pr.g0[2]}, {0, 0, 0}, CONTACT_STICK};
+      pr.trial = pr.committed;
+      c->pairs.push_back(pr);
+      break;
+    }
+  }
+  // Global ids in scene node order (pairs are few: gather their node ids everywhere).
+  PetscMPIInt n = (PetscMPIInt)c->pairs.size();
+  std::vector<PetscMPIInt> counts(P->size), displs(P->size, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
+  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  c->num_global = displs[P->size - 1] + counts[P->size - 1];
+  c->pair_start = displs[P->rank];
+  std::vector<PetscInt> mine(n), all(c->num_global);
+  for (PetscMPIInt i = 0; i < n; ++i) mine[i] = c->pairs[i].natural_node;
+  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, P->comm));
+  std::sort(all.begin(), all.end());
+  for (auto &pr : c->pairs) pr.id = std::lower_bound(all.begin(), all.end(), pr.natural_node) - all.begin();
+  PetscCheck(c->num_global > 0, P->comm, PETSC_ERR_ARG_WRONG,
+             "contact: no film node lies within -contact_search_tol %g mm of a support; check the "
+             "support geometry or raise the tolerance",
+             tol);
+  *out = c;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactDestroy(ContactSet **c) {
+  PetscFunctionBeginUser;
+  delete *c;
+  *c = nullptr;
+  PetscFunctionReturn(0);
+}
+
+int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], double time,
+                    double fg[3], double Kg[9]) {
+  double g[3], f[3], K[9];
+  ToLocal(pr.R, u, g);
+  for (int i = 0; i < 3; ++i) g[i] += pr.g0[i];
+  int status = pr.committed.status;
+  if (time <= c.frictionless_until + 1e-12 && c.law != FrictionLaw::Fixed) {
+    ContactParameters frictionless = c.params;
+    frictionless.mu = 0.0;
+    status = ContactImplicitForce(frictionless, pr.committed, g, f, K);
+  } else switch (c.law) {
+  case FrictionLaw::Lagged: ContactLaggedForce(c.params, pr.committed, g, f, K); break;
+  case FrictionLaw::Implicit:
+  case FrictionLaw::None: status = ContactImplicitForce(c.params, pr.committed, g, f, K); break;
+  case FrictionLaw::Fixed: {
+    const double dg[3] = {g[0] - pr.g0[0], g[1] - pr.g0[1], g[2] - pr.g0[2]};
+    ContactFixedForce(c.params, dg, f, K);
+    status = CONTACT_STICK;
+  } break;
+  }
+  pr.trial.g[0] = g[0], pr.trial.g[1] = g[1], pr.trial.g[2] = g[2];
+  pr.trial.f[0] = f[0], pr.trial.f[1] = f[1], pr.trial.f[2] = f[2];
+  pr.trial.status = status;
+  // global force R^T f and tangent R^T K R
+  for (int i = 0; i < 3; ++i) fg[i] = pr.R[i] * f[0] + pr.R[3 + i] * f[1] + pr.R[6 + i] * f[2];
+  if (Kg) {
+    double KR[9];
+    for (int a = 0; a < 3; ++a)
+      for (int j = 0; j < 3; ++j) KR[3 * a + j] = K[3 * a] * pr.R[j] + K[3 * a + 1] * pr.R[3 + j] + K[3 * a + 2] * pr.R[6 + j];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Kg[3 * i + j] = pr.R[i] * KR[j] + pr.R[3 + i] * KR[3 + j] + pr.R[6 + i] * KR[6 + j];
+  }
+  return std::isfinite(fg[0] + fg[1] + fg[2]) ? 0 : 1;
+}
+
+PetscErrorCode ContactCommit(Problem *P, PetscInt counts[3]) {
+  ContactSet &c = *P->contact;
+  const PetscScalar *u;
+  PetscInt local[4] = {0, 0, 0, 0};
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(P->U, &u));
+  for (ContactPair &pr : c.pairs) {
+    const PetscInt l = pr.local_node;
+    double fg[3];
+    ContactEvaluate(c, pr, &u[3 * l], P->time, fg, nullptr);
+    const int before = pr.committed.status;
+    if (c.law == FrictionLaw::Lagged) ContactLaggedCommit(c.params, pr.trial.g, pr.trial.f, &pr.committed);
+    else pr.committed = pr.trial;
+    local[pr.committed.status]++;
+    if (pr.committed.status == CONTACT_OPEN && before != CONTACT_OPEN) local[3]++;
+  }
+  PetscCall(VecRestoreArrayRead(P->U, &u));
+  PetscInt global[4];
+  PetscCallMPI(MPI_Allreduce(local, global, 4, MPIU_INT, MPI_SUM, P->comm));
+  for (int i = 0; i < 3; ++i) counts[i] = global[i];
+  if (global[3] > 0)
+    PetscCall(PetscPrintf(P->comm, "  contact: %" PetscInt_FMT " pair(s) lifted off (gap opened; they "
+                          "carry no force until they close again)\n", global[3]));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,153 @@
+// Capstan (rolling friction) test, SPEC §9 / thesis §5.2: a film strip laid over a fixed pipe
+// around a wrap angle theta. Stage 1 applies the tension T1 (a dead load) on end A with end B
+// held; stage 2 pulls end B along its tangent (displacement control, so the run passes through
+// gross slip without a limit point) while T1 stays. T2 is the reaction at end B; once every
+// contact pair slips, Euler's belt formula predicts T2 = T1 exp(mu theta). The scene prints
+// T2 at slip onset and mu_eff = ln(T2/T1)/theta.
+#include <petscsys.h>
+
+#include <cmath>
+
+#include "etfe/mesh/generators.h"
+#include "etfe/problem.h"
+#include "etfe/scene.h"
+
+namespace etfe {
+
+namespace {
+
+struct CapstanContext {
+  double theta, t1, tB[3];
+  std::vector<int> end_b;    // scene node ids of end B
+  double t2_onset = -1.0, t2_last = 0.0;
+  PetscInt onset_step = -1;
+};
+
+PetscErrorCode EndBTension(Problem *P, CapstanContext *c, double *t2) {
+  const PetscScalar *r;
+  double mine = 0.0;
+  std::vector<char> is_b(P->mesh.num_nodes_global, 0);
+  PetscFunctionBeginUser;
+  for (int n : c->end_b) is_b[n] = 1;
+  PetscCall(VecGetArrayRead(P->reaction, &r));
+  for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
+    if (is_b[P->mesh.natural_id[l]])
+      for (int i = 0; i < 3; ++i) mine += r[3 * l + i] * c->tB[i];
+  PetscCall(VecRestoreArrayRead(P->reaction, &r));
+  PetscCallMPI(MPI_Allreduce(&mine, t2, 1, MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t) {
+  auto *c = (CapstanContext *)vctx;
+  double t2;
+  PetscInt local[2] = {0, 0}, global[2];
+  PetscFunctionBeginUser;
+  PetscCall(EndBTension(P, c, &t2));
+  for (const ContactPair &pr : P->contact->pairs) {
+    local[0] += pr.committed.status != CONTACT_OPEN;
+    local[1] += pr.committed.status == CONTACT_SLIP;
+  }
+  PetscCallMPI(MPI_Allreduce(local, global, 2, MPIU_INT, MPI_SUM, P->comm));
+  c->t2_last = t2;
+  const bool gross = global[0] > 0 && global[1] == global[0];
+  if (gross && c->onset_step < 0 && t > 1.0) {
+    c->onset_step = step;
+    c->t2_onset = t2;
+  }
+  PetscCall(PetscPrintf(P->comm, "             capstan: T2 = %.6e N, T2/T1 = %.6f, slipping pairs %" PetscInt_FMT "/%" PetscInt_FMT "%s\n",
+                        t2, t2 / c->t1, global[1], global[0], gross ? " (gross slip)" : ""));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CapstanReport(Problem *P, void *vctx) {
+  auto *c = (CapstanContext *)vctx;
+  PetscFunctionBeginUser;
+  PetscCheck(c->onset_step >= 0, P->comm, PETSC_ERR_NOT_CONVERGED,
+             "capstan: no gross slip by the end of the pull (T2/T1 = %.4f); increase -capstan_pull",
+             c->t2_last / c->t1);
+  const double mu_eff = std::log(c->t2_onset / c->t1) / c->theta;
+  double mu = P->contact->params.mu;
+  PetscCall(PetscPrintf(P->comm,
+                        "capstan: theta = %.6f rad, T1 = %.6e N, T2 at slip onset = %.6e N (step %" PetscInt_FMT "), "
+                        "T2 at the end = %.6e N, exp(mu theta) = %.6f\n",
+                        c->theta, c->t1, c->t2_onset, c->onset_step, c->t2_last, std::exp(mu * c->theta)));
+  PetscCall(PetscPrintf(P->comm, "mu_eff = %.8f\n", mu_eff));
+  PetscCall(PetscPrintf(P->comm, "capstan: mu = %.6f, relative_error = %.3e\n", mu,
+                        mu > 0 ? std::fabs(mu_eff - mu) / mu : std::fabs(mu_eff)));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene) {
+  PetscReal radius = 21.35, angle = 180.0, width = 50.0, t1 = 2.5, pull = 1.0;
+  PetscInt nx = 60, ny = 4, refine = 0;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Capstan scene: film strip over a fixed pipe", "Scene");
+  PetscCall(PetscOptionsReal("-capstan_radius", "Pipe radius [mm] (JIS G3452 pipe: 42.7/2)", "", radius, &radius, nullptr));
+  PetscCall(PetscOptionsReal("-capstan_angle", "Wrap angle theta [degrees]", "", angle, &angle, nullptr));
+  PetscCall(PetscOptionsReal("-capstan_width", "Strip width [mm]", "", width, &width, nullptr));
+  PetscCall(PetscOptionsReal("-capstan_t1", "Tension T1 held on end A [N]", "", t1, &t1, nullptr));
+  PetscCall(PetscOptionsReal("-capstan_pull", "Pull of end B along its tangent in stage 2 [mm]", "", pull, &pull, nullptr));
+  PetscCall(PetscOptionsInt("-mesh_nx", "Cells along the wrap", "", nx, &nx, nullptr));
+  PetscCall(PetscOptionsInt("-mesh_ny", "Cells across the strip", "", ny, &ny, nullptr));
+  PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine, &refine, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(radius > 0 && width > 0 && t1 > 0 && pull > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "capstan: -capstan_radius, -capstan_width, -capstan_t1 and -capstan_pull must be positive");
+  PetscCheck(angle > 0 && angle <= 350, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-capstan_angle %g: the wrap angle must lie in (0, 350] degrees", angle);
+  PetscCheck(nx >= 2 && ny >= 1 && refine >= 0 && refine < 10, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "capstan: need -mesh_nx >= 2, -mesh_ny >= 1, 0 <= -mesh_refine < 10");
+  nx <<= refine;
+  ny <<= refine;
+  const double theta = angle * M_PI / 180.0;
+  // Strip laid on the pipe (stress free): arc length s along the wrap, y across.
+  scene->mesh = MakeRectangleMesh(0.0, -0.5 * width, radius * theta, width, (int)nx, (int)ny,
+                                  DiagonalPattern::Alternate, 0.0, 0u);
+  scene->mesh.source = "capstan strip " + std::to_string(nx) + "x" + std::to_string(ny);
+  for (int n = 0; n < scene->mesh.NumNodes(); ++n) {
+    double *x = &scene->mesh.coords[3 * n];
+    const double phi = x[0] / radius - 0.5 * theta;
+    x[0] = radius * std::sin(phi);
+    x[2] = radius * std::cos(phi);
+  }
+  scene->thickness = 0.2;  // the friction-test film (thesis §5.2)
+  const int s_t1 = scene->AddSchedule({"tension", 0.0, {1.0, 1.0}});
+  const int s_pull = scene->AddSchedule({"pull", 0.0, {0.0, 1.0}});
+  const double phiA = -0.5 * theta, phiB = 0.5 * theta;
+  const double tA[3] = {std::cos(phiA), 0.0, -std::sin(phiA)};
+  auto *ctx = new CapstanContext{theta, t1, {std::cos(phiB), 0.0, -std::sin(phiB)}, {}};
+  const auto &end_a = scene->mesh.node_sets.at("left");
+  ctx->end_b = scene->mesh.node_sets.at("right");
+  for (int n : end_a) {
+    const double y = scene->mesh.coords[3 * n + 1];
+    const double share = (std::fabs(std::fabs(y) - 0.5 * width) < 1e-9 * width ? 0.5 : 1.0) / ny;
+    for (int i = 0; i < 3; ++i)
+      if (tA[i] != 0.0) scene->nodal_forces.push_back({n, i, {{-t1 * share * tA[i], 0.0}, {s_t1, -1}}});
+  }
+  for (int n : ctx->end_b)
+    for (int i = 0; i < 3; ++i) scene->constraints.push_back({n, i, {{pull * ctx->tB[i], 0.0}, {s_pull, -1}}});
+  // Every node but those of end B (held by the pull) rests on the pipe.
+  std::vector<char> on_b(scene->mesh.NumNodes(), 0);
+  for (int n : ctx->end_b) on_b[n] = 1;
+  auto &cand = scene->mesh.node_sets["contact_nodes"];
+  for (int n = 0; n < scene->mesh.NumNodes(); ++n)
+    if (!on_b[n]) cand.push_back(n);
+  scene->contact.active = true;
+  scene->contact.node_set = "contact_nodes";
+  scene->contact.search_tol = 1e-6 * radius;
+  SupportSpec pipe;
+  pipe.name = "pipe";
+  pipe.type = "cylinder";
+  pipe.radius = radius;
+  scene->contact.supports.push_back(pipe);
+  scene->step_monitor = CapstanStep;
+  scene->report = CapstanReport;
+  scene->report_ctx = ctx;
+  scene->report_ctx_destroy = [](void *c) { delete (CapstanContext *)c; };
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
