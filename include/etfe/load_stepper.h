@@ -17,6 +17,7 @@ struct LoadStepperOptions {
   PetscBool extrapolate = PETSC_TRUE;
   PetscInt monitor = 1;
   PetscInt stop_after = -1;      // end cleanly after this many increments (-1: never)
+  PetscReal force_rtol = 1e-10;  // converged when |R| <= force_rtol * (reactions + loads)
 };
 
 struct LoadStepperResult {
@@ -27,6 +28,10 @@ struct LoadStepperResult {
 };
 
 PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptions *o);
+// Adds the force-balance test to SNES's own (rtol/atol/stol): |R| <= force_rtol * (size of the
+// reactions and external loads), which stays reachable when stiff penalties put the round-off
+// floor of |R| above any fixed atol.
+PetscErrorCode LoadStepperSetConvergenceTest(Problem *problem, SNES snes, const LoadStepperOptions &o);
 // Runs the schedule. On failure writes the last converged state (if not yet written) and
 // returns with result->completed false and the reason; the caller decides the exit code.
 PetscErrorCode LoadStepperRun(Problem *problem, SNES snes, OutputFile *out,

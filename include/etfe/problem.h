@@ -59,6 +59,9 @@ struct Problem {
   ContactSet *contact = nullptr;
 
   double time = 0.0;  // load time at which residual and Jacobian are evaluated
+  // Size of the forces in play at the last residual (reactions and external loads) [N]: the
+  // scale for the force-balance convergence test (-load_force_rtol).
+  double force_scale = 0.0;
 
   ISLocalToGlobalMapping l2g = nullptr;  // block mapping, local node -> PETSc node id
   Vec U = nullptr;        // solution (ghosted, block size 3)

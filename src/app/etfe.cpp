@@ -187,6 +187,7 @@ int main(int argc, char **argv) {
   PetscCall(CreateSolver(P, &snes));
   LoadStepperOptions lso;
   PetscCall(LoadStepperOptionsFromCommandLine(comm, &lso));
+  PetscCall(LoadStepperSetConvergenceTest(P, snes, lso));
   OutputOptions oo;
   PetscCall(OutputOptionsFromCommandLine(comm, P->scene.name.c_str(), &oo));
   if (help_only) {

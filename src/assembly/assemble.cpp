@@ -87,6 +87,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscScalar *f;
   int status = KERNEL_OK;
   PetscInt bad = -1;
+  double ext2 = 0.0;  // sum of squares of external nodal loads (an estimate of their norm)
   PetscFunctionBeginUser;
   PetscCall(ScatterToLocal(U, P->U_work));
   PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
@@ -114,10 +115,14 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
       PressureLoad(p, x, fe, L);
       for (int a = 0; a < 3; ++a)
         for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] -= fe[3 * a + i];
+      for (int k = 0; k < 9; ++k) ext2 += fe[k] * fe[k];
     }
   }
-  for (size_t k = 0; k < P->force_owned_dof.size(); ++k)
-    f[P->force_owned_dof[k]] -= P->force_owned_value[k].At(P->scene.schedules, P->time);
+  for (size_t k = 0; k < P->force_owned_dof.size(); ++k) {
+    const double v = P->force_owned_value[k].At(P->scene.schedules, P->time);
+    f[P->force_owned_dof[k]] -= v;
+    ext2 += v * v;
+  }
   if (P->contact) {
     for (ContactPair &pr : P->contact->pairs) {
       const PetscInt l = pr.local_node;
@@ -148,12 +153,15 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
     for (size_t k = 0; k < P->con_owned_dof.size(); ++k) {
       const PetscInt d = P->con_owned_dof[k];
       r[d] = fo[d];
+      ext2 += fo[d] * fo[d];
       fo[d] = ug[d] - P->con_owned_value[k].At(P->scene.schedules, P->time);
     }
     PetscCall(VecRestoreArrayRead(U, &ug));
     PetscCall(VecRestoreArray(P->reaction, &r));
     PetscCall(VecRestoreArray(Fout, &fo));
   }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ext2, 1, MPI_DOUBLE, MPI_SUM, P->comm));
+  P->force_scale = std::sqrt(ext2);
   PetscCall(ReduceStatus(P, status, bad));
   if (P->bad_status != KERNEL_OK && snes && !P->in_linesearch) PetscCall(SNESSetFunctionDomainError(snes));
   PetscFunctionReturn(0);

@@ -30,6 +30,9 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                             o->monitor, &o->monitor, nullptr));
   PetscCall(PetscOptionsInt("-load_stop_after", "End the run cleanly after this many increments",
                             "", o->stop_after, &o->stop_after, nullptr));
+  PetscCall(PetscOptionsReal("-load_force_rtol",
+                             "Converged when |R| <= this * (norm of reactions and external loads)",
+                             "", o->force_rtol, &o->force_rtol, nullptr));
   PetscOptionsEnd();
   PetscCheck(o->increments >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-load_increments %" PetscInt_FMT ": need at least one increment", o->increments);
@@ -39,6 +42,38 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
 }
 
 namespace {
+
+struct ForceTest {
+  Problem *problem;
+  PetscReal rtol;
+};
+
+PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, PetscReal ynorm,
+                                     PetscReal fnorm, SNESConvergedReason *reason, void *ctx) {
+  auto *t = (ForceTest *)ctx;
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, ynorm, fnorm, reason, nullptr));
+  if (*reason != SNES_CONVERGED_ITERATING || it == 0) PetscFunctionReturn(0);
+  Problem *P = t->problem;
+  PetscReal tol = t->rtol * P->force_scale;
+  if (P->contact) {
+    // A penalty force k w is computed from displacements of size |u|, so it carries a
+    // round-off of about eps k |u| per pair: no Newton iterate can balance below that.
+    Vec X;
+    PetscReal umax;
+    PetscCall(SNESGetSolution(snes, &X));
+    PetscCall(VecNorm(X, NORM_INFINITY, &umax));
+    const double k = std::max(P->contact->params.kn, P->contact->params.kt);
+    tol = std::max(tol, 1e2 * PETSC_MACHINE_EPSILON * k * umax * std::sqrt((double)P->contact->num_global));
+  }
+  if (fnorm <= tol) *reason = SNES_CONVERGED_FNORM_ABS;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DestroyForceTest(void *ctx) {
+  delete (ForceTest *)ctx;
+  return 0;
+}
 
 // Scene node id of the largest residual entry, for failure messages.
 PetscErrorCode WorstNode(Problem *P, Vec F, PetscInt *node, double *value) {
@@ -59,6 +94,13 @@ PetscErrorCode WorstNode(Problem *P, Vec F, PetscInt *node, double *value) {
 }
 
 } // namespace
+
+PetscErrorCode LoadStepperSetConvergenceTest(Problem *P, SNES snes, const LoadStepperOptions &o) {
+  PetscFunctionBeginUser;
+  PetscCall(SNESSetConvergenceTest(snes, ConvergedForceBalance, new ForceTest{P, o.force_rtol},
+                                   DestroyForceTest));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o,
                               LoadStepperResult *res) {
@@ -163,6 +205,12 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                     "%.3e at node %lld)",
                     SNESConvergedReasons[reason], (long long)P->bad_element,
                     KernelStatusName(P->bad_status), worst, (long long)node);
+    else if (reason == SNES_DIVERGED_LINEAR_SOLVE)
+      std::snprintf(why, sizeof why, "%s (the linear solver failed: a singular tangent, e.g. an "
+                    "unsupported rigid motion, or MUMPS out of workspace with stiff penalties: "
+                    "-mat_mumps_icntl_14 400, -ksp_error_if_not_converged shows its error; largest "
+                    "residual %.3e at node %lld)",
+                    SNESConvergedReasons[reason], worst, (long long)node);
     else
       std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at "
                     "node %lld)",

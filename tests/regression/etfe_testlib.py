@@ -98,17 +98,24 @@ def tail(out, n=40):
 
 
 def error_message(out):
-    """The lines of a PETSc error message that say what went wrong (no trace, no option table)."""
-    keep = []
+    """The lines of a PETSc error message that say what went wrong: no trace (#n ...), no
+    "Option left" warnings, no option table, no version/configure banner."""
+    keep, in_table = [], False
     for l in out.splitlines():
         m = re.match(r"\[\d+\]PETSC ERROR: (.*)", l)
         if not m:
             continue
         t = m.group(1)
-        if t.startswith("#") or t.startswith("Option left") or t.startswith("----") or \
-           "Configure options" in t or t.startswith("Petsc Release") or t.startswith("See https") or \
-           " on a " in t and " named " in t or t.startswith("PETSc Option Table") or \
-           t.startswith("WARNING! There are option"):
+        if t.startswith("PETSc Option Table entries"):
+            in_table = True
+            continue
+        if "End of Error Message" in t or "Error Message" in t:
+            in_table = False
+            continue
+        if in_table or t.startswith("#") or t.startswith("Option left") or \
+                "Configure options" in t or t.startswith("Petsc Release") or \
+                t.startswith("See https") or (" on a " in t and " named " in t) or \
+                t.startswith("WARNING! There are option"):
             continue
         keep.append(t)
     return "\n".join(keep)
