@@ -39,6 +39,7 @@ struct ContactSet {
   // hanging weights do in the capstan rig) gives every pair its normal force. 0: friction from
   // the start.
   PetscReal frictionless_until = 0.0;
+  std::vector<PetscInt> probe_nodes;  // scene node ids whose pair history goes to CSV
 };
 
 // Reads -contact_* options and creates the pairs of the scene's supports (collective).
@@ -53,5 +54,8 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], d
 // Counts (open, stick, slip) over all ranks; prints a line per newly opened pair.
 PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[3]);
 const char *FrictionLawName(FrictionLaw law);
+// Appends one line per probe pair to <dir>/contact_node<id>.csv (written by the owning rank):
+// step, time, status, slide x0/y0 (local), slide X/Y (global), force x0/y0/z0.
+PetscErrorCode ContactWriteProbes(Problem *problem, const std::string &dir, PetscInt step, double time);
 
 } // namespace etfe

@@ -41,5 +41,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *problem, Vec U, PetscIn
 PetscErrorCode OutputClose(OutputFile **out, const std::string &status);
 PetscInt OutputLastStep(const OutputFile *out);
 PetscInt OutputEvery(const OutputFile *out);
+// Directory of the results file (for CSV histories beside it).
+std::string OutputDirectory(const OutputFile *out);
 
 } // namespace etfe

@@ -130,12 +130,22 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool final_check) {
   PetscFunctionReturn(0);
 }
 
-} // namespace
 
-int main(int argc, char **argv) {
-  PetscFunctionBeginUser;
-  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+// PETSc's default report repeats the whole option table and configure line; a user needs the
+// message and where it came from. -etfe_traceback restores PETSc's full report.
+PetscErrorCode ConciseErrorHandler(MPI_Comm, int line, const char *fun, const char *file,
+                                   PetscErrorCode n, PetscErrorType p, const char *mess, void *) {
+  if (p == PETSC_ERROR_INITIAL) {
+    (*PetscErrorPrintf)("%s\n", mess ? mess : "(no message)");
+    (*PetscErrorPrintf)("  (raised in %s() at %s:%d; -etfe_traceback gives PETSc's full report)\n",
+                        fun, file, line);
+  }
+  return n;
+}
+
+PetscErrorCode Run() {
   MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscFunctionBeginUser;
   PetscBool help_only = PETSC_FALSE, list = PETSC_FALSE;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-help", &help_only));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-scene_list", &list));
@@ -149,8 +159,7 @@ int main(int argc, char **argv) {
   SceneSpec scene;
   PetscCall(SceneCreateFromOptions(comm, &scene));
   if (list) {
-    PetscCall(PetscFinalize());
-    return 0;
+    PetscFunctionReturn(0);
   }
   if (help_only && scene.name.empty()) {
     // -help without a scene: list the options of every component, then stop.
@@ -170,8 +179,7 @@ int main(int argc, char **argv) {
     PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
     PetscCall(SNESSetFromOptions(snes));
     PetscCall(SNESDestroy(&snes));
-    PetscCall(PetscFinalize());
-    return 0;
+    PetscFunctionReturn(0);
   }
 
   // 3. Material and membrane options, then the distributed problem.
@@ -194,8 +202,7 @@ int main(int argc, char **argv) {
     PetscCall(SNESDestroy(&snes));
     PetscCall(ProblemDestroy(P));
     delete P;
-    PetscCall(PetscFinalize());
-    return 0;
+    PetscFunctionReturn(0);
   }
   PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
   PetscCall(PrintHeader(P, snes));
@@ -225,6 +232,25 @@ int main(int argc, char **argv) {
              "loads of the scene",
              res.failure.c_str());
   PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+int main(int argc, char **argv) {
+  PetscBool traceback = PETSC_FALSE;
+  PetscMPIInt size;
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-etfe_traceback", &traceback, nullptr));
+  if (!traceback) PetscCall(PetscPushErrorHandler(ConciseErrorHandler, nullptr));
+  PetscErrorCode ierr = Run();
+  if (ierr) {
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+    // An error raised on one rank only would leave the others waiting in PetscFinalize.
+    if (size > 1) MPI_Abort(PETSC_COMM_WORLD, (int)ierr);
+    PetscFinalize();
+    return (int)ierr;
+  }
   PetscCall(PetscFinalize());
   return 0;
 }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "etfe/contact.h"
@@ -63,6 +64,7 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   char law[32] = "implicit", normal[32] = "frozen";
   double young, nu;
   PetscReal tol = spec.search_tol;
+  PetscInt probes[64], nprobe = 64;
   PetscFunctionBeginUser;
   P->material->ElasticConstants(&young, &nu);
   // Default penalties: three orders above the axial film stiffness E h (the thesis's rule).
@@ -86,7 +88,11 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   PetscCall(PetscOptionsReal("-contact_search_tol",
                              "A film node within this distance of a support surface gets a pair [mm]",
                              "", tol, &tol, nullptr));
+  PetscCall(PetscOptionsIntArray("-contact_probe_nodes",
+                                 "Film node ids whose contact history is written as CSV beside the results",
+                                 "", probes, &nprobe, nullptr));
   PetscOptionsEnd();
+  c->probe_nodes.assign(probes, probes + nprobe);
   if (c->params.kt < 0) c->params.kt = c->params.kn;
   std::string ls = law;
   if (ls == "lagged") c->law = FrictionLaw::Lagged;
@@ -216,6 +222,25 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[3]) {
   if (global[3] > 0)
     PetscCall(PetscPrintf(P->comm, "  contact: %" PetscInt_FMT " pair(s) lifted off (gap opened; they "
                           "carry no force until they close again)\n", global[3]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactWriteProbes(Problem *P, const std::string &dir, PetscInt step, double time) {
+  PetscFunctionBeginUser;
+  for (PetscInt node : P->contact->probe_nodes)
+    for (const ContactPair &pr : P->contact->pairs) {
+      if (pr.natural_node != node) continue;
+      const std::string path = dir + "/contact_node" + std::to_string((long long)node) + ".csv";
+      FILE *f = std::fopen(path.c_str(), step <= 1 ? "w" : "a");
+      PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
+      if (step <= 1)
+        std::fprintf(f, "step,time,status,slide_x0,slide_y0,slide_X,slide_Y,force_x0,force_y0,force_z0\n");
+      const double s0 = pr.committed.g[0] - pr.g0[0], s1 = pr.committed.g[1] - pr.g0[1];
+      std::fprintf(f, "%lld,%.10g,%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e\n", (long long)step, time,
+                   pr.committed.status, s0, s1, pr.R[0] * s0 + pr.R[3] * s1, pr.R[1] * s0 + pr.R[4] * s1,
+                   pr.committed.f[0], pr.committed.f[1], pr.committed.f[2]);
+      std::fclose(f);
+    }
   PetscFunctionReturn(0);
 }
 

@@ -374,6 +374,11 @@ PetscInt OutputLastStep(const OutputFile *out) {
 
 PetscInt OutputEvery(const OutputFile *out) { return out ? out->every : 1; }
 
+std::string OutputDirectory(const OutputFile *out) {
+  const std::string d = std::filesystem::path(out->path).parent_path().string();
+  return d.empty() ? "." : d;
+}
+
 PetscErrorCode OutputClose(OutputFile **pout, const std::string &status) {
   OutputFile *out = *pout;
   PetscFunctionBeginUser;

@@ -178,6 +178,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
         PetscCall(PetscPrintf(P->comm, "             contact: open %" PetscInt_FMT " stick %" PetscInt_FMT
                               " slip %" PetscInt_FMT "\n", contact_counts[0], contact_counts[1], contact_counts[2]));
       if (P->scene.step_monitor) PetscCall(P->scene.step_monitor(P, P->scene.report_ctx, step, t));
+      if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputDirectory(out), step, t));
       const bool last = t >= t_end - eps;
       const bool stop = o.stop_after >= 0 && step >= o.stop_after;
       if (out && (last || stop || step % OutputEvery(out) == 0))
