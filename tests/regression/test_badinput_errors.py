@@ -5,8 +5,10 @@ diverges with its cut-backs exhausted must name the increment and the SNES reaso
 results file with status "failed: ..." holding the last converged step (serial and 2 ranks)."""
 import os
 import re
+import sys
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 
 def write_msh(path, extra_triangles=()):

@@ -31,16 +31,18 @@ option check flags it before the solve: the runs need -options_allow_unused.
 """
 import math
 import re
+import sys
 
 import numpy as np
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 COMMON = ["-snes_test_jacobian", "-snes_test_jacobian_view", "::ascii_matlab", "-load_increments", "1",
           "-snes_max_it", "2", "-load_max_cutbacks", "0", "-options_allow_unused", "-output", "0"]
-CASES = {
-    "hencky_rings3_pressure": ["-options_file", "hencky", "-mesh_rings", "3"],
-    "patch_plastic_0.05": ["-options_file", "patch", "-material_type", "plastic", "-patch_strain_x", "0.05"],
+CASES = {  # name: (options file, extra options)
+    "hencky_rings3_pressure": ("hencky", ["-mesh_rings", "3"]),
+    "patch_plastic_0.05": ("patch", ["-material_type", "plastic", "-patch_strain_x", "0.05"]),
 }
 FREE_LIMIT = 1e-5
 
@@ -101,8 +103,8 @@ def analyse(J, Jfd):
 
 def main_test(etfe, chk):
     report, tangents = [], {}
-    for case, args in CASES.items():
-        args = ["-options_file", T.opts(args[1])] + args[2:]
+    for case, (scene, extra) in CASES.items():
+        args = ["-options_file", T.opts(scene)] + extra
         rc, out = T.run(etfe, args + COMMON, expect_fail=None)
         tests = parse_tests(out)
         chk.check(len(tests) >= 2, "%s: %d Jacobian tests found in the output (expected 2: Newton iterates 0 and 1)"

@@ -14,11 +14,13 @@ import math
 import os
 import shutil
 import subprocess
+import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 INCREMENTS = 9  # 3 per stage; odd, so the last increment is not a multiple of -output_every
 EVERY = 2

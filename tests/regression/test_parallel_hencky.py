@@ -4,8 +4,10 @@ must agree to 1e-10 relative (h5compare), every other field of the final step to
 scene's printed numbers to their printed precision (one unit in the last printed digit)."""
 import os
 import re
+import sys
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 # Fields of the final step other than the displacement: rtol 1e-8 of the field's largest value
 # (the reactions of a 2-rank run sum element contributions in a different order).

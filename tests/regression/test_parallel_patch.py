@@ -7,8 +7,10 @@ lines agree: the same numbers where they are data, and below 1e-9 where they are
 (stress_spread, relative_error, Syy/Sxy of a uniaxial stretch)."""
 import os
 import re
+import sys
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 MESH = ["-mesh_nx", "16", "-mesh_ny", "8"]
 CASES = {

@@ -24,10 +24,12 @@ All closed-form comparisons: |FE - closed form| <= 1e-8 max(|closed form|, 1 MPa
 """
 import math
 import os
+import sys
 
 import numpy as np
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 E, NU = 800.0, 0.43
 YIELD, HARD = (13.28, 23.04), (80.5, 3.0)

@@ -21,8 +21,10 @@ the model floor) and stays within 0.5% from 16 rings on.
 """
 import os
 import re
+import sys
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 RINGS = (8, 16, 32)
 

@@ -14,7 +14,8 @@ import sys
 
 import numpy as np
 
-import etfe_testlib as T
+sys.dont_write_bytecode = True  # no __pycache__ in the repository
+import etfe_testlib as T  # noqa: E402
 
 REFERENCE = os.path.join(T.HERE, "reference", "patch_uniaxial.h5")
 CASES = {
