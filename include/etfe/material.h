@@ -30,6 +30,10 @@ public:
 
 typedef PetscErrorCode (*MaterialCreator)(std::unique_ptr<Material> *);
 
+// Form finding: a constant PK2 stress (s_md, s_td, 0) in the element's MD/TD frame and no
+// material stiffness, so the tangent is the geometric stiffness alone (thesis eqs. 2.14-2.20).
+std::unique_ptr<Material> MaterialCreatePrescribedStress(double s_md, double s_td);
+
 PetscErrorCode MaterialRegisterAll(void);
 PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material);
 

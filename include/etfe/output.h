@@ -35,8 +35,13 @@ struct OutputOptions {
 
 PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, OutputOptions *o);
 PetscErrorCode OutputOpen(Problem *problem, const OutputOptions &o, OutputFile **out);
+// U is the displacement from the scene's mesh; fields (stress, strain, ...) are evaluated at
+// U_fields on the problem's current reference (nullptr: U itself — they differ only in form
+// finding, where the reference moves).
 PetscErrorCode OutputWriteStep(OutputFile *out, Problem *problem, Vec U, PetscInt step,
-                               double time);
+                               double time, Vec U_fields = nullptr);
+// Gathers the current shape (reference + U) to rank 0 as a copy of the scene's mesh.
+PetscErrorCode OutputGatherShape(Problem *problem, Vec U, MeshData *shape);
 // status: "complete" or "failed: ..."; closes the file.
 PetscErrorCode OutputClose(OutputFile **out, const std::string &status);
 PetscInt OutputLastStep(const OutputFile *out);

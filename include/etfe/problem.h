@@ -45,6 +45,9 @@ struct Problem {
   std::vector<char> dof_constrained;   // per local DOF
   std::vector<PetscInt> con_owned_dof; // owned constrained DOFs (local index < 3*num_owned)
   std::vector<ScheduledValue> con_owned_value;
+  // Prescribed displacement already absorbed into the reference (form finding moves the
+  // reference to the current shape; the prescribed value is then measured from there).
+  std::vector<double> con_owned_offset;
 
   // Pressure (only when the scene has it)
   bool has_pressure = false;
@@ -94,6 +97,12 @@ PetscErrorCode ApplyConstraints(Problem *problem, double t, Vec U);
 // Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
 // collapse. Collective; *ok false names the element in problem->bad_element.
 PetscErrorCode CheckStep(Problem *problem, Vec X, Vec W, PetscBool *ok);
+// Moves the reference configuration to the current one (X += U on owned and ghost nodes),
+// rebuilds the element reference geometry and absorbs U into the constraint offsets. U is not
+// changed; the caller zeroes it. Used by form finding's updated-reference iterations.
+PetscErrorCode UpdateReference(Problem *problem, Vec U);
+// Current position X + U of a scene node (collective).
+PetscErrorCode ProblemGetNodePosition(Problem *problem, Vec U, PetscInt node, double x[3]);
 // Commits the material history at the converged U (history is updated only here).
 PetscErrorCode CommitHistory(Problem *problem, Vec U);
 

@@ -9,6 +9,7 @@ static const char help[] =
 
 #include <cstring>
 
+#include "etfe/formfind.h"
 #include "etfe/linesearch.h"
 #include "etfe/load_stepper.h"
 #include "etfe/material.h"
@@ -168,6 +169,8 @@ PetscErrorCode Run() {
     SNES snes;
     SNESLineSearch ls;
     PetscCall(PetscOptionsSetValue(nullptr, "-material_type", "plastic"));
+    FormFindOptions ffo_help;
+    PetscCall(FormFindOptionsFromCommandLine(comm, &ffo_help));
     PetscCall(MaterialCreateFromOptions(comm, &m));
     PetscCall(ReadMembraneOptions(comm, &throwaway));
     LoadStepperOptions lso;
@@ -182,9 +185,24 @@ PetscErrorCode Run() {
     PetscFunctionReturn(0);
   }
 
-  // 3. Material and membrane options, then the distributed problem.
+  // 3. Analysis (stretch: load stepping; formfind: shape for a prescribed stress), material and
+  //    membrane options, then the distributed problem.
+  char analysis[32] = "stretch";
+  FormFindOptions ffo;
+  PetscOptionsBegin(comm, nullptr, "Analysis", "Analysis");
+  PetscCall(PetscOptionsString("-analysis", "stretch (load stepping) or formfind (prescribed-stress shape)", "",
+                               analysis, analysis, sizeof analysis, nullptr));
+  PetscOptionsEnd();
+  const bool formfind = std::strcmp(analysis, "formfind") == 0;
+  PetscCheck(formfind || std::strcmp(analysis, "stretch") == 0, comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
+             "-analysis %s: use stretch or formfind", analysis);
   std::unique_ptr<Material> material;
-  PetscCall(MaterialCreateFromOptions(comm, &material));
+  if (formfind) {
+    PetscCall(FormFindOptionsFromCommandLine(comm, &ffo));
+    material = MaterialCreatePrescribedStress(ffo.ratio * ffo.stress, ffo.stress);
+  } else {
+    PetscCall(MaterialCreateFromOptions(comm, &material));
+  }
   auto *P = new Problem();
   P->thickness = scene.thickness;
   PetscCall(ReadMembraneOptions(comm, P));
@@ -211,7 +229,21 @@ PetscErrorCode Run() {
   OutputFile *out = nullptr;
   if (oo.enabled) PetscCall(OutputOpen(P, oo, &out));
   LoadStepperResult res;
-  PetscCall(LoadStepperRun(P, snes, out, lso, &res));
+  if (formfind) {
+    FormFindResult ffr;
+    PetscLogDouble t0, t1;
+    PetscCall(PetscTime(&t0));
+    PetscCall(FormFindRun(P, snes, out, ffo, &ffr));
+    PetscCall(PetscTime(&t1));
+    res.completed = ffr.converged;
+    res.failure = ffr.failure;
+    res.steps = ffr.iterations;
+    res.time = P->time;
+    res.wall = t1 - t0;
+    PetscCall(SNESGetLinearSolveIterations(snes, &res.newton_iterations));
+  } else {
+    PetscCall(LoadStepperRun(P, snes, out, lso, &res));
+  }
   PetscCall(PetscPrintf(comm, "etfe: %s after %" PetscInt_FMT " increments (load time %.6g), %" PetscInt_FMT
                         " Newton iterations, %" PetscInt_FMT " cut-backs, %.3f s\n",
                         res.completed ? "completed" : "STOPPED", res.steps, res.time,
@@ -226,11 +258,11 @@ PetscErrorCode Run() {
   PetscCall(SNESDestroy(&snes));
   PetscCall(ProblemDestroy(P));
   delete P;
-  PetscCheck(res.completed, comm, PETSC_ERR_NOT_CONVERGED,
-             "%s. The last converged increment is in the results. Ways out: more increments "
-             "(-load_increments), more cut-backs (-load_max_cutbacks), or check the supports and "
-             "loads of the scene",
-             res.failure.c_str());
+  PetscCheck(res.completed, comm, PETSC_ERR_NOT_CONVERGED, "%s. %s", res.failure.c_str(),
+             formfind ? "The last iterate is in the results (status \"failed\")."
+                      : "The last converged increment is in the results. Ways out: more "
+                        "increments (-load_increments), more cut-backs (-load_max_cutbacks), or "
+                        "check the supports and loads of the scene");
   PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
   PetscFunctionReturn(0);
 }

@@ -74,7 +74,7 @@ PetscErrorCode ApplyConstraints(Problem *P, double t, Vec U) {
   PetscFunctionBeginUser;
   PetscCall(VecGetArray(U, &u));
   for (size_t k = 0; k < P->con_owned_dof.size(); ++k)
-    u[P->con_owned_dof[k]] = P->con_owned_value[k].At(P->scene.schedules, t);
+    u[P->con_owned_dof[k]] = P->con_owned_value[k].At(P->scene.schedules, t) - P->con_owned_offset[k];
   PetscCall(VecRestoreArray(U, &u));
   PetscFunctionReturn(0);
 }
@@ -154,7 +154,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
       const PetscInt d = P->con_owned_dof[k];
       r[d] = fo[d];
       ext2 += fo[d] * fo[d];
-      fo[d] = ug[d] - P->con_owned_value[k].At(P->scene.schedules, P->time);
+      fo[d] = ug[d] - (P->con_owned_value[k].At(P->scene.schedules, P->time) - P->con_owned_offset[k]);
     }
     PetscCall(VecRestoreArrayRead(U, &ug));
     PetscCall(VecRestoreArray(P->reaction, &r));
@@ -269,6 +269,31 @@ PetscErrorCode CheckStep(Problem *P, Vec X, Vec W, PetscBool *ok) {
   PetscCall(VecGhostRestoreLocalForm(P->F_work, &Xl));
   PetscCall(ReduceStatus(P, status, bad));
   *ok = P->bad_status == KERNEL_OK ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode UpdateReference(Problem *P, Vec U) {
+  LocalMesh &m = P->mesh;
+  Vec Ul;
+  const PetscScalar *u;
+  int status = KERNEL_OK;
+  PetscInt bad = -1;
+  PetscFunctionBeginUser;
+  PetscCall(ScatterToLocal(U, P->U_work));
+  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
+  PetscCall(VecGetArrayRead(Ul, &u));
+  for (PetscInt i = 0; i < 3 * m.NumLocal(); ++i) m.X[i] += u[i];
+  for (size_t k = 0; k < P->con_owned_dof.size(); ++k) P->con_owned_offset[k] += u[P->con_owned_dof[k]];
+  PetscCall(VecRestoreArrayRead(Ul, &u));
+  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double X[9];
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) X[3 * a + i] = m.X[3 * m.tri[3 * e + a] + i];
+    const int st = MembraneReferenceBuild(X, P->scene.md_axis, 0.0, &m.ref[e]);
+    if (st != KERNEL_OK) status = st, bad = m.element_natural[e];
+  }
+  PetscCall(ReduceStatus(P, status, bad));
   PetscFunctionReturn(0);
 }
 

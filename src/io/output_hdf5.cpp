@@ -321,13 +321,14 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step, double time) {
+PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step, double time,
+                               Vec U_fields) {
   CellFields c;
   const PetscScalar *u, *r;
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
   if (!out->steps.empty() && out->steps.back().first == step) PetscFunctionReturn(0);
-  PetscCall(ComputeCellFields(P, U, &c));
+  PetscCall(ComputeCellFields(P, U_fields ? U_fields : U, &c));
   char name[64];
   std::snprintf(name, sizeof name, "steps/%06lld", (long long)step);
   hid_t g = H5Gcreate2(out->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -365,6 +366,45 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(WriteAttribute(out, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
   ETFE_H5CHECK(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
   PetscCall(WriteXdmf(out));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OutputGatherShape(Problem *P, Vec U, MeshData *shape) {
+  const LocalMesh &m = P->mesh;
+  Vec src, dst;
+  IS is;
+  VecScatter sc;
+  const PetscScalar *u;
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(P->comm, 3 * m.num_owned, 3 * m.num_nodes_global, &src));
+  PetscCall(VecGetArrayRead(U, &u));
+  PetscCall(VecGetArray(src, &a));
+  for (PetscInt i = 0; i < 3 * m.num_owned; ++i) a[i] = m.X[i] + u[i];
+  PetscCall(VecRestoreArray(src, &a));
+  PetscCall(VecRestoreArrayRead(U, &u));
+  // Natural order on rank 0: scatter owned rows to their scene ids.
+  std::vector<PetscInt> from(m.num_owned), to(m.num_owned);
+  for (PetscInt l = 0; l < m.num_owned; ++l) from[l] = m.owned_start + l, to[l] = m.natural_id[l];
+  PetscCall(VecCreateMPI(P->comm, P->rank == 0 ? 3 * m.num_nodes_global : 0, 3 * m.num_nodes_global, &dst));
+  IS isf;
+  PetscCall(ISCreateBlock(P->comm, 3, m.num_owned, from.data(), PETSC_COPY_VALUES, &isf));
+  PetscCall(ISCreateBlock(P->comm, 3, m.num_owned, to.data(), PETSC_COPY_VALUES, &is));
+  PetscCall(VecScatterCreate(src, isf, dst, is, &sc));
+  PetscCall(VecScatterBegin(sc, src, dst, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(sc, src, dst, INSERT_VALUES, SCATTER_FORWARD));
+  *shape = P->scene.mesh;
+  if (P->rank == 0) {
+    const PetscScalar *d;
+    PetscCall(VecGetArrayRead(dst, &d));
+    for (PetscInt i = 0; i < 3 * m.num_nodes_global; ++i) shape->coords[i] = d[i];
+    PetscCall(VecRestoreArrayRead(dst, &d));
+  }
+  PetscCall(VecScatterDestroy(&sc));
+  PetscCall(ISDestroy(&isf));
+  PetscCall(ISDestroy(&is));
+  PetscCall(VecDestroy(&src));
+  PetscCall(VecDestroy(&dst));
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,7 @@
 // ETFE elasto-plastic law (SPEC §4). Parameters come from -material_* options.
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "etfe/kernels/elastic.h"
@@ -64,6 +65,26 @@ public:
   }
 };
 
+class PrescribedStressMaterial : public Material {
+public:
+  double s_md, s_td;
+  PrescribedStressMaterial(double md, double td) : s_md(md), s_td(td) {}
+  const char *Name() const override { return "prescribed_stress"; }
+  // There is no elastic law; the stress level stands in where a stiffness scale is needed.
+  void ElasticConstants(double *e, double *n) const override { *e = std::max(s_md, s_td), *n = 0.0; }
+  int Evaluate(const double *, const double *, double *, double S[3], double D[9]) const override {
+    S[0] = s_md, S[1] = s_td, S[2] = 0.0;
+    for (int k = 0; k < 9; ++k) D[k] = 0.0;
+    return KERNEL_OK;
+  }
+  PetscErrorCode View(MPI_Comm comm) const override {
+    PetscFunctionBeginUser;
+    PetscCall(PetscPrintf(comm, "  material: prescribed stress (form finding), S_MD = %g MPa, S_TD = %g MPa\n",
+                          s_md, s_td));
+    PetscFunctionReturn(0);
+  }
+};
+
 PetscErrorCode ReadElasticConstants(double *young, double *nu) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Material: elastic constants", "Material");
@@ -118,6 +139,10 @@ PetscErrorCode CreatePlastic(std::unique_ptr<Material> *out) {
 }
 
 } // namespace
+
+std::unique_ptr<Material> MaterialCreatePrescribedStress(double s_md, double s_td) {
+  return std::make_unique<PrescribedStressMaterial>(s_md, s_td);
+}
 
 PetscErrorCode MaterialRegisterAll(void) {
   PetscFunctionBeginUser;

@@ -195,6 +195,7 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
     if (l < m.num_owned && !P->dof_constrained[dof]) {
       P->con_owned_dof.push_back(dof);
       P->con_owned_value.push_back(c.value);
+      P->con_owned_offset.push_back(0.0);
     } else if (l < m.num_owned) {  // a later constraint on the same DOF wins
       for (size_t k = 0; k < P->con_owned_dof.size(); ++k)
         if (P->con_owned_dof[k] == dof) P->con_owned_value[k] = c.value;
@@ -284,6 +285,19 @@ PetscErrorCode ProblemGetNodeDisplacement(Problem *P, Vec U, PetscInt node, doub
       for (int i = 0; i < 3; ++i) mine[i] = a[3 * l + i];
   PetscCall(VecRestoreArrayRead(U, &a));
   PetscCallMPI(MPI_Allreduce(mine, u, 3, MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemGetNodePosition(Problem *P, Vec U, PetscInt node, double x[3]) {
+  double mine[3] = {0, 0, 0};
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(U, &a));
+  for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
+    if (P->mesh.natural_id[l] == node)
+      for (int i = 0; i < 3; ++i) mine[i] = P->mesh.X[3 * l + i] + a[3 * l + i];
+  PetscCall(VecRestoreArrayRead(U, &a));
+  PetscCallMPI(MPI_Allreduce(mine, x, 3, MPI_DOUBLE, MPI_SUM, P->comm));
   PetscFunctionReturn(0);
 }
 

@@ -127,4 +127,34 @@ MeshData MakeDiscMesh(double radius, int rings) {
   return m;
 }
 
+MeshData MakeTubeMesh(double radius, double z0, double length, int ntheta, int nz) {
+  MeshData m;
+  m.source = "tube " + std::to_string(ntheta) + "x" + std::to_string(nz);
+  auto id = [ntheta](int i, int j) { return j * ntheta + (i % ntheta); };
+  for (int j = 0; j <= nz; ++j)
+    for (int i = 0; i < ntheta; ++i) {
+      const double phi = 2.0 * M_PI * i / ntheta;
+      AddNode(m, radius * std::cos(phi), radius * std::sin(phi), z0 + length * j / nz);
+    }
+  // Counter-clockwise seen from outside, so the normals point away from the axis.
+  for (int j = 0; j < nz; ++j)
+    for (int i = 0; i < ntheta; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2 == 0) {
+        AddTriangle(m, a, b, c);
+        AddTriangle(m, a, c, d);
+      } else {
+        AddTriangle(m, a, b, d);
+        AddTriangle(m, b, c, d);
+      }
+    }
+  for (int i = 0; i < ntheta; ++i) {
+    m.node_sets["bottom"].push_back(id(i, 0));
+    m.node_sets["top"].push_back(id(i, nz));
+    if (nz % 2 == 0) m.node_sets["middle"].push_back(id(i, nz / 2));
+  }
+  FillAllSet(m);
+  return m;
+}
+
 } // namespace etfe

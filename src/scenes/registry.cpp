@@ -12,6 +12,7 @@ namespace etfe {
 PetscErrorCode SceneBuild_Hencky(MPI_Comm, SceneSpec *);
 PetscErrorCode SceneBuild_Patch(MPI_Comm, SceneSpec *);
 PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *);
+PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -31,6 +32,7 @@ PetscErrorCode SceneRegisterAll(void) {
   PetscCall(SceneRegister("hencky", SceneBuild_Hencky));
   PetscCall(SceneRegister("patch", SceneBuild_Patch));
   PetscCall(SceneRegister("capstan", SceneBuild_Capstan));
+  PetscCall(SceneRegister("catenoid", SceneBuild_Catenoid));
   PetscFunctionReturn(0);
 }
 

@@ -72,6 +72,8 @@ def run(etfe, args, np=1, expect_fail=False, timeout=300, oversubscribe=None, ec
     except subprocess.TimeoutExpired as e:
         raise TestFailure("timed out after %g s: %s\n%s" % (timeout, " ".join(cmd),
                                                           tail(_decode(e.stdout or b""))))
+    except OSError as e:
+        raise TestFailure("cannot run %s: %s" % (" ".join(cmd), e))
     out = _decode(p.stdout)
     run.last_wall = time.time() - t0
     if echo:

@@ -17,4 +17,9 @@ MeshData MakeRectangleMesh(double x0, double y0, double lx, double ly, int nx, i
 // nodes): 6 rings^2 triangles of near-equal size. Node sets: rim, centre, all.
 MeshData MakeDiscMesh(double radius, int rings);
 
+// Tube (open cylinder) of radius r around the Z axis, z in [z0, z0 + length], ntheta cells
+// around (periodic seam) and nz along, diagonals alternating. Node sets: bottom (z = z0),
+// top, middle (the ring at mid height when nz is even), all.
+MeshData MakeTubeMesh(double radius, double z0, double length, int ntheta, int nz);
+
 } // namespace etfe

@@ -1,0 +1,110 @@
+// Cutting patterns: flattening of one strip of the form-found surface (SPEC §7, thesis §2.3).
+//
+// Every mesh edge is a "link" whose plane length l_i should equal its 3D length L_i. The plane
+// node positions x minimise S(x) = sum_i w_i (l_i(x) - L_i)^2 (thesis eq. 2.23) by Gauss-Newton:
+// K dx = R with K = A^T W A, R = -A^T W C (eqs. 2.29-2.31), assembled link by link like truss bars
+// (eqs. 2.32-2.33, kernel etfe/kernels/flatten_link.h). Boundary links (edges of one triangle)
+// weigh 1e12 so the cut and weld lines keep their length; interior links weigh 1. The rigid
+// motion is removed by fixing one node and the y of a second node. The expansion of a line is
+// (L2D - L3D) / L3D * 100 % (thesis Fig. 2.10).
+//
+// FlattenStrip runs serially (PETSc objects on PETSC_COMM_SELF, MATSEQAIJ + LU), so every rank
+// of an MPI run may call it on its own strips; PETSc must be initialised.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "etfe/mesh/mesh_data.h"
+
+namespace etfe {
+
+struct FlattenOptions {
+  double boundary_weight = 1e12;  // w of links with one adjacent triangle (thesis §2.4.2)
+  double interior_weight = 1.0;   // w of links between two triangles
+  int max_iterations = 200;       // Gauss-Newton iterations before reporting non-convergence
+  // Converged when the largest nodal step is below step_rtol * (mean 3D link length) and S has
+  // settled: |S_k - S_{k-1}| <= s_rtol * S_{k-1}, or S <= s_atol * sum_i w_i L_i^2 (an exact
+  // development ends at round-off, where the relative change of S is noise).
+  double step_rtol = 1e-10;
+  double s_rtol = 1e-12;
+  double s_atol = 1e-26;
+  // 3D links shorter than this times the mean link length are rejected as degenerate input.
+  double min_link_rel = 1e-9;
+  // Named lines to measure: the node sets listed here (each must exist) plus every node set
+  // whose name starts with one of the prefixes.
+  std::vector<std::string> line_sets;
+  std::vector<std::string> line_prefixes = {"cut_", "weld_"};
+};
+
+// A named line: the polyline through the mesh edges whose two nodes are both in the node set.
+// Boundary edges are used when the set has any (a cut, weld or frame line); otherwise all mesh
+// edges (an interior line, e.g. a centre line).
+struct PatternLine {
+  std::string name;
+  double length3d = 0.0, length2d = 0.0;  // mm
+  double expansion_pct = 0.0;             // (length2d - length3d) / length3d * 100
+  bool on_boundary = true;
+  int segments = 0;
+  // One ordered list of node ids per connected piece; a closed piece repeats its first id last.
+  std::vector<std::vector<int>> paths;
+};
+
+struct FlattenResult {
+  // Plane coordinates, 2 per node (mm). The pattern is seen from the side that triangle 0's
+  // normal (by its node order) points to, so a consistently oriented mesh gives counter-clockwise
+  // triangles; the principal (long) axis lies along x, the bounding box starts at (0, 0).
+  std::vector<double> xy;
+  std::vector<int> links;              // 2 node ids per link, smaller id first
+  std::vector<char> link_on_boundary;  // 1 for boundary links
+  std::vector<double> link_length3d;   // L_i, mm
+  std::vector<double> link_error;      // (l_i - L_i) / L_i
+  int num_boundary_links = 0;
+  std::string initial_guess;  // "projection" (best-fit plane) or "unfolding" (triangle by triangle)
+  double S_initial = 0.0, S = 0.0;  // eq. 2.23 at the initial guess and at the end, mm^2
+  std::vector<double> S_history;    // S after each iteration
+  int iterations = 0;
+  bool converged = false;
+  double max_rel_error = 0.0, rms_rel_error = 0.0;  // |l - L| / L over all links
+  double max_rel_error_boundary = 0.0, max_rel_error_interior = 0.0;
+  double rms_rel_error_interior = 0.0;
+  // Boundary loops of node ids (not repeating the first id), interior on the left: outline[0] is
+  // the outer loop (largest area), counter-clockwise; holes, if any, are clockwise.
+  std::vector<std::vector<int>> outline;
+  double outline_length3d = 0.0, outline_length2d = 0.0;  // all loops together, mm
+  std::vector<PatternLine> lines;
+};
+
+// Flattens strip3d (a connected, manifold triangle mesh: every edge in one or two triangles).
+// Returns false with a message in *err for bad input (non-finite or unused nodes, zero-length
+// links, non-manifold or disconnected meshes, missing line sets), a singular system, a failed
+// line search, a folded pattern or non-convergence within opt.max_iterations; *out then holds
+// what was reached (for diagnosis), not a usable pattern.
+bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenResult *out,
+                  std::string *err);
+
+// ---- Export (src/analyses/pattern_export.cpp) ---------------------------------------------------
+
+// ASCII DXF R12 (AC1009), units mm: a closed POLYLINE per outline loop on layer OUTLINE, an open
+// (or closed) POLYLINE per named line piece on a layer named after its set (upper case; cut_* in
+// red, weld_* in blue, others green) and, when labels is set, TEXT with each line's name and 2D
+// length on layer LABELS.
+bool WritePatternDxf(const std::string &path, const FlattenResult &r,
+                     const std::string &strip_name, bool labels, std::string *err);
+
+// SVG 1.1 in mm (width/height in mm, viewBox in mm, y upwards as in the DXF): one closed <path>
+// per outline loop in group "outline", one <polyline> per named line piece in group "lines"
+// (cut_* red, weld_* blue, others green) and, when labels is set, <text> labels.
+bool WritePatternSvg(const std::string &path, const FlattenResult &r,
+                     const std::string &strip_name, bool labels, std::string *err);
+
+// CSV table of the named line lengths of several strips, one row per line plus one row
+// "(outline)" per strip: strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,
+// expansion_pct.
+struct PatternTableEntry {
+  std::string strip;
+  const FlattenResult *result;
+};
+bool WritePatternLineTable(const std::string &path, const std::vector<PatternTableEntry> &strips,
+                           std::string *err);
+
+} // namespace etfe

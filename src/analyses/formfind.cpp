@@ -1,0 +1,190 @@
+// Form finding by updated-reference iterations (see formfind.h for the method).
+#include <cmath>
+#include <filesystem>
+
+#include "etfe/formfind.h"
+#include "etfe/kernels/status.h"
+#include "etfe/mesh/gmsh_reader.h"
+
+namespace etfe {
+
+PetscErrorCode FormFindOptionsFromCommandLine(MPI_Comm comm, FormFindOptions *o) {
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Form finding (-analysis formfind)", "FormFind");
+  PetscCall(PetscOptionsReal("-formfind_stress", "Prescribed TD membrane stress [MPa]", "", o->stress, &o->stress, nullptr));
+  PetscCall(PetscOptionsReal("-formfind_ratio", "Stress ratio MD:TD (1 = isotropic, minimal surface)", "", o->ratio,
+                             &o->ratio, nullptr));
+  PetscCall(PetscOptionsInt("-formfind_max_iterations", "Updated-reference iterations before giving up", "",
+                            o->max_iterations, &o->max_iterations, nullptr));
+  PetscCall(PetscOptionsReal("-formfind_tol", "Converged when the largest nodal move < tol * model size", "", o->tol,
+                             &o->tol, nullptr));
+  PetscCall(PetscOptionsString("-formfind_mesh_out", "Gmsh file of the found surface (default beside the results)",
+                               "", o->mesh_out, o->mesh_out, sizeof o->mesh_out, nullptr));
+  PetscCall(PetscOptionsInt("-formfind_monitor", "Print every n-th iteration (0: quiet)", "", o->monitor,
+                            &o->monitor, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(o->stress > 0 && o->ratio > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-formfind_stress %g / -formfind_ratio %g: a form-finding stress must be tensile (> 0)", o->stress,
+             o->ratio);
+  PetscCheck(o->max_iterations >= 1 && o->tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-formfind_max_iterations must be >= 1 and -formfind_tol > 0");
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+PetscErrorCode MaxNodalMove(Vec U, PetscReal *m) {
+  const PetscScalar *a;
+  PetscInt n;
+  PetscReal local = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(U, &n));
+  PetscCall(VecGetArrayRead(U, &a));
+  for (PetscInt i = 0; i + 2 < n; i += 3)
+    local = PetscMax(local, std::sqrt(a[i] * a[i] + a[i + 1] * a[i + 1] + a[i + 2] * a[i + 2]));
+  PetscCall(VecRestoreArrayRead(U, &a));
+  PetscCallMPI(MPI_Allreduce(&local, m, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)U)));
+  PetscFunctionReturn(0);
+}
+
+// Largest move along the nodal normals (area-weighted element normals of the reference). The
+// surface changes only through normal moves; tangential ones slide nodes within it (the mesh
+// settling into its discrete tangential balance, which is slow and does not change the shape).
+PetscErrorCode MaxNormalMove(Problem *P, Vec U, PetscReal *m) {
+  const LocalMesh &lm = P->mesh;
+  Vec acc, accl;
+  PetscScalar *a;
+  const PetscScalar *u;
+  PetscReal local = 0.0;
+  PetscFunctionBeginUser;
+  acc = P->F_work;
+  PetscCall(VecGhostGetLocalForm(acc, &accl));
+  PetscCall(VecZeroEntries(accl));
+  PetscCall(VecGetArray(accl, &a));
+  for (PetscInt e = 0; e < lm.num_elements; ++e) {
+    const double A = lm.ref[e].area, *n = &lm.ref[e].frame[6];
+    for (int k = 0; k < 3; ++k)
+      for (int i = 0; i < 3; ++i) a[3 * lm.tri[3 * e + k] + i] += A * n[i];
+  }
+  PetscCall(VecRestoreArray(accl, &a));
+  PetscCall(VecGhostRestoreLocalForm(acc, &accl));
+  PetscCall(VecGhostUpdateBegin(acc, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGhostUpdateEnd(acc, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGetArray(acc, &a));
+  PetscCall(VecGetArrayRead(U, &u));
+  for (PetscInt l = 0; l < lm.num_owned; ++l) {
+    const double *n = &a[3 * l];
+    const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (nn > 0)
+      local = PetscMax(local, std::fabs(u[3 * l] * n[0] + u[3 * l + 1] * n[1] + u[3 * l + 2] * n[2]) / nn);
+  }
+  PetscCall(VecRestoreArrayRead(U, &u));
+  PetscCall(VecRestoreArray(acc, &a));
+  PetscCallMPI(MPI_Allreduce(&local, m, 1, MPIU_REAL, MPIU_MAX, P->comm));
+  PetscFunctionReturn(0);
+}
+
+double ModelSize(const MeshData &mesh) {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  for (int n = 0; n < mesh.NumNodes(); ++n)
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], mesh.coords[3 * n + i]);
+      hi[i] = std::max(hi[i], mesh.coords[3 * n + i]);
+    }
+  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+}
+
+} // namespace
+
+PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFindOptions &o,
+                           FormFindResult *res) {
+  Vec U_total;
+  PetscLogDouble t0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(VecDuplicate(P->U, &U_total));
+  PetscCall(VecZeroEntries(U_total));
+  const double size = ModelSize(P->scene.mesh);
+  P->time = P->scene.NumStages();  // boundaries at their final (prescribed) positions
+  res->converged = PETSC_FALSE;
+  for (PetscInt it = 1; it <= o.max_iterations; ++it) {
+    PetscCall(VecZeroEntries(P->U));
+    PetscCall(ApplyConstraints(P, P->time, P->U));
+    PetscCall(SNESSolve(snes, nullptr, P->U));
+    SNESConvergedReason reason;
+    PetscCall(SNESGetConvergedReason(snes, &reason));
+    if (reason <= 0) {
+      char why[400];
+      std::snprintf(why, sizeof why,
+                    "form finding iteration %lld: %s%s%s. No equilibrium surface with this stress "
+                    "fits these boundaries (or the mesh folded): check the boundary positions, "
+                    "the stress ratio, or refine the mesh",
+                    (long long)it, SNESConvergedReasons[reason],
+                    P->bad_status ? " at element " : "",
+                    P->bad_status ? (std::to_string((long long)P->bad_element) + " (" +
+                                     KernelStatusName(P->bad_status) + ")").c_str() : "");
+      res->failure = why;
+      break;
+    }
+    PetscReal move, all;
+    PetscCall(MaxNormalMove(P, P->U, &move));
+    PetscCall(MaxNodalMove(P->U, &all));
+    PetscCall(VecAXPY(U_total, 1.0, P->U));
+    PetscCall(UpdateReference(P, P->U));
+    if (P->bad_status != KERNEL_OK) {
+      res->failure = "form finding iteration " + std::to_string((long long)it) + ": element " +
+                     std::to_string((long long)P->bad_element) +
+                     " collapsed (the surface pinches off: no equilibrium shape spans these "
+                     "boundaries, e.g. catenoid rings beyond the Goldschmidt limit)";
+      break;
+    }
+    res->iterations = it;
+    res->last_move = move;
+    if (o.monitor > 0 && (it % o.monitor == 0 || move < o.tol * size))
+      PetscCall(PetscPrintf(P->comm, "formfind: iteration %4" PetscInt_FMT "  largest normal move %.3e mm (any direction %.3e mm)\n",
+                            it, move, all));
+    if (move < o.tol * size) {
+      res->converged = PETSC_TRUE;
+      break;
+    }
+  }
+  if (res->failure.empty() && !res->converged)
+    res->failure = "form finding did not converge in " + std::to_string((long long)o.max_iterations) +
+                   " iterations (last move " + std::to_string(res->last_move) +
+                   " mm): raise -formfind_max_iterations or -formfind_tol, or the shape keeps "
+                   "shrinking because none exists for these boundaries";
+  // The found surface: displacement from the scene's mesh, stresses at the last iterate.
+  PetscCall(VecZeroEntries(P->U));
+  PetscCall(ApplyConstraints(P, P->time, P->U));
+  {
+    Vec R;
+    PetscCall(VecDuplicate(P->U, &R));
+    PetscCall(FormResidual(nullptr, P->U, R, P));
+    PetscCall(VecDestroy(&R));
+  }
+  if (out) PetscCall(OutputWriteStep(out, P, U_total, 1, P->time, P->U));
+  if (res->converged) {
+    MeshData shape;
+    PetscCall(OutputGatherShape(P, P->U, &shape));
+    std::string path = o.mesh_out;
+    if (path.empty())
+      path = (out ? OutputDirectory(out) : std::string("results/") + P->scene.name) + "/" +
+             P->scene.name + "_formfound.msh";
+    if (P->rank == 0) {
+      std::error_code ec;
+      auto dir = std::filesystem::path(path).parent_path();
+      if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+      std::string err;
+      PetscCheck(WriteGmshFile(path, shape, &err), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "%s", err.c_str());
+    }
+    PetscCall(PetscPrintf(P->comm, "formfind: converged after %" PetscInt_FMT " iterations; surface written to %s\n",
+                          res->iterations, path.c_str()));
+  }
+  // P->U now holds the total displacement so that scene reports see the found shape.
+  PetscCall(VecZeroEntries(P->U));
+  PetscCall(VecDestroy(&U_total));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
