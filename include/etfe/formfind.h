@@ -25,6 +25,7 @@ struct FormFindOptions {
   PetscReal tol = 1e-8;       // converged when the largest normal nodal move < tol * model size
   char mesh_out[PETSC_MAX_PATH_LEN] = "";  // Gmsh file of the found surface ("" = beside results)
   PetscInt monitor = 1;
+  PetscBool mesh_control = PETSC_TRUE;  // interior nodes move along their normals only
 };
 
 struct FormFindResult {

@@ -64,6 +64,7 @@ struct SceneSpec {
   PressureSpec pressure;
   std::vector<NodalForce> nodal_forces;
   ContactSpec contact;
+  std::vector<double> element_stress_ratio;  // form finding: MD:TD per element (empty: uniform)
   std::vector<double> initial_guess;     // 3 per node or empty (zero displacement)
   std::string initial_guess_note;        // printed in the header when a guess is used
   // Called once after the last increment (collective): prints the scene's own quantities of

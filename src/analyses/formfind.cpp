@@ -20,6 +20,9 @@ PetscErrorCode FormFindOptionsFromCommandLine(MPI_Comm comm, FormFindOptions *o)
                              &o->tol, nullptr));
   PetscCall(PetscOptionsString("-formfind_mesh_out", "Gmsh file of the found surface (default beside the results)",
                                "", o->mesh_out, o->mesh_out, sizeof o->mesh_out, nullptr));
+  PetscCall(PetscOptionsBool("-formfind_mesh_control",
+                             "Move interior nodes along their normals only (no in-plane drift)", "",
+                             o->mesh_control, &o->mesh_control, nullptr));
   PetscCall(PetscOptionsInt("-formfind_monitor", "Print every n-th iteration (0: quiet)", "", o->monitor,
                             &o->monitor, nullptr));
   PetscOptionsEnd();
@@ -50,14 +53,12 @@ PetscErrorCode MaxNodalMove(Vec U, PetscReal *m) {
 // Largest move along the nodal normals (area-weighted element normals of the reference). The
 // surface changes only through normal moves; tangential ones slide nodes within it (the mesh
 // settling into its discrete tangential balance, which is slow and does not change the shape).
-PetscErrorCode MaxNormalMove(Problem *P, Vec U, PetscReal *m) {
+// Area-weighted nodal normals of the reference, unnormalised, in P->F_work (owned part valid).
+PetscErrorCode NodalNormals(Problem *P) {
   const LocalMesh &lm = P->mesh;
-  Vec acc, accl;
+  Vec acc = P->F_work, accl;
   PetscScalar *a;
-  const PetscScalar *u;
-  PetscReal local = 0.0;
   PetscFunctionBeginUser;
-  acc = P->F_work;
   PetscCall(VecGhostGetLocalForm(acc, &accl));
   PetscCall(VecZeroEntries(accl));
   PetscCall(VecGetArray(accl, &a));
@@ -70,6 +71,17 @@ PetscErrorCode MaxNormalMove(Problem *P, Vec U, PetscReal *m) {
   PetscCall(VecGhostRestoreLocalForm(acc, &accl));
   PetscCall(VecGhostUpdateBegin(acc, ADD_VALUES, SCATTER_REVERSE));
   PetscCall(VecGhostUpdateEnd(acc, ADD_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MaxNormalMove(Problem *P, Vec U, PetscReal *m) {
+  const LocalMesh &lm = P->mesh;
+  Vec acc = P->F_work;
+  PetscScalar *a;
+  const PetscScalar *u;
+  PetscReal local = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(NodalNormals(P));
   PetscCall(VecGetArray(acc, &a));
   PetscCall(VecGetArrayRead(U, &u));
   for (PetscInt l = 0; l < lm.num_owned; ++l) {
@@ -81,6 +93,32 @@ PetscErrorCode MaxNormalMove(Problem *P, Vec U, PetscReal *m) {
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecRestoreArray(acc, &a));
   PetscCallMPI(MPI_Allreduce(&local, m, 1, MPIU_REAL, MPIU_MAX, P->comm));
+  PetscFunctionReturn(0);
+}
+
+// Mesh control: interior nodes move along their normal only. The shape is decided by the
+// normal balance; tangential updates only redistribute nodes, and with an anisotropic stress
+// (which cannot be in exact tangential balance on a curved surface) they would drift for ever.
+// Constrained components keep their solved (prescribed) values.
+PetscErrorCode ProjectOnNormals(Problem *P, Vec U) {
+  const LocalMesh &lm = P->mesh;
+  PetscScalar *a, *u;
+  PetscFunctionBeginUser;
+  PetscCall(NodalNormals(P));
+  PetscCall(VecGetArray(P->F_work, &a));
+  PetscCall(VecGetArray(U, &u));
+  for (PetscInt l = 0; l < lm.num_owned; ++l) {
+    const char *con = &P->dof_constrained[3 * l];
+    if (con[0] && con[1] && con[2]) continue;
+    const double *n = &a[3 * l];
+    const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (nn == 0) continue;
+    const double un = (u[3 * l] * n[0] + u[3 * l + 1] * n[1] + u[3 * l + 2] * n[2]) / (nn * nn);
+    for (int i = 0; i < 3; ++i)
+      if (!con[i]) u[3 * l + i] = un * n[i];
+  }
+  PetscCall(VecRestoreArray(U, &u));
+  PetscCall(VecRestoreArray(P->F_work, &a));
   PetscFunctionReturn(0);
 }
 
@@ -128,6 +166,7 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
       break;
     }
     PetscReal move, all;
+    if (o.mesh_control) PetscCall(ProjectOnNormals(P, P->U));
     PetscCall(MaxNormalMove(P, P->U, &move));
     PetscCall(MaxNodalMove(P->U, &all));
     PetscCall(VecAXPY(U_total, 1.0, P->U));

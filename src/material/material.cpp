@@ -65,15 +65,20 @@ public:
   }
 };
 
+// The prescribed stress lives in the element's "history" (S_MD, S_TD) so that parts of a
+// surface may carry different ratios (the saddle: middle 1:1, corners 3:1).
 class PrescribedStressMaterial : public Material {
 public:
   double s_md, s_td;
   PrescribedStressMaterial(double md, double td) : s_md(md), s_td(td) {}
   const char *Name() const override { return "prescribed_stress"; }
+  int HistorySize() const override { return 2; }
+  void InitHistory(double *h) const override { h[0] = s_md, h[1] = s_td; }
   // There is no elastic law; the stress level stands in where a stiffness scale is needed.
   void ElasticConstants(double *e, double *n) const override { *e = std::max(s_md, s_td), *n = 0.0; }
-  int Evaluate(const double *, const double *, double *, double S[3], double D[9]) const override {
-    S[0] = s_md, S[1] = s_td, S[2] = 0.0;
+  int Evaluate(const double *, const double *hold, double *hnew, double S[3], double D[9]) const override {
+    S[0] = hold[0], S[1] = hold[1], S[2] = 0.0;
+    if (hnew) hnew[0] = hold[0], hnew[1] = hold[1];
     for (int k = 0; k < 9; ++k) D[k] = 0.0;
     return KERNEL_OK;
   }

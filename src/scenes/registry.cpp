@@ -13,6 +13,7 @@ PetscErrorCode SceneBuild_Hencky(MPI_Comm, SceneSpec *);
 PetscErrorCode SceneBuild_Patch(MPI_Comm, SceneSpec *);
 PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *);
 PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *);
+PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -33,6 +34,7 @@ PetscErrorCode SceneRegisterAll(void) {
   PetscCall(SceneRegister("patch", SceneBuild_Patch));
   PetscCall(SceneRegister("capstan", SceneBuild_Capstan));
   PetscCall(SceneRegister("catenoid", SceneBuild_Catenoid));
+  PetscCall(SceneRegister("saddle", SceneBuild_Saddle));
   PetscFunctionReturn(0);
 }
 

@@ -100,8 +100,9 @@ def tail(out, n=40):
 
 
 def error_message(out):
-    """The lines of a PETSc error message that say what went wrong: no trace (#n ...), no
-    "Option left" warnings, no option table, no version/configure banner."""
+    """The lines of a PETSc error message that say what went wrong: no trace (#n ... or the
+    concise "(raised in f() at file:line ...)"), no "Option left" warnings, no option table, no
+    version/configure banner."""
     keep, in_table = [], False
     for l in out.splitlines():
         m = re.match(r"\[\d+\]PETSC ERROR: (.*)", l)
@@ -115,6 +116,7 @@ def error_message(out):
             in_table = False
             continue
         if in_table or t.startswith("#") or t.startswith("Option left") or \
+                t.strip().startswith("(raised in ") or \
                 "Configure options" in t or t.startswith("Petsc Release") or \
                 t.startswith("See https") or (" on a " in t and " named " in t) or \
                 t.startswith("WARNING! There are option"):

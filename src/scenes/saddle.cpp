@@ -1,0 +1,148 @@
+// The saddle structure of the thesis (SPEC §8), quarter model X in [0, 2000], Y in [0, 1000]:
+// outside frame at z = 0 (X = 2000 and Y = 1000), symmetry on X = 0 (u_X = 0) and Y = 0
+// (u_Y = 0), the arch at X = 1000: a circular arc through (Y = +-1000, z = 0) and (0, H).
+// Middle part X < 1000 (centre at X = 0), corner part X > 1000.
+//
+// Form finding (-analysis formfind): the arch line and the frame are prescribed, the middle part
+// carries MD:TD = -saddle_ratio_middle, the corners -saddle_ratio_corner (thesis Table 2.1). The
+// initial shape is the arch extruded along X in the middle and ruled from the arch down to the
+// frame in the corners (the PD specimens' shape). The report gives the saddle heights h1 (middle
+// part centre) and h2 (corner part centre), the sag and curvature of the middle part's centre
+// line (SPEC §6: kappa = 8h/(L^2 + 4h^2)) and the middle cutting line length (X = 0).
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "etfe/mesh/generators.h"
+#include "etfe/problem.h"
+#include "etfe/scene.h"
+
+namespace etfe {
+
+namespace {
+
+struct SaddleGeometry {
+  double half_length = 2000.0;  // X extent of the quarter (frame at X = 2000)
+  double arch_x = 1000.0;       // arch plane
+  double half_span = 1000.0;    // Y extent (frame at Y = 1000), arch span L = 2 half_span
+  double rise = 300.0;          // H
+  double ArchRadius() const { return (half_span * half_span + rise * rise) / (2.0 * rise); }
+  double ArchHeight(double y) const {
+    const double r = ArchRadius();
+    return rise - r + std::sqrt(std::max(0.0, r * r - y * y));
+  }
+  // PD initial shape: arch extruded in the middle, ruled down to the frame in the corner.
+  double InitialHeight(double x, double y) const {
+    const double za = ArchHeight(y);
+    return x <= arch_x ? za : za * (half_length - x) / (half_length - arch_x);
+  }
+};
+
+struct SaddleContext {
+  SaddleGeometry g;
+  int centre_node = -1, corner_node = -1;
+  std::vector<int> cut_line;  // nodes on X = 0 ordered by Y
+};
+
+int NearestNode(const MeshData &m, double x, double y) {
+  int best = -1;
+  double d = 1e300;
+  for (int n = 0; n < m.NumNodes(); ++n) {
+    const double dd = std::hypot(m.coords[3 * n] - x, m.coords[3 * n + 1] - y);
+    if (dd < d) d = dd, best = n;
+  }
+  return best;
+}
+
+PetscErrorCode SaddleReport(Problem *P, void *vctx) {
+  auto *c = (SaddleContext *)vctx;
+  double xc[3], xk[3];
+  PetscFunctionBeginUser;
+  PetscCall(ProblemGetNodePosition(P, P->U, c->centre_node, xc));
+  PetscCall(ProblemGetNodePosition(P, P->U, c->corner_node, xk));
+  double len = 0.0, prev[3];
+  for (size_t k = 0; k < c->cut_line.size(); ++k) {
+    double x[3];
+    PetscCall(ProblemGetNodePosition(P, P->U, c->cut_line[k], x));
+    if (k) len += std::sqrt((x[0] - prev[0]) * (x[0] - prev[0]) + (x[1] - prev[1]) * (x[1] - prev[1]) +
+                            (x[2] - prev[2]) * (x[2] - prev[2]));
+    for (int i = 0; i < 3; ++i) prev[i] = x[i];
+  }
+  const double H = c->g.rise, L = 2.0 * c->g.arch_x, sag = H - xc[2];
+  const double kappa = 8.0 * sag / (L * L + 4.0 * sag * sag);
+  PetscCall(PetscPrintf(P->comm,
+                        "saddle: rise H = %.1f mm (r = %.1f %%), h1 = %.3f mm (middle part centre), h2 = %.3f mm (corner part centre)\n"
+                        "saddle: middle sag = %.3f mm over %.0f mm, curvature = %.6e 1/mm (radius %.1f mm)\n"
+                        "saddle: middle_cutting_line = %.3f mm (full length over Y = -1000..1000)\n",
+                        H, 100.0 * H / (2.0 * c->g.half_span), xc[2], xk[2], sag, L, kappa, 1.0 / kappa, 2.0 * len));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
+  PetscReal ratio_r = 0.15, ratio_mid = 1.0, ratio_corner = 3.0;
+  PetscInt n = 10, refine = 0;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Saddle scene (quarter model of the thesis's saddle)", "Scene");
+  PetscCall(PetscOptionsReal("-saddle_rise_ratio", "Arch rise / span r (thesis: 0.10, 0.15, 0.20)", "", ratio_r, &ratio_r, nullptr));
+  PetscCall(PetscOptionsReal("-saddle_ratio_middle", "Form finding: MD:TD stress ratio of the middle part", "", ratio_mid,
+                             &ratio_mid, nullptr));
+  PetscCall(PetscOptionsReal("-saddle_ratio_corner", "Form finding: MD:TD stress ratio of the corner parts", "",
+                             ratio_corner, &ratio_corner, nullptr));
+  PetscCall(PetscOptionsInt("-mesh_n", "Cells per 1000 mm (quarter: 2n x n cells)", "", n, &n, nullptr));
+  PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine, &refine, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(ratio_r > 0 && ratio_r <= 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-saddle_rise_ratio %g: the arch rise ratio must lie in (0, 0.5]", ratio_r);
+  PetscCheck(ratio_mid > 0 && ratio_corner > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: stress ratios must be positive");
+  PetscCheck(n >= 2 && n % 2 == 0 && refine >= 0 && refine < 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "saddle: need an even -mesh_n >= 2 and 0 <= -mesh_refine < 8");
+  n <<= refine;
+  auto *ctx = new SaddleContext();
+  SaddleGeometry &g = ctx->g;
+  g.rise = ratio_r * 2.0 * g.half_span;
+  scene->mesh = MakeRectangleMesh(0.0, 0.0, g.half_length, g.half_span, (int)(2 * n), (int)n,
+                                  DiagonalPattern::Alternate, 0.0, 0u);
+  scene->mesh.source = "saddle quarter " + std::to_string(2 * n) + "x" + std::to_string(n);
+  MeshData &m = scene->mesh;
+  const double tol = 1e-9 * g.half_length;
+  for (int k = 0; k < m.NumNodes(); ++k) {
+    double *x = &m.coords[3 * k];
+    x[2] = g.InitialHeight(x[0], x[1]);
+    if (std::fabs(x[0] - g.arch_x) < tol) m.node_sets["arch"].push_back(k);
+    if (std::fabs(x[0]) < tol) m.node_sets["sym_x"].push_back(k);
+    if (std::fabs(x[1]) < tol) m.node_sets["sym_y"].push_back(k);
+    if (std::fabs(x[0] - g.half_length) < tol || std::fabs(x[1] - g.half_span) < tol) m.node_sets["frame"].push_back(k);
+  }
+  for (int e = 0; e < m.NumElements(); ++e) {
+    double xc = 0;
+    for (int a = 0; a < 3; ++a) xc += m.coords[3 * m.triangles[3 * e + a]] / 3.0;
+    m.element_sets[xc < g.arch_x ? "middle" : "corner"].push_back(e);
+  }
+  scene->element_stress_ratio.assign(m.NumElements(), ratio_corner);
+  for (int e : m.element_sets["middle"]) scene->element_stress_ratio[e] = ratio_mid;
+  scene->AddSchedule({"boundary", 0.0, {1.0}});
+  std::vector<char> fixed(m.NumNodes(), 0);
+  for (const char *set : {"frame", "arch"})
+    for (int k : m.node_sets[set]) {
+      fixed[k] = 1;
+      for (int c = 0; c < 3; ++c) scene->constraints.push_back({k, c, {}});
+    }
+  for (int k : m.node_sets["sym_x"])
+    if (!fixed[k]) scene->constraints.push_back({k, 0, {}});
+  for (int k : m.node_sets["sym_y"])
+    if (!fixed[k]) scene->constraints.push_back({k, 1, {}});
+  ctx->centre_node = NearestNode(m, 0.0, 0.0);
+  ctx->corner_node = NearestNode(m, 0.5 * (g.arch_x + g.half_length), 0.0);
+  ctx->cut_line = m.node_sets["sym_x"];
+  std::sort(ctx->cut_line.begin(), ctx->cut_line.end(),
+            [&](int a, int b) { return m.coords[3 * a + 1] < m.coords[3 * b + 1]; });
+  scene->report = SaddleReport;
+  scene->report_ctx = ctx;
+  scene->report_ctx_destroy = [](void *c) { delete (SaddleContext *)c; };
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
