@@ -115,7 +115,8 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool final_check) {
   std::string list;
   const char *lazy[] = {"mat_mumps_", "mat_superlu", "pc_hypre_", "pc_gamg_", "mg_", "sub_",
                         "log", "options_left", "malloc", "fp_trap", "info", "history", "viewer_",
-                        "on_error", "check_pointer", "memory_view", "objects_dump", "mat_view"};
+                        "on_error", "check_pointer", "memory_view", "objects_dump", "mat_view", "snes_test_",
+                        "ksp_view", "snes_view", "etfe_traceback"};
   for (PetscInt i = 0; i < n; ++i) {
     bool skip = false;
     if (!final_check)

@@ -85,7 +85,7 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
   PetscCall(PetscOptionsReal("-patch_strain_y", "Engineering strain in Y (biaxial only)", "", ey, &ey, nullptr));
   PetscCall(PetscOptionsString("-patch_mode",
                                "uniaxial (top edge free), biaxial (-patch_strain_y on the top edge), "
-                               "pureshear (Eyy = -Exx)",
+                               "pureshear (Eyy = -Exx exactly at stage ends, interpolated in between)",
                                "", mode, mode, sizeof mode, nullptr));
   PetscCall(PetscOptionsString("-mesh_file",
                                "Gmsh mesh of the rectangle instead of the generator (node sets left, "
@@ -102,8 +102,18 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
   PetscCall(PetscOptionsString("-mesh_pattern", "Diagonals: right, left, alternate, crossed", "", pattern,
                                pattern, sizeof pattern, nullptr));
   PetscOptionsEnd();
+  PetscBool sched_named = PETSC_FALSE;
+  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-patch_schedule", &sched_named));
+  // PETSc reports an option given without values as not set: that is an empty schedule.
+  PetscCheck(!sched_named || (sched_set && nsched >= 1), comm, PETSC_ERR_ARG_SIZ,
+             "-patch_schedule is empty: give at least one stage value (e.g. 1 or 1,0,1.5)");
   if (!sched_set) nsched = 1;
-  PetscCheck(nsched >= 1, comm, PETSC_ERR_ARG_SIZ, "-patch_schedule is empty: give at least one stage value");
+  for (PetscInt k = 0; k < nsched; ++k)
+    PetscCheck(std::isfinite(schedule[k]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-patch_schedule value %" PetscInt_FMT " is %g: schedule values must be finite numbers", k + 1,
+               schedule[k]);
+  PetscCheck(std::isfinite(ex) && std::isfinite(ey) && ex > -1 && ey > -1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-patch_strain_x %g / -patch_strain_y %g: strains must be finite and > -1", ex, ey);
   PetscCheck(lx > 0 && ly > 0 && nx >= 1 && ny >= 1 && refine >= 0 && refine < 12, comm,
              PETSC_ERR_ARG_OUTOFRANGE, "patch: need positive -patch_lx/-patch_ly, -mesh_nx/-mesh_ny >= 1, 0 <= -mesh_refine < 12");
   PetscCheck(perturb >= 0 && perturb < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,

@@ -1,6 +1,7 @@
 // Scene registry (-scene, -scene_list) and the shared mesh input (-mesh_file).
 #include <petscsys.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,25 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene) {
              "-scene %s is not a registered scene; -scene_list shows them", name);
   scene->name = name;
   PetscCall(build(comm, scene));
+  // Whatever a builder made of its options, the load data must be finite numbers.
+  for (const Schedule &sc : scene->schedules) {
+    PetscCheck(std::isfinite(sc.initial), comm, PETSC_ERR_ARG_OUTOFRANGE, "scene %s: schedule %s starts at %g",
+               name, sc.name.c_str(), sc.initial);
+    for (size_t k = 0; k < sc.values.size(); ++k)
+      PetscCheck(std::isfinite(sc.values[k]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "scene %s: schedule %s has the value %g at stage %zu; check the options that set it", name,
+                 sc.name.c_str(), sc.values[k], k + 1);
+  }
+  for (const auto *list : {&scene->constraints})
+    for (const DofConstraint &c : *list)
+      PetscCheck(std::isfinite(c.value.coef[0]) && std::isfinite(c.value.coef[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "scene %s: the prescribed displacement of node %d is not finite; check the scene's options", name,
+                 c.node);
+  for (const NodalForce &f : scene->nodal_forces)
+    PetscCheck(std::isfinite(f.value.coef[0]) && std::isfinite(f.value.coef[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "scene %s: the force on node %d is not finite; check the scene's options", name, f.node);
+  PetscCheck(std::isfinite(scene->pressure.value.coef[0]) && std::isfinite(scene->pressure.value.coef[1]), comm,
+             PETSC_ERR_ARG_OUTOFRANGE, "scene %s: the pressure is not finite", name);
   PetscFunctionReturn(0);
 }
 

@@ -1,0 +1,52 @@
+// Parallel HDF5 helpers shared by the results file and the checkpoints: collective row-block
+// datasets, scalar attributes, and the scatter between PETSc order (rows owned by each rank)
+// and the scene's ("natural") order of nodes, elements and contact pairs.
+#pragma once
+#include <hdf5.h>
+#include <petscvec.h>
+
+#include <map>
+#include <string>
+#include <utility>
+
+namespace etfe {
+
+struct Problem;
+
+enum class Layout { Nodes = 0, Cells = 1, Pairs = 2 };
+
+// One scatter per (layout, components), created on first use.
+class NaturalOrder {
+public:
+  explicit NaturalOrder(Problem *p) : problem_(p) {}
+  ~NaturalOrder();
+  PetscInt GlobalRows(Layout layout) const;
+  // owned (PETSc order, ncomp per row) -> this rank's block of natural rows.
+  PetscErrorCode ToNatural(Layout layout, int ncomp, const double *owned, Vec *natural, PetscInt *row0,
+                           PetscInt *nrows);
+  // This rank's block of natural rows (as laid out by ToNatural) -> owned rows in PETSc order.
+  PetscErrorCode FromNatural(Layout layout, int ncomp, const double *natural_rows, double *owned);
+  // This rank's natural row block for a layout (row0, nrows), without moving data.
+  PetscErrorCode RowBlock(Layout layout, int ncomp, PetscInt *row0, PetscInt *nrows);
+
+private:
+  struct Entry {
+    VecScatter scatter = nullptr;
+    Vec owned = nullptr, natural = nullptr;
+  };
+  PetscErrorCode Get(Layout layout, int ncomp, Entry **e);
+  Problem *problem_;
+  std::map<std::pair<int, int>, Entry> entries_;
+};
+
+// Collective on the file's communicator. `file` names the file in messages.
+PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,
+                           hsize_t cols, hsize_t row0, hsize_t nrows, const void *data);
+PetscErrorCode H5ReadRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,
+                          hsize_t cols, hsize_t row0, hsize_t nrows, void *data);
+PetscErrorCode H5WriteAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, const void *value);
+PetscErrorCode H5WriteString(const std::string &file, hid_t obj, const char *name, const std::string &value);
+PetscErrorCode H5ReadAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, void *value);
+PetscErrorCode H5ReadString(const std::string &file, hid_t obj, const char *name, std::string *value);
+
+} // namespace etfe

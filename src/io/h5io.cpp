@@ -1,0 +1,237 @@
+// Parallel HDF5 helpers (see h5io.h).
+#include "etfe/h5io.h"
+
+#include <vector>
+
+#include "etfe/problem.h"
+
+namespace etfe {
+
+#define ETFE_H5CHECK(call, what)                                                                   \
+  do {                                                                                             \
+    if ((call) < 0)                                                                                \
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "HDF5: %s failed in %s", what,            \
+              file.c_str());                                                                       \
+  } while (0)
+
+NaturalOrder::~NaturalOrder() {
+  for (auto &kv : entries_) {
+    VecScatterDestroy(&kv.second.scatter);
+    VecDestroy(&kv.second.owned);
+    VecDestroy(&kv.second.natural);
+  }
+}
+
+PetscInt NaturalOrder::GlobalRows(Layout layout) const {
+  const Problem *P = problem_;
+  switch (layout) {
+  case Layout::Nodes: return P->mesh.num_nodes_global;
+  case Layout::Cells: return P->mesh.num_elements_global;
+  case Layout::Pairs: return P->contact ? P->contact->num_global : 0;
+  }
+  return 0;
+}
+
+PetscErrorCode NaturalOrder::Get(Layout layout, int ncomp, Entry **result) {
+  Problem *P = problem_;
+  const LocalMesh &m = P->mesh;
+  auto key = std::make_pair((int)layout, ncomp);
+  PetscFunctionBeginUser;
+  auto it = entries_.find(key);
+  if (it == entries_.end()) {
+    PetscInt nloc = 0, first = 0;
+    std::vector<PetscInt> to;
+    if (layout == Layout::Nodes) {
+      nloc = m.num_owned, first = m.owned_start;
+      to.assign(m.natural_id.begin(), m.natural_id.begin() + nloc);
+    } else if (layout == Layout::Cells) {
+      nloc = m.num_elements, first = m.element_start;
+      to.assign(m.element_natural.begin(), m.element_natural.end());
+    } else {
+      nloc = (PetscInt)P->contact->pairs.size(), first = P->contact->pair_start;
+      for (const ContactPair &pr : P->contact->pairs) to.push_back(pr.id);
+    }
+    const PetscInt nglob = GlobalRows(layout);
+    std::vector<PetscInt> from(nloc);
+    for (PetscInt i = 0; i < nloc; ++i) from[i] = first + i;
+    Entry e;
+    IS isf, ist;
+    PetscInt n = PETSC_DECIDE, N = nglob;
+    PetscCall(PetscSplitOwnership(P->comm, &n, &N));  // rows stay whole on a rank
+    PetscCall(VecCreateMPI(P->comm, ncomp * nloc, ncomp * nglob, &e.owned));
+    PetscCall(VecCreateMPI(P->comm, ncomp * n, ncomp * nglob, &e.natural));
+    PetscCall(ISCreateBlock(P->comm, ncomp, nloc, from.data(), PETSC_COPY_VALUES, &isf));
+    PetscCall(ISCreateBlock(P->comm, ncomp, nloc, to.data(), PETSC_COPY_VALUES, &ist));
+    PetscCall(VecScatterCreate(e.owned, isf, e.natural, ist, &e.scatter));
+    PetscCall(ISDestroy(&isf));
+    PetscCall(ISDestroy(&ist));
+    it = entries_.emplace(key, e).first;
+  }
+  *result = &it->second;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NaturalOrder::RowBlock(Layout layout, int ncomp, PetscInt *row0, PetscInt *nrows) {
+  Entry *e;
+  PetscInt lo, n;
+  PetscFunctionBeginUser;
+  PetscCall(Get(layout, ncomp, &e));
+  PetscCall(VecGetOwnershipRange(e->natural, &lo, nullptr));
+  PetscCall(VecGetLocalSize(e->natural, &n));
+  *row0 = lo / ncomp;
+  *nrows = n / ncomp;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NaturalOrder::ToNatural(Layout layout, int ncomp, const double *owned, Vec *natural,
+                                       PetscInt *row0, PetscInt *nrows) {
+  Entry *e;
+  PetscScalar *a;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(Get(layout, ncomp, &e));
+  PetscCall(VecGetLocalSize(e->owned, &n));
+  PetscCall(VecGetArray(e->owned, &a));
+  for (PetscInt i = 0; i < n; ++i) a[i] = owned[i];
+  PetscCall(VecRestoreArray(e->owned, &a));
+  PetscCall(VecScatterBegin(e->scatter, e->owned, e->natural, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(e->scatter, e->owned, e->natural, INSERT_VALUES, SCATTER_FORWARD));
+  *natural = e->natural;
+  PetscCall(RowBlock(layout, ncomp, row0, nrows));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode NaturalOrder::FromNatural(Layout layout, int ncomp, const double *natural_rows, double *owned) {
+  Entry *e;
+  PetscScalar *a;
+  const PetscScalar *b;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(Get(layout, ncomp, &e));
+  PetscCall(VecGetLocalSize(e->natural, &n));
+  PetscCall(VecGetArray(e->natural, &a));
+  for (PetscInt i = 0; i < n; ++i) a[i] = natural_rows[i];
+  PetscCall(VecRestoreArray(e->natural, &a));
+  PetscCall(VecScatterBegin(e->scatter, e->natural, e->owned, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(e->scatter, e->natural, e->owned, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGetLocalSize(e->owned, &n));
+  PetscCall(VecGetArrayRead(e->owned, &b));
+  for (PetscInt i = 0; i < n; ++i) owned[i] = b[i];
+  PetscCall(VecRestoreArrayRead(e->owned, &b));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+PetscErrorCode SelectRows(const std::string &file, hid_t fspace, hid_t mspace, hsize_t row0, hsize_t nrows,
+                          hsize_t cols) {
+  hsize_t start[2] = {row0, 0}, count[2] = {nrows, cols};
+  PetscFunctionBeginUser;
+  if (nrows > 0) {
+    ETFE_H5CHECK(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr), "row selection");
+  } else {
+    H5Sselect_none(fspace);
+    H5Sselect_none(mspace);
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,
+                           hsize_t cols, hsize_t row0, hsize_t nrows, const void *data) {
+  PetscFunctionBeginUser;
+  hsize_t dims[2] = {total_rows, cols}, count[2] = {nrows, cols};
+  const int rank = cols > 1 ? 2 : 1;
+  hid_t fspace = H5Screate_simple(rank, dims, nullptr);
+  hid_t dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  ETFE_H5CHECK(dset, name);
+  hid_t mspace = H5Screate_simple(rank, count, nullptr);
+  PetscCall(SelectRows(file, fspace, mspace, row0, nrows, cols));
+  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  ETFE_H5CHECK(H5Dwrite(dset, type, mspace, fspace, dxpl, data), name);
+  H5Pclose(dxpl);
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  H5Dclose(dset);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ReadRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,
+                          hsize_t cols, hsize_t row0, hsize_t nrows, void *data) {
+  PetscFunctionBeginUser;
+  PetscCheck(H5Lexists(group, name, H5P_DEFAULT) > 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "%s: dataset %s is missing (not a complete file of this kind)", file.c_str(), name);
+  hid_t dset = H5Dopen2(group, name, H5P_DEFAULT);
+  ETFE_H5CHECK(dset, name);
+  hid_t fspace = H5Dget_space(dset);
+  hsize_t dims[2] = {0, 0};
+  const int rank = H5Sget_simple_extent_ndims(fspace);
+  H5Sget_simple_extent_dims(fspace, dims, nullptr);
+  PetscCheck(dims[0] == total_rows && (rank == 1 ? cols == 1 : dims[1] == cols), PETSC_COMM_SELF,
+             PETSC_ERR_FILE_UNEXPECTED, "%s: dataset %s has %llu x %llu entries, expected %llu x %llu", file.c_str(),
+             name, (unsigned long long)dims[0], (unsigned long long)(rank == 1 ? 1 : dims[1]),
+             (unsigned long long)total_rows, (unsigned long long)cols);
+  hsize_t count[2] = {nrows, cols};
+  hid_t mspace = H5Screate_simple(rank, count, nullptr);
+  PetscCall(SelectRows(file, fspace, mspace, row0, nrows, cols));
+  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
+  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  ETFE_H5CHECK(H5Dread(dset, type, mspace, fspace, dxpl, data), name);
+  H5Pclose(dxpl);
+  H5Sclose(mspace);
+  H5Sclose(fspace);
+  H5Dclose(dset);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5WriteAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, const void *value) {
+  PetscFunctionBeginUser;
+  if (H5Aexists(obj, name) > 0) ETFE_H5CHECK(H5Adelete(obj, name), name);
+  hid_t space = H5Screate(H5S_SCALAR);
+  hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+  ETFE_H5CHECK(a, name);
+  ETFE_H5CHECK(H5Awrite(a, type, value), name);
+  H5Aclose(a);
+  H5Sclose(space);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5WriteString(const std::string &file, hid_t obj, const char *name, const std::string &v) {
+  PetscFunctionBeginUser;
+  hid_t t = H5Tcopy(H5T_C_S1);
+  H5Tset_size(t, v.size() + 1);
+  PetscCall(H5WriteAttribute(file, obj, name, t, v.c_str()));
+  H5Tclose(t);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ReadAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, void *value) {
+  PetscFunctionBeginUser;
+  PetscCheck(H5Aexists(obj, name) > 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "%s: attribute %s is missing (not a file of this kind, or written by another version)", file.c_str(),
+             name);
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  ETFE_H5CHECK(a, name);
+  ETFE_H5CHECK(H5Aread(a, type, value), name);
+  H5Aclose(a);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ReadString(const std::string &file, hid_t obj, const char *name, std::string *value) {
+  PetscFunctionBeginUser;
+  PetscCheck(H5Aexists(obj, name) > 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,
+             "%s: attribute %s is missing (not a file of this kind)", file.c_str(), name);
+  hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+  hid_t t = H5Aget_type(a);
+  size_t n = H5Tget_size(t);
+  std::vector<char> buf(n + 1, 0);
+  ETFE_H5CHECK(H5Aread(a, t, buf.data()), name);
+  H5Tclose(t);
+  H5Aclose(a);
+  *value = buf.data();
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
