@@ -4,6 +4,7 @@
 #pragma once
 #include <petscsnes.h>
 
+#include "etfe/checkpoint.h"
 #include "etfe/output.h"
 #include "etfe/problem.h"
 
@@ -24,6 +25,7 @@ struct LoadStepperResult {
   PetscInt steps = 0, cutbacks = 0, newton_iterations = 0;
   double time = 0.0, wall = 0.0;
   PetscBool completed = PETSC_FALSE;
+  PetscBool stopped = PETSC_FALSE;  // ended cleanly by -load_stop_after before the schedule's end
   std::string failure;  // why it stopped, when it did not complete
 };
 
@@ -34,7 +36,9 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
 PetscErrorCode LoadStepperSetConvergenceTest(Problem *problem, SNES snes, const LoadStepperOptions &o);
 // Runs the schedule. On failure writes the last converged state (if not yet written) and
 // returns with result->completed false and the reason; the caller decides the exit code.
+// With ck.restart set, continues from that checkpoint; writes checkpoints as ck asks.
 PetscErrorCode LoadStepperRun(Problem *problem, SNES snes, OutputFile *out,
-                              const LoadStepperOptions &o, LoadStepperResult *result);
+                              const LoadStepperOptions &o, const CheckpointOptions &ck,
+                              LoadStepperResult *result);
 
 } // namespace etfe

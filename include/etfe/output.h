@@ -34,7 +34,10 @@ struct OutputOptions {
 };
 
 PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, OutputOptions *o);
-PetscErrorCode OutputOpen(Problem *problem, const OutputOptions &o, OutputFile **out);
+// restart_step >= 0: continue an existing results file of this scene, dropping the steps after
+// restart_step (a run killed after its last checkpoint wrote them); a missing or unreadable
+// file is started anew.
+PetscErrorCode OutputOpen(Problem *problem, const OutputOptions &o, OutputFile **out, PetscInt restart_step = -1);
 // U is the displacement from the scene's mesh; fields (stress, strain, ...) are evaluated at
 // U_fields on the problem's current reference (nullptr: U itself — they differ only in form
 // finding, where the reference moves).

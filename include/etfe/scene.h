@@ -73,6 +73,9 @@ struct SceneSpec {
   // Called after every converged increment (collective), e.g. to track a reaction force.
   PetscErrorCode (*step_monitor)(Problem *, void *, PetscInt step, double time) = nullptr;
   void *report_ctx = nullptr;
+  // Monitor state that must survive a restart (e.g. the capstan's slip onset); rank-independent.
+  void (*state_get)(void *ctx, std::vector<double> *state) = nullptr;
+  void (*state_set)(void *ctx, const std::vector<double> &state) = nullptr;
   void (*report_ctx_destroy)(void *) = nullptr;
 
   int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }

@@ -9,6 +9,7 @@ static const char help[] =
 
 #include <cstring>
 
+#include "etfe/checkpoint.h"
 #include "etfe/formfind.h"
 #include "etfe/linesearch.h"
 #include "etfe/load_stepper.h"
@@ -178,6 +179,8 @@ PetscErrorCode Run() {
     PetscCall(LoadStepperOptionsFromCommandLine(comm, &lso));
     OutputOptions oo;
     PetscCall(OutputOptionsFromCommandLine(comm, "scene", &oo));
+    CheckpointOptions cko;
+    PetscCall(CheckpointOptionsFromCommandLine(comm, "scene", &cko));
     PetscCall(SNESCreate(comm, &snes));
     PetscCall(SNESGetLineSearch(snes, &ls));
     PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
@@ -217,6 +220,11 @@ PetscErrorCode Run() {
   PetscCall(LoadStepperSetConvergenceTest(P, snes, lso));
   OutputOptions oo;
   PetscCall(OutputOptionsFromCommandLine(comm, P->scene.name.c_str(), &oo));
+  CheckpointOptions cko;
+  PetscCall(CheckpointOptionsFromCommandLine(comm, P->scene.name.c_str(), &cko));
+  PetscCheck(!(formfind && (cko.restart[0] || cko.every > 0)), comm, PETSC_ERR_SUP,
+             "checkpoint/restart is for load histories (-analysis stretch); form finding restarts from its "
+             "Gmsh output instead");
   if (help_only) {
     PetscCall(SNESDestroy(&snes));
     PetscCall(ProblemDestroy(P));
@@ -228,7 +236,9 @@ PetscErrorCode Run() {
 
   // 5. Run the schedule, writing results as it goes.
   OutputFile *out = nullptr;
-  if (oo.enabled) PetscCall(OutputOpen(P, oo, &out));
+  PetscInt restart_step = -1;
+  if (cko.restart[0]) PetscCall(CheckpointPeekStep(comm, cko.restart, &restart_step));
+  if (oo.enabled) PetscCall(OutputOpen(P, oo, &out, restart_step));
   LoadStepperResult res;
   if (formfind) {
     FormFindResult ffr;
@@ -243,17 +253,23 @@ PetscErrorCode Run() {
     res.wall = t1 - t0;
     PetscCall(SNESGetLinearSolveIterations(snes, &res.newton_iterations));
   } else {
-    PetscCall(LoadStepperRun(P, snes, out, lso, &res));
+    PetscCall(LoadStepperRun(P, snes, out, lso, cko, &res));
   }
   PetscCall(PetscPrintf(comm, "etfe: %s after %" PetscInt_FMT " increments (load time %.6g), %" PetscInt_FMT
                         " Newton iterations, %" PetscInt_FMT " cut-backs, %.3f s\n",
-                        res.completed ? "completed" : "STOPPED", res.steps, res.time,
+                        res.stopped ? "stopped as asked" : res.completed ? "completed" : "STOPPED", res.steps, res.time,
                         res.newton_iterations, res.cutbacks, res.wall));
 
   // 6. The scene's own quantities of interest, then close the results.
-  if (P->scene.report && res.completed) PetscCall(P->scene.report(P, P->scene.report_ctx));
+  if (P->scene.report && res.completed && !res.stopped) PetscCall(P->scene.report(P, P->scene.report_ctx));
+  if (res.stopped)
+    PetscCall(PetscPrintf(comm, "etfe: checkpoint %s; continue with -restart %s\n", cko.file, cko.file));
   if (out) {
-    PetscCall(OutputClose(&out, res.completed ? "complete" : "failed: " + res.failure));
+    const std::string status = res.stopped ? "stopped at increment " + std::to_string((long long)res.steps) +
+                                                 " (checkpoint " + cko.file + ")"
+                               : res.completed ? std::string("complete")
+                                               : "failed: " + res.failure;
+    PetscCall(OutputClose(&out, status));
     PetscCall(PetscPrintf(comm, "etfe: results in %s (+ .xmf for ParaView)\n", oo.path));
   }
   PetscCall(SNESDestroy(&snes));

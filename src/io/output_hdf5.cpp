@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <utility>
 
+#include "etfe/h5io.h"
 #include "etfe/output.h"
 
 namespace etfe {
@@ -18,145 +20,26 @@ struct OutputFile {
   std::string path, xdmf_path;
   hid_t file = -1;
   std::vector<std::pair<PetscInt, double>> steps;  // written steps (step, time)
-  std::map<std::pair<int, int>, std::pair<VecScatter, std::pair<Vec, Vec>>> scatters;
+  std::unique_ptr<NaturalOrder> order;
   PetscInt every = 1;
 };
 
 namespace {
 
-#define ETFE_H5CHECK(call, what)                                                                        \
-  do {                                                                                             \
-    if ((call) < 0)                                                                                \
-      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: %s failed (%s)", what,                 \
-              out->path.c_str());                                                                  \
-  } while (0)
-
-PetscErrorCode WriteAttribute(OutputFile *out, hid_t obj, const char *name, hid_t type,
-                              const void *value, size_t strlen_ = 0) {
-  PetscFunctionBeginUser;
-  if (H5Aexists(obj, name) > 0) ETFE_H5CHECK(H5Adelete(obj, name), name);
-  hid_t space = H5Screate(H5S_SCALAR), t = type;
-  if (strlen_) {
-    t = H5Tcopy(H5T_C_S1);
-    H5Tset_size(t, strlen_ + 1);
-  }
-  hid_t a = H5Acreate2(obj, name, t, space, H5P_DEFAULT, H5P_DEFAULT);
-  ETFE_H5CHECK(a, name);
-  ETFE_H5CHECK(H5Awrite(a, t, value), name);
-  H5Aclose(a);
-  if (strlen_) H5Tclose(t);
-  H5Sclose(space);
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode WriteString(OutputFile *out, hid_t obj, const char *name, const std::string &v) {
-  return WriteAttribute(out, obj, name, H5T_C_S1, v.c_str(), v.size());
-}
-
-// Collective: rows [row0, row0 + nrows) of a (total_rows, cols) dataset from this rank.
-PetscErrorCode WriteRows(OutputFile *out, hid_t group, const char *name, hid_t type,
-                         hsize_t total_rows, hsize_t cols, hsize_t row0, hsize_t nrows,
-                         const void *data) {
-  PetscFunctionBeginUser;
-  hsize_t dims[2] = {total_rows, cols}, start[2] = {row0, 0}, count[2] = {nrows, cols};
-  const int rank = cols > 1 ? 2 : 1;
-  hid_t fspace = H5Screate_simple(rank, dims, nullptr);
-  hid_t dset = H5Dcreate2(group, name, type, fspace, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  ETFE_H5CHECK(dset, name);
-  hid_t mspace = H5Screate_simple(rank, count, nullptr);
-  if (nrows > 0)
-    ETFE_H5CHECK(H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, nullptr, count, nullptr), name);
-  else {
-    H5Sselect_none(fspace);
-    H5Sselect_none(mspace);
-  }
-  hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
-  H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
-  ETFE_H5CHECK(H5Dwrite(dset, type, mspace, fspace, dxpl, data), name);
-  H5Pclose(dxpl);
-  H5Sclose(mspace);
-  H5Sclose(fspace);
-  H5Dclose(dset);
-  PetscFunctionReturn(0);
-}
-
-// Scatter owned values (PETSc order, ncomp per item) to natural order; returns the natural
-// vector whose local rows start at *row0.
-enum Layout { kNodes = 0, kCells = 1, kPairs = 2 };
-
-PetscInt LayoutGlobalSize(const Problem *P, int layout) {
-  return layout == kCells ? P->mesh.num_elements_global
-                          : layout == kNodes ? P->mesh.num_nodes_global : P->contact->num_global;
-}
-
-PetscErrorCode ToNatural(OutputFile *out, int layout, int ncomp, const double *owned,
-                         Vec *natural, PetscInt *row0, PetscInt *nrows) {
-  Problem *P = out->problem;
-  const LocalMesh &m = P->mesh;
-  auto key = std::make_pair(layout, ncomp);
-  PetscFunctionBeginUser;
-  if (!out->scatters.count(key)) {
-    const PetscInt nloc = layout == kCells   ? m.num_elements
-                          : layout == kNodes ? m.num_owned
-                                             : (PetscInt)P->contact->pairs.size();
-    const PetscInt nglob = LayoutGlobalSize(P, layout);
-    const PetscInt first = layout == kCells   ? m.element_start
-                           : layout == kNodes ? m.owned_start
-                                              : P->contact->pair_start;
-    std::vector<PetscInt> from(nloc), to(nloc);
-    for (PetscInt i = 0; i < nloc; ++i) {
-      from[i] = first + i;
-      to[i] = layout == kCells   ? m.element_natural[i]
-              : layout == kNodes ? m.natural_id[i]
-                                 : P->contact->pairs[i].id;
-    }
-    Vec src, dst;
-    IS isf, ist;
-    VecScatter sc;
-    PetscCall(VecCreateMPI(P->comm, ncomp * nloc, ncomp * nglob, &src));
-    // rows stay whole on a rank: local sizes in multiples of ncomp
-    PetscInt n = PETSC_DECIDE, N = nglob;
-    PetscCall(PetscSplitOwnership(P->comm, &n, &N));
-    PetscCall(VecCreateMPI(P->comm, ncomp * n, ncomp * nglob, &dst));
-    PetscCall(ISCreateBlock(P->comm, ncomp, nloc, from.data(), PETSC_COPY_VALUES, &isf));
-    PetscCall(ISCreateBlock(P->comm, ncomp, nloc, to.data(), PETSC_COPY_VALUES, &ist));
-    PetscCall(VecScatterCreate(src, isf, dst, ist, &sc));
-    PetscCall(ISDestroy(&isf));
-    PetscCall(ISDestroy(&ist));
-    out->scatters[key] = {sc, {src, dst}};
-  }
-  auto &entry = out->scatters[key];
-  Vec src = entry.second.first, dst = entry.second.second;
-  PetscScalar *a;
-  PetscInt n, lo;
-  PetscCall(VecGetLocalSize(src, &n));
-  PetscCall(VecGetArray(src, &a));
-  for (PetscInt i = 0; i < n; ++i) a[i] = owned[i];
-  PetscCall(VecRestoreArray(src, &a));
-  PetscCall(VecScatterBegin(entry.first, src, dst, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(entry.first, src, dst, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetOwnershipRange(dst, &lo, nullptr));
-  PetscCall(VecGetLocalSize(dst, &n));
-  *natural = dst;
-  *row0 = lo / ncomp;
-  *nrows = n / ncomp;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode WriteField(OutputFile *out, hid_t group, const char *name, int layout, int ncomp,
+PetscErrorCode WriteField(OutputFile *out, hid_t group, const char *name, Layout layout, int ncomp,
                           const double *owned, bool as_int = false) {
   Vec nat = nullptr;
   PetscInt row0 = 0, nrows = 0;
   const PetscScalar *a;
   PetscFunctionBeginUser;
-  PetscCall(ToNatural(out, layout, ncomp, owned, &nat, &row0, &nrows));
-  const hsize_t total = LayoutGlobalSize(out->problem, layout);
+  PetscCall(out->order->ToNatural(layout, ncomp, owned, &nat, &row0, &nrows));
+  const hsize_t total = out->order->GlobalRows(layout);
   PetscCall(VecGetArrayRead(nat, &a));
   if (as_int) {
     std::vector<int> v(a, a + nrows * ncomp);
-    PetscCall(WriteRows(out, group, name, H5T_NATIVE_INT, total, ncomp, row0, nrows, v.data()));
+    PetscCall(H5WriteRows(out->path, group, name, H5T_NATIVE_INT, total, ncomp, row0, nrows, v.data()));
   } else {
-    PetscCall(WriteRows(out, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a));
+    PetscCall(H5WriteRows(out->path, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a));
   }
   PetscCall(VecRestoreArrayRead(nat, &a));
   PetscFunctionReturn(0);
@@ -180,12 +63,13 @@ PetscErrorCode WriteContact(OutputFile *out, hid_t step_group) {
     node[k] = (double)pr.natural_node;
   }
   hid_t g = H5Gcreate2(step_group, "contact", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  ETFE_H5CHECK(g, "contact group");
-  PetscCall(WriteField(out, g, "force", kPairs, 3, force.data()));
-  PetscCall(WriteField(out, g, "slide_local", kPairs, 2, slide_local.data()));
-  PetscCall(WriteField(out, g, "slide_global", kPairs, 2, slide_global.data()));
-  PetscCall(WriteField(out, g, "status", kPairs, 1, status.data(), true));
-  PetscCall(WriteField(out, g, "node", kPairs, 1, node.data(), true));
+  PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: cannot create a contact group in %s",
+             out->path.c_str());
+  PetscCall(WriteField(out, g, "force", Layout::Pairs, 3, force.data()));
+  PetscCall(WriteField(out, g, "slide_local", Layout::Pairs, 2, slide_local.data()));
+  PetscCall(WriteField(out, g, "slide_global", Layout::Pairs, 2, slide_global.data()));
+  PetscCall(WriteField(out, g, "status", Layout::Pairs, 1, status.data(), true));
+  PetscCall(WriteField(out, g, "node", Layout::Pairs, 1, node.data(), true));
   H5Gclose(g);
   PetscFunctionReturn(0);
 }
@@ -270,7 +154,81 @@ PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, Ou
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **result) {
+namespace {
+
+struct StepInfo {
+  std::string group;
+  long long step;
+  double time;
+};
+
+herr_t CollectStep(hid_t g, const char *name, const H5L_info_t *, void *data) {
+  auto *v = (std::vector<StepInfo> *)data;
+  hid_t s = H5Gopen2(g, name, H5P_DEFAULT);
+  if (s < 0) return 0;
+  StepInfo info{name, -1, 0.0};
+  if (H5Aexists(s, "step") > 0 && H5Aexists(s, "time") > 0) {
+    hid_t a = H5Aopen(s, "step", H5P_DEFAULT);
+    H5Aread(a, H5T_NATIVE_LLONG, &info.step);
+    H5Aclose(a);
+    a = H5Aopen(s, "time", H5P_DEFAULT);
+    H5Aread(a, H5T_NATIVE_DOUBLE, &info.time);
+    H5Aclose(a);
+  }
+  H5Gclose(s);
+  v->push_back(info);
+  return 0;
+}
+
+// Reopens a results file to continue it after a restart. Returns false (nothing changed) when
+// the file is missing, unreadable or of another scene.
+PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok) {
+  Problem *P = out->problem;
+  PetscFunctionBeginUser;
+  int exists = P->rank == 0 && std::filesystem::exists(out->path) ? 1 : 0;
+  PetscCallMPI(MPI_Bcast(&exists, 1, MPI_INT, 0, P->comm));
+  *ok = false;
+  if (!exists) PetscFunctionReturn(0);
+  // Probe serially first: a file cut short by a kill may not open.
+  int good = 0;
+  if (P->rank == 0) {
+    H5E_BEGIN_TRY {
+      hid_t f = H5Fopen(out->path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+      if (f >= 0) {
+        std::string scene;
+        if (H5Aexists(f, "scene") > 0 && H5ReadString(out->path, f, "scene", &scene) == 0 &&
+            scene == P->scene.name && H5Lexists(f, "steps", H5P_DEFAULT) > 0)
+          good = 1;
+        H5Fclose(f);
+      }
+    }
+    H5E_END_TRY;
+  }
+  PetscCallMPI(MPI_Bcast(&good, 1, MPI_INT, 0, P->comm));
+  if (!good) PetscFunctionReturn(0);
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_fapl_mpio(fapl, P->comm, MPI_INFO_NULL);
+  out->file = H5Fopen(out->path.c_str(), H5F_ACC_RDWR, fapl);
+  H5Pclose(fapl);
+  if (out->file < 0) PetscFunctionReturn(0);
+  std::vector<StepInfo> steps;
+  hid_t g = H5Gopen2(out->file, "steps", H5P_DEFAULT);
+  H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectStep, &steps);
+  for (const StepInfo &s : steps) {
+    if (s.step >= 0 && s.step <= restart_step) out->steps.push_back({(PetscInt)s.step, s.time});
+    else H5Ldelete(g, s.group.c_str(), H5P_DEFAULT);  // written after the checkpoint
+  }
+  H5Gclose(g);
+  PetscCall(H5WriteString(out->path, out->file, "status", "running"));
+  long long count = (long long)out->steps.size();
+  PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
+  *ok = true;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **result, PetscInt restart_step) {
   auto *out = new OutputFile();
   PetscFunctionBeginUser;
   out->problem = P;
@@ -278,6 +236,18 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   out->every = o.every;
   std::filesystem::path xp(out->path);
   out->xdmf_path = xp.replace_extension(".xmf").string();
+  out->order = std::make_unique<NaturalOrder>(P);
+  if (restart_step >= 0) {
+    bool ok;
+    PetscCall(ReopenForRestart(out, restart_step, &ok));
+    if (ok) {
+      PetscCall(WriteXdmf(out));
+      *result = out;
+      PetscFunctionReturn(0);
+    }
+    PetscCall(PetscPrintf(P->comm, "  output: %s missing or unreadable; the restarted run starts it anew\n",
+                          out->path.c_str()));
+  }
   if (P->rank == 0) {
     std::error_code ec;
     auto dir = std::filesystem::path(out->path).parent_path();
@@ -294,11 +264,11 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
              "cannot create the results file %s (check -output_file and that its directory is "
              "writable)",
              out->path.c_str());
-  PetscCall(WriteString(out, out->file, "format", "etfe-results-1"));
-  PetscCall(WriteString(out, out->file, "scene", P->scene.name));
-  PetscCall(WriteString(out, out->file, "status", "running"));
+  PetscCall(H5WriteString(out->path, out->file, "format", "etfe-results-1"));
+  PetscCall(H5WriteString(out->path, out->file, "scene", P->scene.name));
+  PetscCall(H5WriteString(out->path, out->file, "status", "running"));
   long long zero = 0;
-  PetscCall(WriteAttribute(out, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
+  PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
   hid_t mesh = H5Gcreate2(out->file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   hid_t steps = H5Gcreate2(out->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   const MeshData &gm = P->scene.mesh;
@@ -306,13 +276,13 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(PetscSplitOwnership(P->comm, &n, &N));
   PetscCallMPI(MPI_Exscan(&n, &lo, 1, MPIU_INT, MPI_SUM, P->comm));
   if (P->rank == 0) lo = 0;
-  PetscCall(WriteRows(out, mesh, "coordinates", H5T_NATIVE_DOUBLE, N, 3, lo, n,
+  PetscCall(H5WriteRows(out->path, mesh, "coordinates", H5T_NATIVE_DOUBLE, N, 3, lo, n,
                       gm.coords.data() + 3 * lo));
   PetscInt ne = PETSC_DECIDE, NE = gm.NumElements(), elo = 0;
   PetscCall(PetscSplitOwnership(P->comm, &ne, &NE));
   PetscCallMPI(MPI_Exscan(&ne, &elo, 1, MPIU_INT, MPI_SUM, P->comm));
   if (P->rank == 0) elo = 0;
-  PetscCall(WriteRows(out, mesh, "triangles", H5T_NATIVE_INT, NE, 3, elo, ne,
+  PetscCall(H5WriteRows(out->path, mesh, "triangles", H5T_NATIVE_INT, NE, 3, elo, ne,
                       gm.triangles.data() + 3 * elo));
   H5Gclose(mesh);
   H5Gclose(steps);
@@ -332,39 +302,39 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   char name[64];
   std::snprintf(name, sizeof name, "steps/%06lld", (long long)step);
   hid_t g = H5Gcreate2(out->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  ETFE_H5CHECK(g, name);
+  PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: cannot create %s in %s", name, out->path.c_str());
   long long st = step;
   const int stage = (int)std::min<double>(std::floor(time), P->scene.NumStages() - 1);
   const double factor = time - stage;
-  PetscCall(WriteAttribute(out, g, "step", H5T_NATIVE_LLONG, &st));
-  PetscCall(WriteAttribute(out, g, "time", H5T_NATIVE_DOUBLE, &time));
-  PetscCall(WriteAttribute(out, g, "stage", H5T_NATIVE_INT, &stage));
-  PetscCall(WriteAttribute(out, g, "load_factor", H5T_NATIVE_DOUBLE, &factor));
+  PetscCall(H5WriteAttribute(out->path, g, "step", H5T_NATIVE_LLONG, &st));
+  PetscCall(H5WriteAttribute(out->path, g, "time", H5T_NATIVE_DOUBLE, &time));
+  PetscCall(H5WriteAttribute(out->path, g, "stage", H5T_NATIVE_INT, &stage));
+  PetscCall(H5WriteAttribute(out->path, g, "load_factor", H5T_NATIVE_DOUBLE, &factor));
   PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(WriteField(out, g, "displacement", kNodes, 3, u));
+  PetscCall(WriteField(out, g, "displacement", Layout::Nodes, 3, u));
   PetscCall(VecRestoreArrayRead(U, &u));
   PetscCall(VecGetArrayRead(P->reaction, &r));
-  PetscCall(WriteField(out, g, "reaction", kNodes, 3, r));
+  PetscCall(WriteField(out, g, "reaction", Layout::Nodes, 3, r));
   PetscCall(VecRestoreArrayRead(P->reaction, &r));
-  PetscCall(WriteField(out, g, "nodal_mises", kNodes, 1, c.nodal_mises.data()));
-  PetscCall(WriteField(out, g, "stress", kCells, 3, c.stress.data()));
-  PetscCall(WriteField(out, g, "strain", kCells, 3, c.strain.data()));
-  PetscCall(WriteField(out, g, "mises", kCells, 1, c.mises.data()));
-  PetscCall(WriteField(out, g, "min_principal_stress", kCells, 1, c.smin.data()));
-  PetscCall(WriteField(out, g, "min_principal_strain", kCells, 1, c.emin.data()));
-  PetscCall(WriteField(out, g, "area_ratio", kCells, 1, c.area_ratio.data()));
+  PetscCall(WriteField(out, g, "nodal_mises", Layout::Nodes, 1, c.nodal_mises.data()));
+  PetscCall(WriteField(out, g, "stress", Layout::Cells, 3, c.stress.data()));
+  PetscCall(WriteField(out, g, "strain", Layout::Cells, 3, c.strain.data()));
+  PetscCall(WriteField(out, g, "mises", Layout::Cells, 1, c.mises.data()));
+  PetscCall(WriteField(out, g, "min_principal_stress", Layout::Cells, 1, c.smin.data()));
+  PetscCall(WriteField(out, g, "min_principal_strain", Layout::Cells, 1, c.emin.data()));
+  PetscCall(WriteField(out, g, "area_ratio", Layout::Cells, 1, c.area_ratio.data()));
   if (!c.ep_bar.empty() || !P->history.empty()) {
     c.ep.resize(3 * P->mesh.num_elements);
     c.ep_bar.resize(P->mesh.num_elements);
-    PetscCall(WriteField(out, g, "plastic_strain", kCells, 3, c.ep.data()));
-    PetscCall(WriteField(out, g, "plastic_strain_eq", kCells, 1, c.ep_bar.data()));
+    PetscCall(WriteField(out, g, "plastic_strain", Layout::Cells, 3, c.ep.data()));
+    PetscCall(WriteField(out, g, "plastic_strain_eq", Layout::Cells, 1, c.ep_bar.data()));
   }
   if (P->contact) PetscCall(WriteContact(out, g));
   H5Gclose(g);
   out->steps.push_back({step, time});
   long long count = (long long)out->steps.size();
-  PetscCall(WriteAttribute(out, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
-  ETFE_H5CHECK(H5Fflush(out->file, H5F_SCOPE_GLOBAL), "flush");
+  PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
+  PetscCheck(H5Fflush(out->file, H5F_SCOPE_GLOBAL) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: flush of %s failed", out->path.c_str());
   PetscCall(WriteXdmf(out));
   PetscFunctionReturn(0);
 }
@@ -423,13 +393,8 @@ PetscErrorCode OutputClose(OutputFile **pout, const std::string &status) {
   OutputFile *out = *pout;
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
-  PetscCall(WriteString(out, out->file, "status", status));
+  PetscCall(H5WriteString(out->path, out->file, "status", status));
   H5Fclose(out->file);
-  for (auto &kv : out->scatters) {
-    PetscCall(VecScatterDestroy(&kv.second.first));
-    PetscCall(VecDestroy(&kv.second.second.first));
-    PetscCall(VecDestroy(&kv.second.second.second));
-  }
   delete out;
   *pout = nullptr;
   PetscFunctionReturn(0);

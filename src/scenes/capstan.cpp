@@ -142,6 +142,14 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene) {
   pipe.radius = radius;
   scene->contact.supports.push_back(pipe);
   scene->step_monitor = CapstanStep;
+  scene->state_get = [](void *c, std::vector<double> *v) {
+    auto *x = (CapstanContext *)c;
+    *v = {x->t2_onset, (double)x->onset_step, x->t2_last};
+  };
+  scene->state_set = [](void *c, const std::vector<double> &v) {
+    auto *x = (CapstanContext *)c;
+    x->t2_onset = v.at(0), x->onset_step = (PetscInt)v.at(1), x->t2_last = v.at(2);
+  };
   scene->report = CapstanReport;
   scene->report_ctx = ctx;
   scene->report_ctx_destroy = [](void *c) { delete (CapstanContext *)c; };

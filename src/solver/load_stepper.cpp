@@ -103,7 +103,7 @@ PetscErrorCode LoadStepperSetConvergenceTest(Problem *P, SNES snes, const LoadSt
 }
 
 PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o,
-                              LoadStepperResult *res) {
+                              const CheckpointOptions &ck, LoadStepperResult *res) {
   const int nstages = P->scene.NumStages();
   const double t_end = nstages;
   const PetscInt per_stage = (o.increments + nstages - 1) / nstages;
@@ -130,8 +130,24 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     PetscCall(FormResidual(nullptr, P->U, R, P));
     PetscCall(VecDestroy(&R));
     // A scene's initial guess is not an equilibrium state: only a true start state is step 0.
-    if (P->scene.initial_guess.empty()) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
+    if (P->scene.initial_guess.empty() && !ck.restart[0]) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
   }
+  if (ck.restart[0]) {
+    StepperState st;
+    PetscCall(CheckpointRead(P, ck.restart, &st, U_committed, U_previous));
+    t = st.t, dt = st.dt, dt_last = st.dt_last;
+    step = st.step, converged_states = st.converged_states, easy = st.easy;
+    res->cutbacks = st.cutbacks, res->newton_iterations = st.newton;
+    PetscCall(VecCopy(U_committed, P->U));
+    PetscCall(PetscPrintf(P->comm, "restart: from %s at increment %" PetscInt_FMT ", load time %g\n", ck.restart,
+                          step, t));
+  }
+  auto checkpoint = [&]() -> PetscErrorCode {
+    StepperState st;
+    st.t = t, st.dt = dt, st.dt_last = dt_last, st.step = step, st.converged_states = converged_states;
+    st.easy = easy, st.cutbacks = res->cutbacks, st.newton = res->newton_iterations;
+    return CheckpointWrite(P, ck.file, st, U_committed, U_previous);
+  };
   res->completed = PETSC_FALSE;
   while (t < t_end - eps) {
     const double stage_end = std::floor(t + eps) + 1.0;
@@ -187,7 +203,11 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
         dt = std::min(2.0 * dt, dt_nominal);
         easy = 0;
       }
-      if (stop) break;
+      if ((ck.every > 0 && step % ck.every == 0) || (stop && !last)) PetscCall(checkpoint());
+      if (stop && !last) {
+        res->stopped = PETSC_TRUE;
+        break;
+      }
       continue;
     }
     // Divergence: restore the committed state and halve the increment.

@@ -1,0 +1,50 @@
+"""Checkpoint/restart (issue 7): a run stopped after increment k (-load_stop_after, which writes a
+checkpoint) and continued with -restart gives the same results as the uninterrupted run, bit for
+bit, on 1 and 2 ranks: a plastic patch over load/unload/reload stages (history variables) and the
+capstan (contact state, the scene's own slip-onset monitor). A checkpoint of another scene, mesh
+or material, and a truncated file, are refused with a message."""
+import os
+import shutil
+
+from etfe_testlib import Checker, etfe_path, opts, run, scratch_dir
+import h5compare
+
+etfe = etfe_path()
+chk = Checker("restart_bitwise")
+cases = {
+    "patch": ["-options_file", opts("patch"), "-material_type", "plastic", "-patch_strain_x", 0.2,
+              "-patch_schedule", "1,0.8,1.5", "-load_increments", 30],
+    "capstan": ["-options_file", opts("capstan")],
+}
+with scratch_dir() as tmp:
+    for name, base in cases.items():
+        for np in (1, 2):
+            full, part, ck = (os.path.join(tmp, "%s%d_%s.h5" % (name, np, k)) for k in ("full", "part", "ck"))
+            common = base + ["-load_monitor", 0]
+            rc, out_full = run(etfe, common + ["-output_file", full], np=np)
+            rc, out1 = run(etfe, common + ["-output_file", part, "-load_stop_after", 13, "-checkpoint_file", ck], np=np)
+            chk.check(os.path.exists(ck) and "stopped as asked" in out1, "%s np=%d: stopped at 13 with a checkpoint" % (name, np))
+            rc, out2 = run(etfe, common + ["-output_file", part, "-restart", ck], np=np)
+            fails = h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
+            chk.check(not fails, "%s np=%d: restarted results equal the uninterrupted run bit for bit (all steps)%s"
+                      % (name, np, "" if not fails else ": " + "; ".join(map(str, fails[:3]))))
+            lines_full = [l for l in out_full.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:"))]
+            lines_part = [l for l in out2.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:"))]
+            chk.check(lines_full == lines_part and lines_full, "%s np=%d: the scene's report is identical" % (name, np))
+    # refusals
+    ck_patch = os.path.join(tmp, "patch1_ck.h5")
+    ck_cap = os.path.join(tmp, "capstan1_ck.h5")
+    bad = os.path.join(tmp, "truncated.h5")
+    with open(ck_cap, "rb") as f:
+        data = f.read()
+    with open(bad, "wb") as f:
+        f.write(data[:len(data) // 3])
+    capstan = cases["capstan"] + ["-load_monitor", 0, "-output_file", os.path.join(tmp, "x.h5")]
+    for args, words in ((["-restart", ck_patch], "scene patch"),
+                        (["-mesh_nx", 32, "-restart", ck_cap], "mesh"),
+                        (["-material_type", "plastic", "-restart", ck_cap], "history"),
+                        (["-restart", bad], "corrupt"),
+                        (["-restart", os.path.join(tmp, "none.h5")], "checkpoint")):
+        rc, out = run(etfe, capstan + args, expect_fail=True)
+        chk.check(words in out, "refused %s with a message naming the %s" % (" ".join(map(str, args[-2:])), words))
+chk.finish()
