@@ -30,7 +30,15 @@ PetscErrorCode ReadMembraneOptions(MPI_Comm comm, Problem *P) {
   PetscCall(PetscOptionsReal("-membrane_min_area_ratio",
                              "Smallest current/reference area before an element counts as collapsed",
                              "", P->min_area_ratio, &P->min_area_ratio, nullptr));
+  PetscCall(PetscOptionsReal("-membrane_tangent_shift",
+                             "Tangent-only diagonal shift, relative to E h (slack starts; the answer is unchanged)",
+                             "", P->tangent_shift, &P->tangent_shift, nullptr));
+  PetscCall(PetscOptionsBool("-membrane_tangent_tension_only",
+                             "Geometric stiffness from the tensile part of the stress only (wrinkling films; "
+                             "the answer is unchanged)", "", P->tangent_tension_only, &P->tangent_tension_only,
+                             nullptr));
   PetscOptionsEnd();
+  PetscCheck(P->tangent_shift >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-membrane_tangent_shift must be >= 0");
   PetscCheck(P->thickness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-membrane_thickness %g: the film thickness must be positive (mm)", P->thickness);
   PetscFunctionReturn(0);
@@ -211,6 +219,11 @@ PetscErrorCode Run() {
   P->thickness = scene.thickness;
   PetscCall(ReadMembraneOptions(comm, P));
   PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), P));
+  {
+    double young, nu;
+    P->material->ElasticConstants(&young, &nu);
+    P->tangent_shift *= young * P->thickness;  // relative -> N/mm
+  }
 
   // 4. Solver, load stepping and output options.
   SNES snes;

@@ -43,6 +43,29 @@ inline int MembraneElement(const Problem *P, PetscInt e, const double x[9], doub
   return P->material->Evaluate(E, hist_old, nh ? hist_new : nullptr, S, D);
 }
 
+// The tensile part of a membrane stress: negative principal values set to zero. Used for the
+// geometric stiffness only (-membrane_tangent_tension_only): a compressed membrane has a
+// negative geometric stiffness that makes Newton wander where the film wrinkles; dropping it
+// changes the iteration path, not the residual, so not the converged answer.
+inline void TensilePart(const double S[3], double T[3]) {
+  const double m = 0.5 * (S[0] + S[1]), r = std::sqrt(0.25 * (S[0] - S[1]) * (S[0] - S[1]) + S[2] * S[2]);
+  const double s1 = m + r, s2 = m - r;
+  if (s2 >= 0.0) {
+    T[0] = S[0], T[1] = S[1], T[2] = S[2];
+    return;
+  }
+  if (s1 <= 0.0) {
+    T[0] = T[1] = T[2] = 0.0;
+    return;
+  }
+  // direction of s1: (S - s2 I) v = (s1 - s2) v
+  double vx = S[0] - s2, vy = S[2];
+  if (std::fabs(vx) + std::fabs(vy) < 1e-300) vx = S[2], vy = S[1] - s2;
+  const double n = std::sqrt(vx * vx + vy * vy);
+  vx /= n, vy /= n;
+  T[0] = s1 * vx * vx, T[1] = s1 * vy * vy, T[2] = s1 * vx * vy;
+}
+
 PetscErrorCode ScatterToLocal(Vec global, Vec ghosted) {
   PetscFunctionBeginUser;
   if (global != ghosted) PetscCall(VecCopy(global, ghosted));
@@ -193,7 +216,13 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
       if (st > status) status = st, bad = m.element_natural[e];
       continue;
     }
-    MembraneForce(m.ref[e], P->thickness, F, S, D, fe, K);
+    if (P->tangent_tension_only) {
+      double T[3];
+      TensilePart(S, T);
+      MembraneForce(m.ref[e], P->thickness, F, T, D, fe, K);
+    } else {
+      MembraneForce(m.ref[e], P->thickness, F, S, D, fe, K);
+    }
     if (!loaded.empty() && loaded[e]) {
       double L[81];
       PressureLoad(p, x, fe, L);
@@ -226,6 +255,10 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   }
   PetscCall(MatAssemblyBegin(Pmat, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Pmat, MAT_FINAL_ASSEMBLY));
+  // Slack starts: a shift of the tangent's diagonal (not of the residual) lets Newton take its
+  // first steps where a stress-free film has no out-of-plane stiffness; the converged answer is
+  // unchanged, the convergence rate slightly lowered while the shift matters.
+  if (P->tangent_shift > 0) PetscCall(MatShift(Pmat, P->tangent_shift));
   if (J != Pmat) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));

@@ -238,7 +238,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   out->xdmf_path = xp.replace_extension(".xmf").string();
   out->order = std::make_unique<NaturalOrder>(P);
   if (restart_step >= 0) {
-    bool ok;
+    bool ok = false;
     PetscCall(ReopenForRestart(out, restart_step, &ok));
     if (ok) {
       PetscCall(WriteXdmf(out));

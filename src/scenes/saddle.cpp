@@ -13,31 +13,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "etfe/mesh/generators.h"
 #include "etfe/problem.h"
 #include "etfe/scene.h"
+#include "saddle_geometry.h"
 
 namespace etfe {
 
 namespace {
-
-struct SaddleGeometry {
-  double half_length = 2000.0;  // X extent of the quarter (frame at X = 2000)
-  double arch_x = 1000.0;       // arch plane
-  double half_span = 1000.0;    // Y extent (frame at Y = 1000), arch span L = 2 half_span
-  double rise = 300.0;          // H
-  double ArchRadius() const { return (half_span * half_span + rise * rise) / (2.0 * rise); }
-  double ArchHeight(double y) const {
-    const double r = ArchRadius();
-    return rise - r + std::sqrt(std::max(0.0, r * r - y * y));
-  }
-  // PD initial shape: arch extruded in the middle, ruled down to the frame in the corner.
-  double InitialHeight(double x, double y) const {
-    const double za = ArchHeight(y);
-    return x <= arch_x ? za : za * (half_length - x) / (half_length - arch_x);
-  }
-};
 
 struct SaddleContext {
   SaddleGeometry g;
@@ -45,7 +30,9 @@ struct SaddleContext {
   std::vector<int> cut_line;  // nodes on X = 0 ordered by Y
 };
 
-int NearestNode(const MeshData &m, double x, double y) {
+} // namespace
+
+int SaddleNearestNode(const MeshData &m, double x, double y) {
   int best = -1;
   double d = 1e300;
   for (int n = 0; n < m.NumNodes(); ++n) {
@@ -54,6 +41,8 @@ int NearestNode(const MeshData &m, double x, double y) {
   }
   return best;
 }
+
+namespace {
 
 PetscErrorCode SaddleReport(Problem *P, void *vctx) {
   auto *c = (SaddleContext *)vctx;
@@ -84,6 +73,8 @@ PetscErrorCode SaddleReport(Problem *P, void *vctx) {
 PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
   PetscReal ratio_r = 0.15, ratio_mid = 1.0, ratio_corner = 3.0;
   PetscInt n = 10, refine = 0;
+  char mesh_file[PETSC_MAX_PATH_LEN] = "", analysis[32] = "stretch";
+  PetscBool from_file = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Saddle scene (quarter model of the thesis's saddle)", "Scene");
   PetscCall(PetscOptionsReal("-saddle_rise_ratio", "Arch rise / span r (thesis: 0.10, 0.15, 0.20)", "", ratio_r, &ratio_r, nullptr));
@@ -93,33 +84,54 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
                              ratio_corner, &ratio_corner, nullptr));
   PetscCall(PetscOptionsInt("-mesh_n", "Cells per 1000 mm (quarter: 2n x n cells)", "", n, &n, nullptr));
   PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine, &refine, nullptr));
+  PetscCall(PetscOptionsString("-mesh_file",
+                               "Start from this surface (e.g. a form-found .msh: the DD specimens) instead of the "
+                               "PD initial shape", "", mesh_file, mesh_file, sizeof mesh_file, &from_file));
   PetscOptionsEnd();
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-analysis", analysis, sizeof analysis, nullptr));
   PetscCheck(ratio_r > 0 && ratio_r <= 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-saddle_rise_ratio %g: the arch rise ratio must lie in (0, 0.5]", ratio_r);
   PetscCheck(ratio_mid > 0 && ratio_corner > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: stress ratios must be positive");
-  PetscCheck(n >= 2 && n % 2 == 0 && refine >= 0 && refine < 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "saddle: need an even -mesh_n >= 2 and 0 <= -mesh_refine < 8");
+  PetscCheck(n >= 2 && refine >= 0 && refine < 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "saddle: need -mesh_n >= 2 and 0 <= -mesh_refine < 8");
   n <<= refine;
   auto *ctx = new SaddleContext();
   SaddleGeometry &g = ctx->g;
   g.rise = ratio_r * 2.0 * g.half_span;
-  scene->mesh = MakeRectangleMesh(0.0, 0.0, g.half_length, g.half_span, (int)(2 * n), (int)n,
-                                  DiagonalPattern::Alternate, 0.0, 0u);
-  scene->mesh.source = "saddle quarter " + std::to_string(2 * n) + "x" + std::to_string(n);
   MeshData &m = scene->mesh;
-  const double tol = 1e-9 * g.half_length;
+  if (from_file) {
+    PetscCall(MeshReadAndBroadcast(comm, mesh_file, &m));
+  } else {
+    m = MakeRectangleMesh(0.0, 0.0, g.half_length, g.half_span, (int)(2 * n), (int)n, DiagonalPattern::Alternate,
+                          0.0, 0u);
+    m.source = "saddle quarter " + std::to_string(2 * n) + "x" + std::to_string(n) + " (PD initial shape)";
+    for (int k = 0; k < m.NumNodes(); ++k) m.coords[3 * k + 2] = g.InitialHeight(m.coords[3 * k], m.coords[3 * k + 1]);
+  }
+  // Sets by position (plan coordinates), so a form-found mesh needs no groups of its own.
+  const double tol = 1e-6 * g.half_length;
+  for (const char *set : {"arch", "sym_x", "sym_y", "frame"}) m.node_sets[set].clear();
+  m.element_sets["middle"].clear();
+  m.element_sets["corner"].clear();
   for (int k = 0; k < m.NumNodes(); ++k) {
-    double *x = &m.coords[3 * k];
-    x[2] = g.InitialHeight(x[0], x[1]);
+    const double *x = &m.coords[3 * k];
     if (std::fabs(x[0] - g.arch_x) < tol) m.node_sets["arch"].push_back(k);
     if (std::fabs(x[0]) < tol) m.node_sets["sym_x"].push_back(k);
     if (std::fabs(x[1]) < tol) m.node_sets["sym_y"].push_back(k);
     if (std::fabs(x[0] - g.half_length) < tol || std::fabs(x[1] - g.half_span) < tol) m.node_sets["frame"].push_back(k);
   }
+  PetscCheck(!m.node_sets["arch"].empty() && !m.node_sets["frame"].empty(), comm, PETSC_ERR_ARG_WRONG,
+             "%s: no nodes on the arch line X = %g or on the frame; the saddle needs the quarter model "
+             "X in [0, %g], Y in [0, %g]", m.source.c_str(), g.arch_x, g.half_length, g.half_span);
   for (int e = 0; e < m.NumElements(); ++e) {
     double xc = 0;
     for (int a = 0; a < 3; ++a) xc += m.coords[3 * m.triangles[3 * e + a]] / 3.0;
     m.element_sets[xc < g.arch_x ? "middle" : "corner"].push_back(e);
+  }
+  if (std::strcmp(analysis, "formfind") != 0) {
+    const SaddleGeometry geometry = g;  // g lives in ctx, which this branch does not need
+    delete ctx;
+    PetscCall(SaddleStretchSetup(comm, geometry, scene));
+    PetscFunctionReturn(0);
   }
   scene->element_stress_ratio.assign(m.NumElements(), ratio_corner);
   for (int e : m.element_sets["middle"]) scene->element_stress_ratio[e] = ratio_mid;
@@ -134,8 +146,8 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
     if (!fixed[k]) scene->constraints.push_back({k, 0, {}});
   for (int k : m.node_sets["sym_y"])
     if (!fixed[k]) scene->constraints.push_back({k, 1, {}});
-  ctx->centre_node = NearestNode(m, 0.0, 0.0);
-  ctx->corner_node = NearestNode(m, 0.5 * (g.arch_x + g.half_length), 0.0);
+  ctx->centre_node = SaddleNearestNode(m, 0.0, 0.0);
+  ctx->corner_node = SaddleNearestNode(m, 0.5 * (g.arch_x + g.half_length), 0.0);
   ctx->cut_line = m.node_sets["sym_x"];
   std::sort(ctx->cut_line.begin(), ctx->cut_line.end(),
             [&](int a, int b) { return m.coords[3 * a + 1] < m.coords[3 * b + 1]; });

@@ -1,0 +1,37 @@
+// Geometry of the thesis's saddle (SPEC §8), shared by its form-finding and stretch set-ups.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <petscsys.h>
+
+#include "etfe/scene.h"
+
+namespace etfe {
+
+struct SaddleGeometry {
+  double half_length = 2000.0;  // X extent of the quarter (frame at X = 2000)
+  double arch_x = 1000.0;       // arch plane
+  double half_span = 1000.0;    // Y extent (frame at Y = 1000), arch span L = 2 half_span
+  double rise = 300.0;          // H
+  double ArchRadius() const { return (half_span * half_span + rise * rise) / (2.0 * rise); }
+  double ArchHeight(double y) const {
+    const double r = ArchRadius();
+    return rise - r + std::sqrt(std::max(0.0, r * r - y * y));
+  }
+  // PD initial shape: arch extruded in the middle, ruled down to the frame in the corner.
+  double InitialHeight(double x, double y) const {
+    const double za = ArchHeight(y);
+    return x <= arch_x ? za : za * (half_length - x) / (half_length - arch_x);
+  }
+};
+
+int SaddleNearestNode(const MeshData &m, double x, double y);
+
+// Stretch fabrication (-analysis stretch): drawing of the frame at a, b, c, d, symmetry, arch
+// contact, optional pressure cycle, probes and the report. The mesh (PD initial shape or a
+// form-found DD shape) and its node sets are already in scene.
+PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene);
+
+} // namespace etfe

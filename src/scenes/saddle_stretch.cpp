@@ -1,0 +1,308 @@
+// Stretch fabrication of the saddle (SPEC §8, thesis ch. 4-5): the film, stress free on its
+// initial shape, rests on the arch (friction contact) and its frame edges are drawn outward at
+// a (X = 2000, Y = 0; in X), b (the corner; in X and Y), c (Y = 1000, X = 1000; in Y) and
+// d (Y = 1000, X = 0; in Y), linearly interpolated in between (thesis Fig. 3.4), stage by stage;
+// optionally followed by an internal-pressure cycle (§5.4). Probes: parts A and B (mean GL
+// strains and Mises), elements I and II (minimum principal stress and strain: wrinkling), the
+// slide of the arch nodes I-V; one CSV line per increment.
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "etfe/problem.h"
+#include "saddle_geometry.h"
+
+namespace etfe {
+
+namespace {
+
+struct Box {
+  double x0, y0, x1, y1;
+  bool Contains(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
+};
+
+struct StretchContext {
+  SaddleGeometry g;
+  Box part_a{0, 0, 400, 400}, part_b{1300, 0, 1700, 400};
+  PetscInt elem_i = -1, elem_ii = -1;  // scene element ids
+  std::vector<int> slide_nodes;        // arch nodes I..V
+  std::vector<char> in_a, in_b;        // per scene element
+  std::string history;                 // CSV path
+  PetscInt drawing_stages = 0;
+};
+
+int NearestElement(const MeshData &m, double x, double y) {
+  int best = -1;
+  double d = 1e300;
+  for (int e = 0; e < m.NumElements(); ++e) {
+    double cx = 0, cy = 0;
+    for (int a = 0; a < 3; ++a) cx += m.coords[3 * m.triangles[3 * e + a]] / 3, cy += m.coords[3 * m.triangles[3 * e + a] + 1] / 3;
+    const double dd = std::hypot(cx - x, cy - y);
+    if (dd < d) d = dd, best = e;
+  }
+  return best;
+}
+
+// Collective: per-probe numbers at the committed state.
+struct ProbeValues {
+  double a[4], b[4];             // mean Exx, Eyy, Exy, Mises
+  double i_smin, i_emin, ii_smin, ii_emin;
+  std::vector<double> slide;     // X and Y per slide node
+};
+
+PetscErrorCode Measure(Problem *P, StretchContext *c, const CellFields &f, ProbeValues *v) {
+  const LocalMesh &m = P->mesh;
+  double loc[14] = {0}, glob[14];
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    const PetscInt id = m.element_natural[e];
+    for (int part = 0; part < 2; ++part) {
+      if (!(part == 0 ? c->in_a : c->in_b)[id]) continue;
+      double *acc = &loc[5 * part];
+      acc[0] += f.strain[3 * e], acc[1] += f.strain[3 * e + 1], acc[2] += f.strain[3 * e + 2];
+      acc[3] += f.mises[e], acc[4] += 1.0;
+    }
+    if (id == c->elem_i) loc[10] = f.smin[e], loc[11] = f.emin[e];
+    if (id == c->elem_ii) loc[12] = f.smin[e], loc[13] = f.emin[e];
+  }
+  PetscCallMPI(MPI_Allreduce(loc, glob, 14, MPI_DOUBLE, MPI_SUM, P->comm));
+  for (int i = 0; i < 4; ++i) {
+    v->a[i] = glob[4] > 0 ? glob[i] / glob[4] : 0.0;
+    v->b[i] = glob[9] > 0 ? glob[5 + i] / glob[9] : 0.0;
+  }
+  v->i_smin = glob[10], v->i_emin = glob[11], v->ii_smin = glob[12], v->ii_emin = glob[13];
+  std::vector<double> sl(2 * c->slide_nodes.size(), 0.0);
+  if (P->contact)
+    for (const ContactPair &pr : P->contact->pairs)
+      for (size_t k = 0; k < c->slide_nodes.size(); ++k)
+        if (pr.natural_node == c->slide_nodes[k]) {
+          const double s0 = pr.committed.g[0] - pr.g0[0], s1 = pr.committed.g[1] - pr.g0[1];
+          sl[2 * k] = pr.R[0] * s0 + pr.R[3] * s1;
+          sl[2 * k + 1] = pr.R[1] * s0 + pr.R[4] * s1;
+        }
+  v->slide.resize(sl.size());
+  PetscCallMPI(MPI_Allreduce(sl.data(), v->slide.data(), (int)sl.size(), MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t) {
+  auto *c = (StretchContext *)vctx;
+  CellFields f;
+  ProbeValues v;
+  PetscFunctionBeginUser;
+  if (c->history.empty()) PetscFunctionReturn(0);
+  PetscCall(ComputeCellFields(P, P->U, &f));
+  PetscCall(Measure(P, c, f, &v));
+  if (P->rank == 0) {
+    std::error_code ec;
+    const auto dir = std::filesystem::path(c->history).parent_path();
+    if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+    const bool first = !std::filesystem::exists(c->history) || step == 1;
+    FILE *out = std::fopen(c->history.c_str(), first ? "w" : "a");
+    PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", c->history.c_str());
+    if (first) {
+      std::fprintf(out, "step,time,A_Exx,A_Eyy,A_Exy,A_mises,B_Exx,B_Eyy,B_Exy,B_mises,I_smin,I_emin,II_smin,II_emin");
+      for (size_t k = 0; k < c->slide_nodes.size(); ++k) std::fprintf(out, ",slide%zu_X,slide%zu_Y", k + 1, k + 1);
+      std::fprintf(out, "\n");
+    }
+    std::fprintf(out, "%lld,%.10g", (long long)step, t);
+    for (double x : v.a) std::fprintf(out, ",%.8e", x);
+    for (double x : v.b) std::fprintf(out, ",%.8e", x);
+    std::fprintf(out, ",%.8e,%.8e,%.8e,%.8e", v.i_smin, v.i_emin, v.ii_smin, v.ii_emin);
+    for (double x : v.slide) std::fprintf(out, ",%.8e", x);
+    std::fprintf(out, "\n");
+    std::fclose(out);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StretchReport(Problem *P, void *vctx) {
+  auto *c = (StretchContext *)vctx;
+  CellFields f;
+  ProbeValues v;
+  PetscFunctionBeginUser;
+  PetscCall(ComputeCellFields(P, P->U, &f));
+  PetscCall(Measure(P, c, f, &v));
+  // Mises distribution over all elements (gathered: thesis-size meshes are small).
+  int n = (int)f.mises.size(), N;
+  std::vector<int> counts(P->size), displs(P->size, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
+  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  N = displs[P->size - 1] + counts[P->size - 1];
+  std::vector<double> all(N);
+  PetscCallMPI(MPI_Allgatherv(f.mises.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE,
+                              P->comm));
+  std::sort(all.begin(), all.end());
+  double near = 0;
+  for (double s : all) near += std::fabs(s - 13.28) <= 0.1 * 13.28;
+  double loc[4] = {0, 0, 0, 0}, glob[4];  // wrinkled elements (strain, stress) in the middle part, max ep, max |slide|
+  for (PetscInt e = 0; e < P->mesh.num_elements; ++e) {
+    loc[0] += f.emin[e] < 0;
+    loc[1] += f.smin[e] <= 0;
+    if (!f.ep_bar.empty()) loc[2] = std::max(loc[2], f.ep_bar[e]);
+  }
+  if (P->contact)
+    for (const ContactPair &pr : P->contact->pairs)
+      loc[3] = std::max(loc[3], std::hypot(pr.committed.g[0] - pr.g0[0], pr.committed.g[1] - pr.g0[1]));
+  PetscCallMPI(MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscCallMPI(MPI_Allreduce(loc + 2, glob + 2, 2, MPI_DOUBLE, MPI_MAX, P->comm));
+  PetscCall(PetscPrintf(P->comm,
+                        "saddle: mises_min = %.4f, mises_median = %.4f, mises_max = %.4f MPa over %d elements; "
+                        "within 10%% of S_y1 = 13.28: %.1f %%\n"
+                        "saddle: part_A mises = %.4f MPa (Exx %.5f, Eyy %.5f, Exy %.5f); part_B mises = %.4f MPa "
+                        "(Exx %.5f, Eyy %.5f, Exy %.5f)\n"
+                        "saddle: element_I emin = %.4e smin = %.4f MPa; element_II emin = %.4e smin = %.4f MPa\n"
+                        "saddle: wrinkled elements: strain-based = %.0f, stress-based = %.0f; max plastic_strain_eq = "
+                        "%.5f; max arch slide = %.4f mm\n",
+                        all.front(), all[all.size() / 2], all.back(), N, 100.0 * near / N, v.a[3], v.a[0], v.a[1],
+                        v.a[2], v.b[3], v.b[0], v.b[1], v.b[2], v.i_emin, v.i_smin, v.ii_emin, v.ii_smin, glob[0],
+                        glob[1], glob[2], glob[3]));
+  for (size_t k = 0; k < c->slide_nodes.size(); ++k)
+    PetscCall(PetscPrintf(P->comm, "saddle: slide_%zu (Y = %.0f) X = %.4f mm, Y = %.4f mm\n", k + 1,
+                          P->scene.mesh.coords[3 * c->slide_nodes[k] + 1], v.slide[2 * k], v.slide[2 * k + 1]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadArray(PetscOptionItems *PetscOptionsObject, const char *name, const char *help, std::vector<double> *v) {
+  PetscReal buf[64];
+  PetscInt n = 64;
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < v->size() && k < 64; ++k) buf[k] = (*v)[k];
+  PetscCall(PetscOptionsRealArray(name, help, "", buf, &n, &set));
+  if (set) v->assign(buf, buf + n);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene) {
+  auto *c = new StretchContext();
+  c->g = g;
+  MeshData &m = scene->mesh;
+  // Thesis Table 5.5, DD1511 (the PD schedules were only in lost figures: the same by default).
+  std::vector<double> da = {10, 20, 30, 40}, db = {10, 15, 20, 30}, dc = {10, 20, 30, 40}, dd = {10, 20, 30, 40};
+  std::vector<double> gain = {1, 1, 1, 1}, pressure, part_a = {0, 0, 400, 400}, part_b = {1300, 0, 1700, 400};
+  std::vector<double> elem_i = {200, 200}, elem_ii = {500, 700}, slides = {0, 250, 500, 750, 950};
+  char history[PETSC_MAX_PATH_LEN] = "", output[PETSC_MAX_PATH_LEN] = "";
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Saddle stretch fabrication", "Scene");
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_a", "Drawing at a (X = 2000, Y = 0; in X) per stage [mm]", &da));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_b", "Drawing at b (the frame corner; in X and Y) per stage [mm]", &db));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_c", "Drawing at c (Y = 1000, X = 1000; in Y) per stage [mm]", &dc));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_d", "Drawing at d (Y = 1000, X = 0; in Y) per stage [mm]", &dd));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_gain", "Offset-point motion per unit drawing at a,b,c,d", &gain));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_pressure_cycle", "Internal pressure after drawing, per stage [kPa]", &pressure));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_part_A", "Part A box x0,y0,x1,y1 [mm]", &part_a));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_part_B", "Part B box x0,y0,x1,y1 [mm]", &part_b));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_element_I", "Element I position x,y [mm]", &elem_i));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_element_II", "Element II position x,y [mm]", &elem_ii));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_slide_points", "Y of the arch slide points I..V [mm]", &slides));
+  PetscCall(PetscOptionsString("-saddle_history", "Probe history CSV (default beside -output_file)", "", history,
+                               history, sizeof history, nullptr));
+  PetscOptionsEnd();
+  const size_t ns = da.size();
+  PetscCheck(ns >= 1 && db.size() == ns && dc.size() == ns && dd.size() == ns, comm, PETSC_ERR_ARG_SIZ,
+             "-saddle_draw_a/b/c/d must have the same number of stages (now %zu, %zu, %zu, %zu)", da.size(),
+             db.size(), dc.size(), dd.size());
+  PetscCheck(gain.size() == 4 && part_a.size() == 4 && part_b.size() == 4 && elem_i.size() == 2 && elem_ii.size() == 2,
+             comm, PETSC_ERR_ARG_SIZ,
+             "-saddle_gain needs 4 values, -saddle_part_A/B 4 (x0,y0,x1,y1), -saddle_element_I/II 2 (x,y)");
+  for (const auto *arr : {&da, &db, &dc, &dd, &gain, &pressure})
+    for (double x : *arr)
+      PetscCheck(std::isfinite(x), comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: drawing, gain and pressure values must be finite");
+  c->part_a = {part_a[0], part_a[1], part_a[2], part_a[3]};
+  c->part_b = {part_b[0], part_b[1], part_b[2], part_b[3]};
+  c->drawing_stages = (PetscInt)ns;
+
+  // Schedules: drawing stages, then the pressure cycle with the drawing held.
+  const size_t np = pressure.size(), stages = ns + np;
+  auto extend = [&](const std::vector<double> &v, double gain_k) {
+    std::vector<double> out;
+    for (size_t k = 0; k < stages; ++k) out.push_back(gain_k * v[std::min(k, ns - 1)]);
+    return out;
+  };
+  const int sa = scene->AddSchedule({"draw_a", 0.0, extend(da, gain[0])});
+  const int sb = scene->AddSchedule({"draw_b", 0.0, extend(db, gain[1])});
+  const int sc = scene->AddSchedule({"draw_c", 0.0, extend(dc, gain[2])});
+  const int sd = scene->AddSchedule({"draw_d", 0.0, extend(dd, gain[3])});
+  if (np > 0) {
+    std::vector<double> p(ns, 0.0);
+    for (double x : pressure) p.push_back(1e-3 * x);  // kPa -> MPa
+    const int sp = scene->AddSchedule({"pressure", 0.0, p});
+    scene->pressure.active = true;
+    scene->pressure.value = {{1.0, 0.0}, {sp, -1}};
+  }
+
+  // Supports of the frame: drawn in plan, held in Z; symmetry planes.
+  const double L = g.half_length, W = g.half_span, A = g.arch_x, tol = 1e-6 * L;
+  std::vector<char> on_frame(m.NumNodes(), 0);
+  for (int k : m.node_sets["frame"]) on_frame[k] = 1;
+  for (int k = 0; k < m.NumNodes(); ++k) {
+    const double x = m.coords[3 * k], y = m.coords[3 * k + 1];
+    if (!on_frame[k]) {
+      if (std::fabs(x) < tol) scene->constraints.push_back({k, 0, {}});
+      if (std::fabs(y) < tol) scene->constraints.push_back({k, 1, {}});
+      continue;
+    }
+    ScheduledValue ux, uy;
+    if (std::fabs(x - L) < tol) {  // X-edge: a at Y = 0 to b at the corner
+      const double eta = y / W;
+      ux = {{1.0 - eta, eta}, {sa, sb}};
+      uy = {{eta, 0.0}, {sb, -1}};
+    } else if (x <= A) {  // Y-edge, middle part: d at X = 0 to c at the arch
+      const double xi = x / A;
+      ux = {{0.0, 0.0}, {-1, -1}};
+      uy = {{1.0 - xi, xi}, {sd, sc}};
+    } else {  // Y-edge, corner part: c at the arch to b at the corner
+      const double xi = (x - A) / (L - A);
+      ux = {{xi, 0.0}, {sb, -1}};
+      uy = {{1.0 - xi, xi}, {sc, sb}};
+    }
+    if (std::fabs(y) < tol) uy = {};  // on the symmetry plane Y = 0
+    scene->constraints.push_back({k, 0, ux});
+    scene->constraints.push_back({k, 1, uy});
+    scene->constraints.push_back({k, 2, {}});
+  }
+
+  // The arch: a circle in the plane X = 1000 through (Y = +-W, z = 0) and (0, H).
+  SupportSpec arch;
+  arch.name = "arch";
+  arch.type = "arch";
+  arch.radius = g.ArchRadius();
+  arch.centre[0] = A, arch.centre[1] = 0.0, arch.centre[2] = g.rise - arch.radius;
+  arch.axis[0] = 1.0, arch.axis[1] = 0.0, arch.axis[2] = 0.0;
+  scene->contact.active = true;
+  scene->contact.supports.push_back(arch);
+  scene->contact.node_set = "arch_contact";
+  for (int k : m.node_sets["arch"])
+    if (!on_frame[k]) m.node_sets["arch_contact"].push_back(k);
+  scene->contact.search_tol = 1e-3 * g.rise;
+
+  // Probes.
+  c->in_a.assign(m.NumElements(), 0);
+  c->in_b.assign(m.NumElements(), 0);
+  for (int e = 0; e < m.NumElements(); ++e) {
+    double cx = 0, cy = 0;
+    for (int a = 0; a < 3; ++a) cx += m.coords[3 * m.triangles[3 * e + a]] / 3, cy += m.coords[3 * m.triangles[3 * e + a] + 1] / 3;
+    c->in_a[e] = c->part_a.Contains(cx, cy);
+    c->in_b[e] = c->part_b.Contains(cx, cy);
+  }
+  c->elem_i = NearestElement(m, elem_i[0], elem_i[1]);
+  c->elem_ii = NearestElement(m, elem_ii[0], elem_ii[1]);
+  for (double y : slides) c->slide_nodes.push_back(SaddleNearestNode(m, A, y));
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-output_file", output, sizeof output, nullptr));
+  if (history[0]) c->history = history;
+  else if (output[0]) c->history = std::filesystem::path(output).replace_extension("").string() + "_history.csv";
+  else c->history = "results/saddle/saddle_history.csv";
+  scene->step_monitor = StretchStep;
+  scene->report = StretchReport;
+  scene->report_ctx = c;
+  scene->report_ctx_destroy = [](void *x) { delete (StretchContext *)x; };
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
