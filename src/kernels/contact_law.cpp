@@ -147,7 +147,10 @@ int ContactImplicitForce(const ContactParameters &p, const ContactState &committ
   const double ft = std::hypot(trial[0], trial[1]);
   const double limit = p.mu * pressure;
 
-  if (ft <= limit) {
+  // A trial on the cone to round-off (a slipping pair at the first Newton iterate of the next
+  // increment) sticks: its tangent is then the stick one, which gives a descent direction
+  // whether the increment keeps slipping or reverses (as plasticity's elastic predictor does).
+  if (ft <= limit * (1.0 + 1e-10)) {
     f[0] = trial[0];
     f[1] = trial[1];
     if (dfdg) dfdg[0] = dfdg[4] = p.kt;

@@ -196,7 +196,10 @@ int PlasticReturnMap(const PlasticMaterial &m, const double E[3], const PlasticS
     return Fail(KERNEL_NONFINITE, m, c, trial, S, D);
   }
 
-  if (q_trial <= sy_n) {
+  // A trial on the yield surface to round-off (the committed state itself, at the first Newton
+  // iterate of an increment) is elastic: its tangent must be the elastic one, or an increment
+  // that unloads starts with the soft plastic tangent and a Newton direction of no descent.
+  if (q_trial <= sy_n * (1.0 + 1e-10)) {
     *trial = c;
     for (int i = 0; i < 3; ++i) S[i] = St[i];
     for (int i = 0; i < 9; ++i) D[i] = De[i];
