@@ -5,8 +5,10 @@
 // K dx = R with K = A^T W A, R = -A^T W C (eqs. 2.29-2.31), assembled link by link like truss bars
 // (eqs. 2.32-2.33, kernel etfe/kernels/flatten_link.h). Boundary links (edges of one triangle)
 // weigh 1e12 so the cut and weld lines keep their length; interior links weigh 1. The rigid
-// motion is removed by fixing one node and the y of a second node. The expansion of a line is
-// (L2D - L3D) / L3D * 100 % (thesis Fig. 2.10).
+// motion is removed by fixing one node and the y of a second node. By default the step adds
+// the second-order terms of the boundary links and the boundary weight grows in stages (see
+// FlattenOptions); second_order = 0 with weight_growth = 0 is the thesis' plain Gauss-Newton.
+// The expansion of a line is (L2D - L3D) / L3D * 100 % (thesis Fig. 2.10).
 //
 // FlattenStrip runs serially (PETSc objects on PETSC_COMM_SELF, MATSEQAIJ + LU), so every rank
 // of an MPI run may call it on its own strips; PETSc must be initialised.
@@ -21,11 +23,29 @@ namespace etfe {
 struct FlattenOptions {
   double boundary_weight = 1e12;  // w of links with one adjacent triangle (thesis §2.4.2)
   double interior_weight = 1.0;   // w of links between two triangles
-  int max_iterations = 200;       // Gauss-Newton iterations before reporting non-convergence
+  int max_iterations = 300;       // all stages together, before reporting non-convergence
+  // The step: 0 = Gauss-Newton, K = A^T W A (thesis eq. 2.29); 1 = plus the second-order terms
+  // w_i phi_i d2l_i/dx2 of the boundary links; 2 = plus those of all links (Newton). Any order
+  // falls back to Gauss-Newton in an iteration where its step does not descend. All end at a
+  // minimum of S; they differ in how fast (and, for strongly curved strips, at which one).
+  // Measured on sphere and saddle strips 1200 mm long (R 400..2000 mm, widths 400 and 800 mm,
+  // 25 mm mesh): order 1 with weight stages flattened 15 of 20 (the other 5 fold over, as
+  // they should at up to 47 % link distortion), in 19-58 iterations but one (151); order 2
+  // folded 3 of those 15 into a worse minimum; plain Gauss-Newton without stages flattened 9,
+  // folded 1 and ran out of 300 iterations on the other 10.
+  int second_order = 1;
+  // Continuation of the boundary weight: stages interior_weight * weight_growth^k, ending at
+  // boundary_weight, each started from the previous solution. With a large weight the
+  // boundary links are near-constraints whose force w phi is not small, so a start far from
+  // them gives Newton an indefinite K and Gauss-Newton slow linear convergence; the stages
+  // keep every start close. weight_growth <= 1: one stage at boundary_weight (the thesis).
+  double weight_growth = 100.0;
   // Converged when the largest nodal step is below step_rtol * (mean 3D link length) and S has
   // settled: |S_k - S_{k-1}| <= s_rtol * S_{k-1}, or S <= s_atol * sum_i w_i L_i^2 (an exact
-  // development ends at round-off, where the relative change of S is noise).
+  // development ends at round-off, where the relative change of S is noise). Stages before
+  // the last stop at the looser stage_step_rtol.
   double step_rtol = 1e-10;
+  double stage_step_rtol = 1e-6;
   double s_rtol = 1e-12;
   double s_atol = 1e-26;
   // 3D links shorter than this times the mean link length are rejected as degenerate input.
@@ -61,8 +81,10 @@ struct FlattenResult {
   int num_boundary_links = 0;
   std::string initial_guess;  // "projection" (best-fit plane) or "unfolding" (triangle by triangle)
   double S_initial = 0.0, S = 0.0;  // eq. 2.23 at the initial guess and at the end, mm^2
-  std::vector<double> S_history;    // S after each iteration
-  int iterations = 0;
+  std::vector<double> S_history;    // S after each iteration, at the weights of its stage
+  int iterations = 0;               // all stages together
+  int stages = 0;                   // boundary weight stages run (FlattenOptions::weight_growth)
+  int second_order_steps = 0;       // iterations that took the opt.second_order step
   bool converged = false;
   double max_rel_error = 0.0, rms_rel_error = 0.0;  // |l - L| / L over all links
   double max_rel_error_boundary = 0.0, max_rel_error_interior = 0.0;

@@ -145,18 +145,31 @@ std::string LineLabel(const PatternLine &l) {
   return b;
 }
 
-// Label anchor: the middle vertex of the line's longest piece.
-const double *LabelPoint(const FlattenResult &r, const PatternLine &l) {
+// Label placement: centred on the middle vertex of the line's longest piece, along the line
+// there, turned to read left to right (angle in (-90, 90] degrees, counter-clockwise).
+struct Label {
+  double x, y, deg;
+};
+Label LabelAt(const FlattenResult &r, const PatternLine &l) {
   size_t best = 0;
   for (size_t k = 1; k < l.paths.size(); ++k)
     if (l.paths[k].size() > l.paths[best].size()) best = k;
   const std::vector<int> &p = l.paths[best];
-  return &r.xy[2 * (size_t)p[p.size() / 2]];
+  const size_t k = p.size() / 2;
+  const double *m = &r.xy[2 * (size_t)p[k]];
+  const double *a = &r.xy[2 * (size_t)p[k > 0 ? k - 1 : 0]];
+  const double *b = &r.xy[2 * (size_t)p[k + 1 < p.size() ? k + 1 : k]];
+  double deg = std::atan2(b[1] - a[1], b[0] - a[0]) * 180.0 / 3.14159265358979323846;
+  if (deg > 90.0) deg -= 180.0;
+  if (deg <= -90.0) deg += 180.0;
+  return {m[0], m[1], deg};
 }
 
 // ---- DXF ----------------------------------------------------------------------------------------
 
-void Pair(std::string *s, int code, const std::string &v) { Append(s, "%3d\n%s\n", code, v.c_str()); }
+void Pair(std::string *s, int code, const std::string &v) {
+  Append(s, "%3d\n%s\n", code, v.c_str());
+}
 void Pair(std::string *s, int code, int v) { Append(s, "%3d\n%6d\n", code, v); }
 void Pair(std::string *s, int code, double v) { Append(s, "%3d\n%.6f\n", code, v); }
 
@@ -194,7 +207,9 @@ void DxfPolyline(std::string *s, const std::string &layer, const FlattenResult &
   Pair(s, 8, layer);
 }
 
-void DxfTextEntity(std::string *s, double x, double y, double h, const std::string &text) {
+// TEXT; centred (72 = 1) texts need the alignment point 11/21/31 as well.
+void DxfTextEntity(std::string *s, double x, double y, double h, double deg, bool centred,
+                   const std::string &text) {
   Pair(s, 0, "TEXT");
   Pair(s, 8, "LABELS");
   Pair(s, 10, x);
@@ -202,6 +217,13 @@ void DxfTextEntity(std::string *s, double x, double y, double h, const std::stri
   Pair(s, 30, 0.0);
   Pair(s, 40, h);
   Pair(s, 1, DxfText(text));
+  if (deg != 0.0) Pair(s, 50, deg);
+  if (centred) {
+    Pair(s, 72, 1);
+    Pair(s, 11, x);
+    Pair(s, 21, y);
+    Pair(s, 31, 0.0);
+  }
 }
 
 } // namespace
@@ -280,10 +302,10 @@ bool WritePatternDxf(const std::string &path, const FlattenResult &r,
   for (const PatternLine &l : r.lines)
     for (const auto &p : l.paths) DxfPolyline(&s, LayerName(l.name), r, p, false);
   if (labels) {
-    DxfTextEntity(&s, b.lo[0], b.hi[1] + h, h, strip_name);
+    DxfTextEntity(&s, b.lo[0], b.hi[1] + h, h, 0.0, false, strip_name);
     for (const PatternLine &l : r.lines) {
-      const double *p = LabelPoint(r, l);
-      DxfTextEntity(&s, p[0], p[1], h, LineLabel(l));
+      const Label lb = LabelAt(r, l);
+      DxfTextEntity(&s, lb.x, lb.y, h, lb.deg, true, LineLabel(l));
     }
   }
   Pair(&s, 0, "ENDSEC");
@@ -344,9 +366,12 @@ bool WritePatternSvg(const std::string &path, const FlattenResult &r,
     Append(&s, "<text x=\"%.4f\" y=\"%.4f\">%s</text>\n", X(b.lo[0]), Y(b.hi[1] + h),
            XmlEscape(strip_name).c_str());
     for (const PatternLine &l : r.lines) {
-      const double *p = LabelPoint(r, l);
-      Append(&s, "<text x=\"%.4f\" y=\"%.4f\" fill=\"%s\">%s</text>\n", X(p[0]), Y(p[1]),
-             kRgb[LineKind(l.name)], XmlEscape(LineLabel(l)).c_str());
+      const Label lb = LabelAt(r, l);
+      // SVG's y points down, so the counter-clockwise angle turns clockwise.
+      Append(&s, "<text x=\"%.4f\" y=\"%.4f\" fill=\"%s\" text-anchor=\"middle\" "
+                 "transform=\"rotate(%.3f %.4f %.4f)\">%s</text>\n",
+             X(lb.x), Y(lb.y), kRgb[LineKind(l.name)], -lb.deg, X(lb.x), Y(lb.y),
+             XmlEscape(LineLabel(l)).c_str());
     }
     s += "</g>\n";
   }

@@ -2,7 +2,9 @@
 // phi = l - L of a mesh edge (2D length l = |q - p|, 3D length L) and its gradient, the row A_i
 // of the Gauss-Newton matrix A. The link behaves like a truss bar whose "stiffness" w A^T A has
 // only the axial part: Gauss-Newton drops the geometric term w phi d2l/dx2, which vanishes at an
-// exact development (phi = 0), so convergence is quadratic there and linear otherwise.
+// exact development (phi = 0), so convergence is quadratic there and linear otherwise. With a
+// large weight w the product w phi stays finite (it is the force that keeps a boundary link at
+// its length), so the dropped term matters; FlattenLinkSystem can add it for a Newton step.
 #include "etfe/kernels/flatten_link.h"
 
 #include <cmath>
@@ -29,11 +31,23 @@ int FlattenLink(const double p[2], const double q[2], double L, double min_lengt
   return KERNEL_OK;
 }
 
-void FlattenLinkSystem(double w, double c, const double grad[4], double K[16], double R[4]) {
+void FlattenLinkSystem(double w, double c, const double grad[4], double l, double K[16],
+                       double R[4]) {
   for (int a = 0; a < 4; ++a) {
     R[a] = -w * c * grad[a];
     for (int b = 0; b < 4; ++b) K[4 * a + b] = w * grad[a] * grad[b];
   }
+  if (!(l > 0.0)) return;
+  // d2l/dp2 = d2l/dq2 = P / l, d2l/dpdq = -P / l, with P the projector across the link.
+  const double e[2] = {grad[2], grad[3]}, f = w * c / l;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      const double h = f * ((i == j ? 1.0 : 0.0) - e[i] * e[j]);
+      K[4 * i + j] += h;
+      K[4 * (i + 2) + j + 2] += h;
+      K[4 * i + j + 2] -= h;
+      K[4 * (i + 2) + j] -= h;
+    }
 }
 
 } // namespace etfe

@@ -89,7 +89,7 @@ static PetscErrorCode CreateMatrix(Problem *P, const MeshData &gm, const std::ve
   PetscCall(MatCreate(P->comm, &P->J));
   PetscCall(MatSetSizes(P->J, 3 * n, 3 * n, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetBlockSize(P->J, 3));
-  PetscCall(MatSetType(P->J, MATAIJ));
+  PetscCall(MatSetType(P->J, MATBAIJ));  // 3x3 blocks: insertion ~3x faster than AIJ here
   PetscCall(MatSetOptionsPrefix(P->J, nullptr));
   PetscCall(MatSetFromOptions(P->J));
   PetscCall(MatXAIJSetPreallocation(P->J, 3, d_nnz.data(), o_nnz.data(), nullptr, nullptr));
