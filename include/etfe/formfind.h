@@ -13,6 +13,7 @@
 #pragma once
 #include <petscsnes.h>
 
+#include "etfe/cutpattern.h"
 #include "etfe/output.h"
 #include "etfe/problem.h"
 
@@ -26,6 +27,7 @@ struct FormFindOptions {
   char mesh_out[PETSC_MAX_PATH_LEN] = "";  // Gmsh file of the found surface ("" = beside results)
   PetscInt monitor = 1;
   PetscBool mesh_control = PETSC_TRUE;  // interior nodes move along their normals only
+  CutPatternOptions cutpattern;         // -cutpattern: flatten the found surface's strips
 };
 
 struct FormFindResult {

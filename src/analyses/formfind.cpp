@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "etfe/cutpattern.h"
 #include "etfe/formfind.h"
 #include "etfe/kernels/status.h"
 #include "etfe/mesh/gmsh_reader.h"
@@ -26,6 +27,7 @@ PetscErrorCode FormFindOptionsFromCommandLine(MPI_Comm comm, FormFindOptions *o)
   PetscCall(PetscOptionsInt("-formfind_monitor", "Print every n-th iteration (0: quiet)", "", o->monitor,
                             &o->monitor, nullptr));
   PetscOptionsEnd();
+  PetscCall(CutPatternOptionsFromCommandLine(comm, &o->cutpattern));
   PetscCheck(o->stress > 0 && o->ratio > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-formfind_stress %g / -formfind_ratio %g: a form-finding stress must be tensile (> 0)", o->stress,
              o->ratio);
@@ -219,6 +221,11 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
     }
     PetscCall(PetscPrintf(P->comm, "formfind: converged after %" PetscInt_FMT " iterations; surface written to %s\n",
                           res->iterations, path.c_str()));
+    if (o.cutpattern.enabled) {
+      const std::filesystem::path p(path);
+      PetscCall(CutPatternRun(P->comm, shape, o.cutpattern, p.parent_path().empty() ? "." : p.parent_path().string(),
+                              p.stem().string()));
+    }
   }
   // P->U now holds the total displacement so that scene reports see the found shape.
   PetscCall(VecZeroEntries(P->U));

@@ -119,6 +119,9 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
     if (std::fabs(x[1]) < tol) m.node_sets["sym_y"].push_back(k);
     if (std::fabs(x[0] - g.half_length) < tol || std::fabs(x[1] - g.half_span) < tol) m.node_sets["frame"].push_back(k);
   }
+  // Named lines of the cutting pattern: the cutting line on X = 0, the weld line over the arch.
+  m.node_sets["cut_middle"] = m.node_sets["sym_x"];
+  m.node_sets["weld_arch"] = m.node_sets["arch"];
   PetscCheck(!m.node_sets["arch"].empty() && !m.node_sets["frame"].empty(), comm, PETSC_ERR_ARG_WRONG,
              "%s: no nodes on the arch line X = %g or on the frame; the saddle needs the quarter model "
              "X in [0, %g], Y in [0, %g]", m.source.c_str(), g.arch_x, g.half_length, g.half_span);

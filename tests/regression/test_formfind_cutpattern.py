@@ -1,0 +1,47 @@
+"""Cutting patterns of the form-found saddle (issue 5, SPEC §7): the middle and corner strips are
+flattened and written as DXF, SVG and Gmsh; with the thesis's weights (boundary 1e12) the
+boundary and cutting lines keep their 3D length; with uniform weights the doubly curved strips
+come out shorter in 2D along the weld line over the arch, by more as the rise grows."""
+import os
+import re
+
+from etfe_testlib import Checker, etfe_path, run, scratch_dir, REPO
+
+etfe = etfe_path()
+chk = Checker("formfind_cutpattern")
+
+
+def lines(out):
+    return {(m.group(1), m.group(2)): (float(m.group(3)), float(m.group(4)), float(m.group(5)))
+            for m in re.finditer(r"cutpattern: strip (\w+) line (\w+): 3D (\S+) mm, 2D (\S+) mm, expansion (\S+) %", out)}
+
+
+with scratch_dir() as tmp:
+    msh = os.path.join(tmp, "s31.msh")
+    rc, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s31.opts"), "-formfind_monitor", 0,
+                         "-output", 0, "-formfind_mesh_out", msh, "-cutpattern", "-cutpattern_lines", "frame"])
+    got = lines(out)
+    for strip in ("middle", "corner"):
+        for ext in ("dxf", "svg", "msh"):
+            p = os.path.join(tmp, "s31_%s.%s" % (strip, ext))
+            chk.check(os.path.exists(p) and os.path.getsize(p) > 100, "strip %s: %s written" % (strip, ext))
+    chk.check(os.path.exists(os.path.join(tmp, "s31_lines.csv")), "line table written")
+    with open(os.path.join(tmp, "s31_middle.dxf")) as f:
+        dxf = f.read()
+    chk.check("ENTITIES" in dxf and dxf.rstrip().endswith("EOF"), "DXF has an ENTITIES section and ends with EOF")
+    with open(os.path.join(tmp, "s31_middle.msh")) as f:
+        txt = f.read()
+    chk.check("$Nodes" in txt and "$Elements" in txt, "the 2D strip mesh is a Gmsh file")
+    for key in (("middle", "cut_middle"), ("middle", "weld_arch"), ("corner", "weld_arch"), ("middle", "frame")):
+        chk.check(key in got and abs(got[key][2]) < 1e-6, "boundary weight 1e12: %s/%s keeps its length (%s %%)"
+                  % (key + (got.get(key, (0, 0, float("nan")))[2],)))
+    weld = {}
+    for r in (10, 15, 20):
+        rc, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r%d_s11.opts" % r),
+                             "-formfind_monitor", 0, "-output", 0, "-formfind_mesh_out", os.path.join(tmp, "r%d.msh" % r),
+                             "-cutpattern", "-cutpattern_boundary_weight", 1])
+        weld[r] = lines(out)[("middle", "weld_arch")][2]
+        print("r = %d %%, middle weld line over the arch: expansion %.4f %%" % (r, weld[r]))
+    chk.check(weld[10] < 0 and weld[15] < 0 and weld[20] < 0, "uniform weights: the weld line is shorter in 2D")
+    chk.check(weld[10] > weld[15] > weld[20], "and more so as the rise grows")
+chk.finish()
