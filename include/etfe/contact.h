@@ -25,13 +25,28 @@ struct ContactPair {
   double M[3];            // master point on the support (global)
   double R[9];            // rows x0, y0, z0 (z0 = outward normal)
   double g0[3];           // gap at t0 (local), the origin of the reported slide
+  double X[3];            // reference position of the film node
+  double d0;              // distance to the support surface at t0 (round-off: taken as touching)
+  // Frozen frame: g and f local (contact_law.h). Following frame: g holds the node's
+  // displacement and f the force, both global, so they survive the frame's motion.
   ContactState committed;
   ContactState trial;     // at the last evaluation: g, f, status
+};
+
+// What a pair reports: force in its current frame, slide since t0 in the tangent plane (local
+// x0, y0 and global X, Y).
+struct ContactPairReport {
+  double force[3], slide_local[2], slide_global[2];
+  int status;
 };
 
 struct ContactSet {
   ContactParameters params{};
   FrictionLaw law = FrictionLaw::Implicit;
+  // -contact_normal follow: the master point is the current closest point of the support and
+  // the frame follows it (large slide); frozen: the thesis's frame fixed at t0.
+  bool follow = false;
+  std::vector<SupportSpec> supports;
   std::vector<ContactPair> pairs;  // this rank's pairs, by id
   PetscInt num_global = 0, pair_start = 0;
   // Up to this load time the pairs are frictionless: a film laid slack on a support has no
@@ -54,6 +69,7 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], d
 // Counts (open, stick, slip) over all ranks; prints a line per newly opened pair.
 PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[3]);
 const char *FrictionLawName(FrictionLaw law);
+ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);
 // Appends one line per probe pair to <dir>/contact_node<id>.csv (written by the owning rank):
 // step, time, status, slide x0/y0 (local), slide X/Y (global), force x0/y0/z0.
 PetscErrorCode ContactWriteProbes(Problem *problem, const std::string &dir, PetscInt step, double time);

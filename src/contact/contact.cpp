@@ -100,8 +100,13 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   else if (ls == "none") c->law = FrictionLaw::None, c->params.mu = 0.0;
   else if (ls == "fixed") c->law = FrictionLaw::Fixed;
   else SETERRQ(P->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-contact_friction %s: use lagged, implicit, none or fixed", law);
-  PetscCheck(std::strcmp(normal, "frozen") == 0, P->comm, PETSC_ERR_SUP,
-             "-contact_normal %s: only the frozen frame of the thesis is implemented so far", normal);
+  PetscCheck(std::strcmp(normal, "frozen") == 0 || std::strcmp(normal, "follow") == 0, P->comm,
+             PETSC_ERR_ARG_UNKNOWN_TYPE, "-contact_normal %s: use frozen (thesis) or follow", normal);
+  c->follow = std::strcmp(normal, "follow") == 0;
+  PetscCheck(!(c->follow && c->law == FrictionLaw::Lagged), P->comm, PETSC_ERR_SUP,
+             "-contact_normal follow works with -contact_friction implicit, none or fixed; the lagged "
+             "(thesis) law keeps the thesis's frozen frame");
+  c->supports = spec.supports;
   PetscCheck(c->params.mu >= 0 && std::isfinite(c->params.mu), P->comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_mu %g: the friction coefficient must be >= 0", c->params.mu);
   PetscCheck(c->params.kn > 0 && c->params.kt > 0 && std::isfinite(c->params.kn) && std::isfinite(c->params.kt),
@@ -126,12 +131,14 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
       const double d = SupportProject(spec.supports[s], X, pr.M, pr.R);
       if (std::fabs(d) > tol) continue;
       pr.local_node = l;
+      pr.d0 = d;
+      for (int i = 0; i < 3; ++i) pr.X[i] = X[i];
       pr.natural_node = m.natural_id[l];
       pr.support = (int)s;
       // A pair starts touching with zero gap (thesis: contact at t0); the offset d within the
       // search tolerance is round-off or modelling slack, not a preload.
       pr.g0[0] = pr.g0[1] = pr.g0[2] = 0.0;
-      pr.committed = ContactState{{pr.g0[0], pr.g0[1], pr.g0[2]}, {0, 0, 0}, CONTACT_STICK};
+      pr.committed = ContactState{{0, 0, 0}, {0, 0, 0}, CONTACT_STICK};  // g0 = 0; follow: u = 0, f = 0
       pr.trial = pr.committed;
       c->pairs.push_back(pr);
       break;
@@ -164,13 +171,77 @@ PetscErrorCode ContactDestroy(ContactSet **c) {
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+void ToGlobal(const double R[9], const double v[3], double out[3]) {
+  for (int i = 0; i < 3; ++i) out[i] = R[i] * v[0] + R[3 + i] * v[1] + R[6 + i] * v[2];
+}
+
+void RotateTangent(const double R[9], const double K[9], double Kg[9]) {
+  double KR[9];
+  for (int a = 0; a < 3; ++a)
+    for (int j = 0; j < 3; ++j) KR[3 * a + j] = K[3 * a] * R[j] + K[3 * a + 1] * R[3 + j] + K[3 * a + 2] * R[6 + j];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) Kg[3 * i + j] = R[i] * KR[j] + R[3 + i] * KR[3 + j] + R[6 + i] * KR[6 + j];
+}
+
+// Following frame: the master point is the closest point of the support to the node now. The
+// law sees the slide since the last commit in the current tangent plane and the committed
+// force carried into the current frame; the tangent keeps the frame fixed within an iteration
+// (its rotation contributes O(f / radius), small against the penalties).
+int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], bool frictionless, double fg[3],
+                   double Kg[9]) {
+  double x[3], du[3], g[3], f[3], K[9], fc[3];
+  for (int i = 0; i < 3; ++i) x[i] = pr.X[i] + u[i], du[i] = u[i] - pr.committed.g[i];
+  const double d = SupportProject(c.supports[pr.support], x, pr.M, pr.R);
+  ToLocal(pr.R, du, g);
+  g[2] = d - pr.d0;
+  ToLocal(pr.R, pr.committed.f, fc);
+  ContactState from{{0, 0, 0}, {fc[0], fc[1], fc[2]}, pr.committed.status};
+  ContactParameters p = c.params;
+  if (frictionless) p.mu = 0.0;
+  int status;
+  if (c.law == FrictionLaw::Fixed) {
+    ContactFixedForce(p, g, f, K);
+    for (int i = 0; i < 2; ++i) f[i] += fc[i];
+    status = CONTACT_STICK;
+  } else {
+    status = ContactImplicitForce(p, from, g, f, K);
+  }
+  ToGlobal(pr.R, f, fg);
+  for (int i = 0; i < 3; ++i) pr.trial.g[i] = u[i], pr.trial.f[i] = fg[i];
+  pr.trial.status = status;
+  if (Kg) RotateTangent(pr.R, K, Kg);
+  return std::isfinite(fg[0] + fg[1] + fg[2]) ? 0 : 1;
+}
+
+} // namespace
+
+ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pr) {
+  ContactPairReport r;
+  double s[3];
+  if (c.follow) {
+    ToLocal(pr.R, pr.committed.f, r.force);
+    ToLocal(pr.R, pr.committed.g, s);  // displacement since t0 in the current tangent plane
+  } else {
+    for (int i = 0; i < 3; ++i) r.force[i] = pr.committed.f[i], s[i] = pr.committed.g[i] - pr.g0[i];
+  }
+  r.slide_local[0] = s[0], r.slide_local[1] = s[1];
+  r.slide_global[0] = pr.R[0] * s[0] + pr.R[3] * s[1];
+  r.slide_global[1] = pr.R[1] * s[0] + pr.R[4] * s[1];
+  r.status = pr.committed.status;
+  return r;
+}
+
 int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], double time,
                     double fg[3], double Kg[9]) {
+  const bool frictionless = time <= c.frictionless_until + 1e-12;
+  if (c.follow) return EvaluateFollow(c, pr, u, frictionless, fg, Kg);
   double g[3], f[3], K[9];
   ToLocal(pr.R, u, g);
   for (int i = 0; i < 3; ++i) g[i] += pr.g0[i];
   int status = pr.committed.status;
-  if (time <= c.frictionless_until + 1e-12 && c.law != FrictionLaw::Fixed) {
+  if (frictionless && c.law != FrictionLaw::Fixed) {
     ContactParameters frictionless = c.params;
     frictionless.mu = 0.0;
     status = ContactImplicitForce(frictionless, pr.committed, g, f, K);
@@ -187,15 +258,8 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
   pr.trial.g[0] = g[0], pr.trial.g[1] = g[1], pr.trial.g[2] = g[2];
   pr.trial.f[0] = f[0], pr.trial.f[1] = f[1], pr.trial.f[2] = f[2];
   pr.trial.status = status;
-  // global force R^T f and tangent R^T K R
-  for (int i = 0; i < 3; ++i) fg[i] = pr.R[i] * f[0] + pr.R[3 + i] * f[1] + pr.R[6 + i] * f[2];
-  if (Kg) {
-    double KR[9];
-    for (int a = 0; a < 3; ++a)
-      for (int j = 0; j < 3; ++j) KR[3 * a + j] = K[3 * a] * pr.R[j] + K[3 * a + 1] * pr.R[3 + j] + K[3 * a + 2] * pr.R[6 + j];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) Kg[3 * i + j] = pr.R[i] * KR[j] + pr.R[3 + i] * KR[3 + j] + pr.R[6 + i] * KR[6 + j];
-  }
+  ToGlobal(pr.R, f, fg);
+  if (Kg) RotateTangent(pr.R, K, Kg);
   return std::isfinite(fg[0] + fg[1] + fg[2]) ? 0 : 1;
 }
 
@@ -235,10 +299,10 @@ PetscErrorCode ContactWriteProbes(Problem *P, const std::string &dir, PetscInt s
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
       if (step <= 1)
         std::fprintf(f, "step,time,status,slide_x0,slide_y0,slide_X,slide_Y,force_x0,force_y0,force_z0\n");
-      const double s0 = pr.committed.g[0] - pr.g0[0], s1 = pr.committed.g[1] - pr.g0[1];
-      std::fprintf(f, "%lld,%.10g,%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e\n", (long long)step, time,
-                   pr.committed.status, s0, s1, pr.R[0] * s0 + pr.R[3] * s1, pr.R[1] * s0 + pr.R[4] * s1,
-                   pr.committed.f[0], pr.committed.f[1], pr.committed.f[2]);
+      const ContactPairReport r = ContactReport(*P->contact, pr);
+      std::fprintf(f, "%lld,%.10g,%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e\n", (long long)step, time, r.status,
+                   r.slide_local[0], r.slide_local[1], r.slide_global[0], r.slide_global[1], r.force[0], r.force[1],
+                   r.force[2]);
       std::fclose(f);
     }
   PetscFunctionReturn(0);

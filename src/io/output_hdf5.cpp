@@ -53,13 +53,10 @@ PetscErrorCode WriteContact(OutputFile *out, hid_t step_group) {
   PetscFunctionBeginUser;
   for (size_t k = 0; k < n; ++k) {
     const ContactPair &pr = c.pairs[k];
-    const double s0 = pr.committed.g[0] - pr.g0[0], s1 = pr.committed.g[1] - pr.g0[1];
-    for (int i = 0; i < 3; ++i) force[3 * k + i] = pr.committed.f[i];
-    slide_local[2 * k] = s0;
-    slide_local[2 * k + 1] = s1;
-    slide_global[2 * k] = pr.R[0] * s0 + pr.R[3] * s1;
-    slide_global[2 * k + 1] = pr.R[1] * s0 + pr.R[4] * s1;
-    status[k] = pr.committed.status;
+    const ContactPairReport r = ContactReport(c, pr);
+    for (int i = 0; i < 3; ++i) force[3 * k + i] = r.force[i];
+    for (int i = 0; i < 2; ++i) slide_local[2 * k + i] = r.slide_local[i], slide_global[2 * k + i] = r.slide_global[i];
+    status[k] = r.status;
     node[k] = (double)pr.natural_node;
   }
   hid_t g = H5Gcreate2(step_group, "contact", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);

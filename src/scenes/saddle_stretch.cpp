@@ -79,9 +79,9 @@ PetscErrorCode Measure(Problem *P, StretchContext *c, const CellFields &f, Probe
     for (const ContactPair &pr : P->contact->pairs)
       for (size_t k = 0; k < c->slide_nodes.size(); ++k)
         if (pr.natural_node == c->slide_nodes[k]) {
-          const double s0 = pr.committed.g[0] - pr.g0[0], s1 = pr.committed.g[1] - pr.g0[1];
-          sl[2 * k] = pr.R[0] * s0 + pr.R[3] * s1;
-          sl[2 * k + 1] = pr.R[1] * s0 + pr.R[4] * s1;
+          const ContactPairReport r = ContactReport(*P->contact, pr);
+          sl[2 * k] = r.slide_global[0];
+          sl[2 * k + 1] = r.slide_global[1];
         }
   v->slide.resize(sl.size());
   PetscCallMPI(MPI_Allreduce(sl.data(), v->slide.data(), (int)sl.size(), MPI_DOUBLE, MPI_SUM, P->comm));
@@ -146,7 +146,8 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
   }
   if (P->contact)
     for (const ContactPair &pr : P->contact->pairs)
-      loc[3] = std::max(loc[3], std::hypot(pr.committed.g[0] - pr.g0[0], pr.committed.g[1] - pr.g0[1]));
+      loc[3] = std::max(loc[3], std::hypot(ContactReport(*P->contact, pr).slide_local[0],
+                                           ContactReport(*P->contact, pr).slide_local[1]));
   PetscCallMPI(MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, P->comm));
   PetscCallMPI(MPI_Allreduce(loc + 2, glob + 2, 2, MPI_DOUBLE, MPI_MAX, P->comm));
   PetscCall(PetscPrintf(P->comm,

@@ -68,6 +68,19 @@ chk.check(spread["implicit"] < spread["lagged"],
           "the implicit law should depend less on the number of increments than the lagged one")
 chk.check(spread["implicit"] < 0.01, "implicit mu_eff varies by %.4f over 40..320 increments" % spread["implicit"])
 
+print("\nlarge slide: frozen frame (thesis) vs following frame, pull 1 mm (64 cells)")
+ends = {}
+for normal in ("frozen", "follow"):
+    rc, out = run(etfe, ["-options_file", opts("capstan"), "-output", "0", "-load_monitor", "0", "-capstan_pull", "1.0",
+                         "-contact_normal", normal])
+    t2_end = float(out.split("T2 at the end = ")[1].split()[0])
+    ends[normal] = t2_end / (2.5 * math.exp(0.3 * math.pi)) - 1.0
+    print("%-7s T2 at the end of the pull: %.4f N, %+.2f %% from T1 exp(mu theta)" % (normal, t2_end, 100 * ends[normal]))
+chk.check(abs(ends["follow"]) < 0.01, "following frame: the gross-slip plateau stays within 1 %% of T1 exp(mu theta) (%+.2f %%)"
+          % (100 * ends["follow"]))
+chk.check(ends["frozen"] > 5 * abs(ends["follow"]), "the frozen frame drifts off the plateau as the slide grows (%+.2f %%)"
+          % (100 * ends["frozen"]))
+
 print("\nstiff penalties (k_n = k_t)")
 for k in ("1e2", "1e4", "1e6", "1e8", "1e10", "1e12"):
     m, out = mu_eff(["-contact_kn", k, "-contact_kt", k])
