@@ -63,10 +63,15 @@ with scratch_dir() as tmp:
         x0 = f["mesh/coordinates"][:]
         centre = int(np.argmin(np.hypot(x0[:, 0], x0[:, 1])))
         w = np.array([f["steps"][k]["displacement"][centre, 2] for k in keys])
+        opened = np.array([np.count_nonzero(f["steps"][k]["contact/status"][:] == 0) for k in keys])
     drawn = w[np.argmin(np.abs(times - 4.0))]
     peak = w[np.argmin(np.abs(times - 11.0))]
     final = w[-1]
     print("middle centre z-displacement: drawn %.3f mm, at 2 kPa %.3f mm, after the cycle %.3f mm" % (drawn, peak, final))
     chk.check(peak > drawn, "pressure lifts the middle part")
+    at_peak = opened[np.argmin(np.abs(times - 11.0))]
+    print("open contact pairs: drawn %d, at 2 kPa %d, after the cycle %d" % (opened[np.argmin(np.abs(times - 4.0))],
+                                                                           at_peak, opened[-1]))
+    chk.check(at_peak > 0 and opened[-1] < at_peak, "pairs lift off under pressure and close again when it is released")
     chk.check(abs(final - drawn) > 1e-3, "the cycle leaves a residual displacement (plastic)")
 chk.finish()
