@@ -203,7 +203,7 @@ PetscErrorCode Create(SNESLineSearch ls) {
   ls->ops->view = View;
   ls->ops->reset = nullptr;
   ls->data = new EtfeLineSearch();
-  ls->max_its = 12;
+  ls->max_its = 25;  // halvings down to lambda ~ 3e-8: stiff penalties need small first steps
   PetscFunctionReturn(0);
 }
 

@@ -219,8 +219,11 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     char why[512];
     if (reason == SNES_DIVERGED_LINE_SEARCH && P->bad_status == KERNEL_OK)
       std::snprintf(why, sizeof why, "%s (no step along the Newton direction reduced the residual; "
-                    "largest residual %.3e at node %lld)",
-                    SNESConvergedReasons[reason], worst, (long long)node);
+                    "largest residual %.3e at node %lld%s)",
+                    SNESConvergedReasons[reason], worst, (long long)node,
+                    P->contact && P->contact->params.kn > 1e5 * P->thickness * 800.0
+                        ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt"
+                        : "");
     else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
       std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual "
                     "%.3e at node %lld)",
