@@ -217,13 +217,14 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     double worst = 0.0;
     PetscCall(WorstNode(P, F, &node, &worst));
     char why[512];
+    double young = 0.0, nu;
+    P->material->ElasticConstants(&young, &nu);
+    const bool stiff_penalty = P->contact && P->contact->params.kn > 1e5 * young * P->thickness;
     if (reason == SNES_DIVERGED_LINE_SEARCH && P->bad_status == KERNEL_OK)
       std::snprintf(why, sizeof why, "%s (no step along the Newton direction reduced the residual; "
                     "largest residual %.3e at node %lld%s)",
                     SNESConvergedReasons[reason], worst, (long long)node,
-                    P->contact && P->contact->params.kn > 1e5 * P->thickness * 800.0
-                        ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt"
-                        : "");
+                    stiff_penalty ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt" : "");
     else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
       std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual "
                     "%.3e at node %lld)",
