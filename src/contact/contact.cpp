@@ -53,7 +53,7 @@ const char *FrictionLawName(FrictionLaw law) {
   case FrictionLaw::Lagged: return "lagged (thesis: status from the forces at the step start)";
   case FrictionLaw::Implicit: return "implicit (Coulomb return map at every Newton iterate)";
   case FrictionLaw::None: return "none (frictionless)";
-  case FrictionLaw::Fixed: return "fixed (no slide)";
+  case FrictionLaw::Fixed: return "fixed (no slide, bilateral: the thesis's closed contact, eq. 4.25)";
   }
   return "?";
 }

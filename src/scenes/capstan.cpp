@@ -20,6 +20,7 @@ struct CapstanContext {
   double theta, t1, tB[3];
   std::vector<int> end_b;    // scene node ids of end B
   double t2_onset = -1.0, t2_last = 0.0;
+  PetscInt monitor = 1;
   PetscInt onset_step = -1;
 };
 
@@ -58,7 +59,8 @@ PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t) {
     c->onset_step = step;
     c->t2_onset = t2;
   }
-  PetscCall(PetscPrintf(P->comm, "             capstan: T2 = %.6e N, T2/T1 = %.6f, slipping pairs %" PetscInt_FMT "/%" PetscInt_FMT "%s\n",
+  if (c->monitor)
+    PetscCall(PetscPrintf(P->comm, "             capstan: T2 = %.6e N, T2/T1 = %.6f, slipping pairs %" PetscInt_FMT "/%" PetscInt_FMT "%s\n",
                         t2, t2 / c->t1, global[1], global[0], gross ? " (gross slip)" : ""));
   PetscFunctionReturn(0);
 }
@@ -141,6 +143,7 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene) {
   pipe.type = "cylinder";
   pipe.radius = radius;
   scene->contact.supports.push_back(pipe);
+  PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-load_monitor", &ctx->monitor, nullptr));
   scene->step_monitor = CapstanStep;
   scene->state_get = [](void *c, std::vector<double> *v) {
     auto *x = (CapstanContext *)c;

@@ -296,7 +296,11 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   c->elem_ii = NearestElement(m, elem_ii[0], elem_ii[1]);
   for (double y : slides) c->slide_nodes.push_back(SaddleNearestNode(m, A, y));
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-output_file", output, sizeof output, nullptr));
+  PetscBool write = PETSC_TRUE;
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-output", &write, nullptr));
+  // Without results there is no history either (it would overwrite another run's beside them).
   if (history[0]) c->history = history;
+  else if (!write) c->history.clear();
   else if (output[0]) c->history = std::filesystem::path(output).replace_extension("").string() + "_history.csv";
   else c->history = "results/saddle/saddle_history.csv";
   scene->step_monitor = StretchStep;
