@@ -16,6 +16,10 @@ struct LoadStepperOptions {
   PetscInt grow_after = 2;       // easy increments in a row before the increment doubles
   PetscInt easy_iterations = 5;  // Newton iterations that count as easy
   PetscBool extrapolate = PETSC_TRUE;
+  // Tangent predictor: a linear solve with the tangent at the committed state for the increment
+  // of prescribed values and loads, so the interior follows a jump of the boundary instead of
+  // leaving it to Newton's first iterations (+1 factorisation per increment).
+  PetscBool tangent_predictor = PETSC_FALSE;
   PetscInt monitor = 1;
   PetscInt stop_after = -1;      // end cleanly after this many increments (-1: never)
   PetscReal force_rtol = 1e-10;  // converged when |R| <= force_rtol * (reactions + loads)
