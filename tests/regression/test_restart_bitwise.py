@@ -1,6 +1,8 @@
 """Checkpoint/restart (issue 7): a run stopped after increment k (-load_stop_after, which writes a
 checkpoint) and continued with -restart gives the same results as the uninterrupted run, bit for
-bit, on 1 and 2 ranks: a plastic patch over load/unload/reload stages (history variables) and the
+bit, on 1 and 2 ranks (on 2 ranks with options/solvers/redundant_lu.opts: parallel MUMPS
+schedules its factorisation dynamically, so on a busy machine its round-off can differ from run
+to run; with it the 2-rank restart is checked to 1e-10 instead): a plastic patch over load/unload/reload stages (history variables) and the
 capstan (contact state, the scene's own slip-onset monitor). A checkpoint of another scene, mesh
 or material, and a truncated file, are refused with a message."""
 import os
@@ -18,19 +20,24 @@ cases = {
 }
 with scratch_dir() as tmp:
     for name, base in cases.items():
-        for np in (1, 2):
-            full, part, ck = (os.path.join(tmp, "%s%d_%s.h5" % (name, np, k)) for k in ("full", "part", "ck"))
-            common = base + ["-load_monitor", 0]
+        for np, solver in ((1, []), (2, ["-options_file", "options/solvers/redundant_lu.opts"]), (2, None)):
+            exact = solver is not None
+            tag = "%s%d%s" % (name, np, "" if exact else "mumps")
+            full, part, ck = (os.path.join(tmp, "%s_%s.h5" % (tag, k)) for k in ("full", "part", "ck"))
+            common = base + ["-load_monitor", 0] + (solver or [])
             rc, out_full = run(etfe, common + ["-output_file", full], np=np)
             rc, out1 = run(etfe, common + ["-output_file", part, "-load_stop_after", 13, "-checkpoint_file", ck], np=np)
             chk.check(os.path.exists(ck) and "stopped as asked" in out1, "%s np=%d: stopped at 13 with a checkpoint" % (name, np))
             rc, out2 = run(etfe, common + ["-output_file", part, "-restart", ck], np=np)
-            fails = h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
-            chk.check(not fails, "%s np=%d: restarted results equal the uninterrupted run bit for bit (all steps)%s"
-                      % (name, np, "" if not fails else ": " + "; ".join(map(str, fails[:3]))))
+            tol = 0.0 if exact else 1e-10
+            fails = h5compare.compare(full, part, step="all", default_rtol=tol, default_atol=tol * 1e-3)
+            chk.check(not fails, "%s np=%d%s: restarted results equal the uninterrupted run %s (all steps)%s"
+                      % (name, np, "" if exact else " (parallel MUMPS)", "bit for bit" if exact else "to 1e-10",
+                         "" if not fails else ": " + "; ".join(map(str, fails[:3]))))
             lines_full = [l for l in out_full.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:"))]
             lines_part = [l for l in out2.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:"))]
-            chk.check(lines_full == lines_part and lines_full, "%s np=%d: the scene's report is identical" % (name, np))
+            if exact:
+                chk.check(lines_full == lines_part and lines_full, "%s np=%d: the scene's report is identical" % (name, np))
     # refusals
     ck_patch = os.path.join(tmp, "patch1_ck.h5")
     ck_cap = os.path.join(tmp, "capstan1_ck.h5")
