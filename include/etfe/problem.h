@@ -45,6 +45,8 @@ struct Problem {
 
   // Constraints on local DOFs (owned and ghost): the element loops drop their rows/columns.
   std::vector<char> dof_constrained;   // per local DOF
+  std::vector<char> element_constrained;    // per local element: has a constrained DOF
+  std::vector<PetscInt> element_global;     // per local element: PETSc block ids of its nodes
   std::vector<PetscInt> con_owned_dof; // owned constrained DOFs (local index < 3*num_owned)
   std::vector<ScheduledValue> con_owned_value;
   // Prescribed displacement already absorbed into the reference (form finding moves the

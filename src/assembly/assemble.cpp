@@ -229,12 +229,13 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
       for (int k = 0; k < 81; ++k) K[k] -= L[k];
     }
     const int *tri = &m.tri[3 * e];
-    for (int r = 0; r < 9; ++r) {
-      if (!P->dof_constrained[3 * tri[r / 3] + r % 3]) continue;
-      for (int c = 0; c < 9; ++c) K[9 * r + c] = K[9 * c + r] = 0.0;
-    }
-    const PetscInt idx[3] = {tri[0], tri[1], tri[2]};
-    PetscCall(MatSetValuesBlockedLocal(Pmat, 3, idx, 3, idx, K, ADD_VALUES));
+    if (P->element_constrained[e])
+      for (int r = 0; r < 9; ++r) {
+        if (!P->dof_constrained[3 * tri[r / 3] + r % 3]) continue;
+        for (int c = 0; c < 9; ++c) K[9 * r + c] = K[9 * c + r] = 0.0;
+      }
+    // Global block ids precomputed: no local-to-global lookup per element.
+    PetscCall(MatSetValuesBlocked(Pmat, 3, &P->element_global[3 * e], 3, &P->element_global[3 * e], K, ADD_VALUES));
   }
   if (P->contact) {
     for (ContactPair &pr : P->contact->pairs) {

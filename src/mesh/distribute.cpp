@@ -209,6 +209,15 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
     P->dof_constrained[dof] = 1;
   }
 
+  P->element_constrained.assign(m.num_elements, 0);
+  P->element_global.resize(3 * m.num_elements);
+  for (PetscInt e = 0; e < m.num_elements; ++e)
+    for (int a = 0; a < 3; ++a) {
+      const int l = m.tri[3 * e + a];
+      P->element_global[3 * e + a] = m.global_id[l];
+      for (int i = 0; i < 3; ++i) P->element_constrained[e] |= P->dof_constrained[3 * l + i];
+    }
+
   // Pressure only when the scene has it.
   if (P->scene.pressure.active) {
     P->has_pressure = true;
