@@ -105,6 +105,8 @@ PetscErrorCode CheckStep(Problem *problem, Vec X, Vec W, PetscBool *ok);
 // rebuilds the element reference geometry and absorbs U into the constraint offsets. U is not
 // changed; the caller zeroes it. Used by form finding's updated-reference iterations.
 PetscErrorCode UpdateReference(Problem *problem, Vec U);
+// Largest nodal (3-vector) norm of a block-3 vector (collective).
+PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max);
 // Current position X + U of a scene node (collective).
 PetscErrorCode ProblemGetNodePosition(Problem *problem, Vec U, PetscInt node, double x[3]);
 // Commits the material history at the converged U (history is updated only here).

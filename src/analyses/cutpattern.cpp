@@ -1,4 +1,5 @@
 // Cutting-pattern driver: strips from element sets, flattening, files and table (see cutpattern.h).
+#include "etfe/rank0.h"
 #include "etfe/cutpattern.h"
 
 #include <algorithm>
@@ -133,14 +134,7 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
     }
     if (ok && !WritePatternLineTable(dir + "/" + stem + "_lines.csv", table, &err)) ok = 0;
   }
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
-  if (!ok) {
-    int len = (int)err.size();
-    PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
-    err.resize(len);
-    PetscCallMPI(MPI_Bcast(err.data(), len, MPI_CHAR, 0, comm));
-    SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "%s", err.c_str());
-  }
+  PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_NOT_CONVERGED));
   PetscCall(PetscPrintf(comm, "%s", report.c_str()));
   PetscFunctionReturn(0);
 }

@@ -38,23 +38,6 @@ PetscErrorCode FormFindOptionsFromCommandLine(MPI_Comm comm, FormFindOptions *o)
 
 namespace {
 
-PetscErrorCode MaxNodalMove(Vec U, PetscReal *m) {
-  const PetscScalar *a;
-  PetscInt n;
-  PetscReal local = 0.0;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(U, &n));
-  PetscCall(VecGetArrayRead(U, &a));
-  for (PetscInt i = 0; i + 2 < n; i += 3)
-    local = PetscMax(local, std::sqrt(a[i] * a[i] + a[i + 1] * a[i + 1] + a[i + 2] * a[i + 2]));
-  PetscCall(VecRestoreArrayRead(U, &a));
-  PetscCallMPI(MPI_Allreduce(&local, m, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)U)));
-  PetscFunctionReturn(0);
-}
-
-// Largest move along the nodal normals (area-weighted element normals of the reference). The
-// surface changes only through normal moves; tangential ones slide nodes within it (the mesh
-// settling into its discrete tangential balance, which is slow and does not change the shape).
 // Area-weighted nodal normals of the reference, unnormalised, in P->F_work (owned part valid).
 PetscErrorCode NodalNormals(Problem *P) {
   const LocalMesh &lm = P->mesh;
@@ -170,7 +153,7 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
     PetscReal move, all;
     if (o.mesh_control) PetscCall(ProjectOnNormals(P, P->U));
     PetscCall(MaxNormalMove(P, P->U, &move));
-    PetscCall(MaxNodalMove(P->U, &all));
+    PetscCall(VecMaxNodalNorm(P->U, &all));
     PetscCall(VecAXPY(U_total, 1.0, P->U));
     PetscCall(UpdateReference(P, P->U));
     if (P->bad_status != KERNEL_OK) {

@@ -92,6 +92,20 @@ PetscErrorCode ReduceStatus(Problem *P, int status, PetscInt element) {
 
 } // namespace
 
+PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max) {
+  const PetscScalar *a;
+  PetscInt n;
+  PetscReal local = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(v, &n));
+  PetscCall(VecGetArrayRead(v, &a));
+  for (PetscInt i = 0; i + 2 < n; i += 3)
+    local = PetscMax(local, std::sqrt(a[i] * a[i] + a[i + 1] * a[i + 1] + a[i + 2] * a[i + 2]));
+  PetscCall(VecRestoreArrayRead(v, &a));
+  PetscCallMPI(MPI_Allreduce(&local, max, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)v)));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ApplyConstraints(Problem *P, double t, Vec U) {
   PetscScalar *u;
   PetscFunctionBeginUser;

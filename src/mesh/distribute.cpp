@@ -290,30 +290,30 @@ PetscErrorCode ProblemDestroy(Problem *P) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ProblemGetNodeDisplacement(Problem *P, Vec U, PetscInt node, double u[3]) {
+namespace {
+
+// Collective look-up of one scene node: its displacement, plus its reference position if asked.
+PetscErrorCode NodeValue(Problem *P, Vec U, PetscInt node, bool with_reference, double out[3]) {
   double mine[3] = {0, 0, 0};
   const PetscScalar *a;
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(U, &a));
   for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
     if (P->mesh.natural_id[l] == node)
-      for (int i = 0; i < 3; ++i) mine[i] = a[3 * l + i];
+      for (int i = 0; i < 3; ++i) mine[i] = a[3 * l + i] + (with_reference ? P->mesh.X[3 * l + i] : 0.0);
   PetscCall(VecRestoreArrayRead(U, &a));
-  PetscCallMPI(MPI_Allreduce(mine, u, 3, MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscCallMPI(MPI_Allreduce(mine, out, 3, MPI_DOUBLE, MPI_SUM, P->comm));
   PetscFunctionReturn(0);
 }
 
+} // namespace
+
+PetscErrorCode ProblemGetNodeDisplacement(Problem *P, Vec U, PetscInt node, double u[3]) {
+  return NodeValue(P, U, node, false, u);
+}
+
 PetscErrorCode ProblemGetNodePosition(Problem *P, Vec U, PetscInt node, double x[3]) {
-  double mine[3] = {0, 0, 0};
-  const PetscScalar *a;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(U, &a));
-  for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
-    if (P->mesh.natural_id[l] == node)
-      for (int i = 0; i < 3; ++i) mine[i] = P->mesh.X[3 * l + i] + a[3 * l + i];
-  PetscCall(VecRestoreArrayRead(U, &a));
-  PetscCallMPI(MPI_Allreduce(mine, x, 3, MPI_DOUBLE, MPI_SUM, P->comm));
-  PetscFunctionReturn(0);
+  return NodeValue(P, U, node, true, x);
 }
 
 PetscErrorCode ProblemGetNodeCoordinates(Problem *P, PetscInt node, double X[3]) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "etfe/rank0.h"
 #include "etfe/mesh/gmsh_reader.h"
 #include "etfe/scene.h"
 
@@ -109,14 +110,7 @@ PetscErrorCode MeshReadAndBroadcast(MPI_Comm comm, const char path[], MeshData *
     ok = ReadGmshFile(path, mesh, &err) ? 1 : 0;
     if (ok && !MeshCheck(*mesh, 0.0, &err)) ok = 0;
   }
-  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
-  if (!ok) {
-    int len = (int)err.size();
-    PetscCallMPI(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
-    err.resize(len);
-    PetscCallMPI(MPI_Bcast(err.data(), len, MPI_CHAR, 0, comm));
-    SETERRQ(comm, PETSC_ERR_FILE_READ, "%s", err.c_str());
-  }
+  PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   // Broadcast coordinates, triangles and the named sets.
   long long sizes[3] = {(long long)mesh->coords.size(), (long long)mesh->triangles.size(),
                         (long long)mesh->node_sets.size() + (long long)mesh->element_sets.size()};

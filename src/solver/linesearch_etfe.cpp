@@ -31,21 +31,6 @@ struct EtfeLineSearch {
   PetscReal armijo = 1e-4;
 };
 
-// Largest nodal (3-vector) norm of y.
-PetscErrorCode MaxNodalNorm(Vec y, PetscReal *m) {
-  const PetscScalar *a;
-  PetscInt n;
-  PetscReal local = 0.0;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetLocalSize(y, &n));
-  PetscCall(VecGetArrayRead(y, &a));
-  for (PetscInt i = 0; i + 2 < n; i += 3)
-    local = PetscMax(local, std::sqrt(a[i] * a[i] + a[i + 1] * a[i + 1] + a[i + 2] * a[i + 2]));
-  PetscCall(VecRestoreArrayRead(y, &a));
-  PetscCallMPI(MPI_Allreduce(&local, m, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)y)));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode CheckLinearResidual(SNESLineSearch ls, EtfeLineSearch *d, Vec F, Vec Y,
                                    PetscReal fnorm, PetscBool *ok) {
   SNES snes;
@@ -98,7 +83,7 @@ PetscErrorCode Apply(SNESLineSearch ls) {
   }
   if (d->max_update > 0.0) {
     PetscReal ymax;
-    PetscCall(MaxNodalNorm(Y, &ymax));
+    PetscCall(VecMaxNodalNorm(Y, &ymax));
     if (ymax > d->max_update) {
       lambda = d->max_update / ymax;
       PetscCall(PetscInfo(ls, "step capped: largest nodal update %g > %g\n", (double)ymax,
