@@ -38,4 +38,11 @@ with scratch_dir() as tmp:
     print("h1 at mesh_n 10/20/40: %s" % ", ".join("%.3f" % x for x in h))
     chk.check(abs(h[2] - h[1]) < abs(h[1] - h[0]) + 1e-6 and abs(h[2] - h[1]) / h[2] < 1e-3,
               "h1 settles under refinement (changes %.3f then %.3f mm)" % (h[1] - h[0], h[2] - h[1]))
+    # The thesis's iteration (no mesh control) drifts for the anisotropic saddle: the robust method
+    # converges where it does not.
+    rc, out = run(etfe, ["-options_file", f, "-formfind_monitor", 0, "-output", 0, "-formfind_mesh_control", 0,
+                         "-formfind_max_iterations", 200, "-formfind_mesh_out", os.path.join(tmp, "t.msh")],
+                  expect_fail=None)
+    chk.check(rc != 0 and "did not converge" in out,
+              "without mesh control (the thesis's iteration) the 3:1 saddle does not converge in 200 iterations")
 chk.finish()
