@@ -39,6 +39,14 @@ private:
   std::map<std::pair<int, int>, Entry> entries_;
 };
 
+// Collective: owned rows (PETSc order) written as the dataset `name` in the scene's order,
+// as doubles or (as_int) integers.
+PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
+                              Layout layout, int ncomp, const double *owned, bool as_int = false);
+// Collective: the dataset `name` (scene order) read back into owned rows (PETSc order).
+PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
+                             Layout layout, int ncomp, double *owned);
+
 // Collective on the file's communicator. `file` names the file in messages.
 PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,
                            hsize_t cols, hsize_t row0, hsize_t nrows, const void *data);

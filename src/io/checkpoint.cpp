@@ -34,30 +34,6 @@ Shape ProblemShape(const Problem *P) {
           (long long)P->scene.NumStages()};
 }
 
-PetscErrorCode WriteOwned(const std::string &file, NaturalOrder &order, hid_t fid, const char *name, Layout layout,
-                          int ncomp, const double *owned) {
-  Vec nat;
-  PetscInt row0, nrows;
-  const PetscScalar *a;
-  PetscFunctionBeginUser;
-  PetscCall(order.ToNatural(layout, ncomp, owned, &nat, &row0, &nrows));
-  PetscCall(VecGetArrayRead(nat, &a));
-  PetscCall(H5WriteRows(file, fid, name, H5T_NATIVE_DOUBLE, order.GlobalRows(layout), ncomp, row0, nrows, a));
-  PetscCall(VecRestoreArrayRead(nat, &a));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ReadOwned(const std::string &file, NaturalOrder &order, hid_t fid, const char *name, Layout layout,
-                         int ncomp, double *owned) {
-  PetscInt row0, nrows;
-  PetscFunctionBeginUser;
-  PetscCall(order.RowBlock(layout, ncomp, &row0, &nrows));
-  std::vector<double> rows((size_t)nrows * ncomp);
-  PetscCall(H5ReadRows(file, fid, name, H5T_NATIVE_DOUBLE, order.GlobalRows(layout), ncomp, row0, nrows, rows.data()));
-  PetscCall(order.FromNatural(layout, ncomp, rows.data(), owned));
-  PetscFunctionReturn(0);
-}
-
 } // namespace
 
 PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const char *scene, CheckpointOptions *o) {
@@ -117,12 +93,12 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
   for (int k = 0; k < 3; ++k) PetscCall(H5WriteAttribute(tmp, f, dnames[k], H5T_NATIVE_DOUBLE, &dbl[k]));
   for (int k = 0; k < 5; ++k) PetscCall(H5WriteAttribute(tmp, f, inames[k], H5T_NATIVE_LLONG, &ints[k]));
   PetscCall(VecGetArrayRead(Uc, &a));
-  PetscCall(WriteOwned(tmp, order, f, "u_committed", Layout::Nodes, 3, a));
+  PetscCall(H5WriteNatural(tmp, order, f, "u_committed", Layout::Nodes, 3, a));
   PetscCall(VecRestoreArrayRead(Uc, &a));
   PetscCall(VecGetArrayRead(Up, &a));
-  PetscCall(WriteOwned(tmp, order, f, "u_previous", Layout::Nodes, 3, a));
+  PetscCall(H5WriteNatural(tmp, order, f, "u_previous", Layout::Nodes, 3, a));
   PetscCall(VecRestoreArrayRead(Up, &a));
-  if (sh.history > 0) PetscCall(WriteOwned(tmp, order, f, "history", Layout::Cells, (int)sh.history, P->history.data()));
+  if (sh.history > 0) PetscCall(H5WriteNatural(tmp, order, f, "history", Layout::Cells, (int)sh.history, P->history.data()));
   if (P->contact) {
     std::vector<double> cst(7 * P->contact->pairs.size());
     for (size_t k = 0; k < P->contact->pairs.size(); ++k) {
@@ -130,7 +106,7 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
       for (int i = 0; i < 3; ++i) cst[7 * k + i] = c.g[i], cst[7 * k + 3 + i] = c.f[i];
       cst[7 * k + 6] = c.status;
     }
-    PetscCall(WriteOwned(tmp, order, f, "contact_state", Layout::Pairs, 7, cst.data()));
+    PetscCall(H5WriteNatural(tmp, order, f, "contact_state", Layout::Pairs, 7, cst.data()));
   }
   if (P->scene.state_get) {
     std::vector<double> v;
@@ -228,15 +204,15 @@ PetscErrorCode CheckpointRead(Problem *P, const std::string &path, StepperState 
   st->step = ints[0], st->converged_states = ints[1], st->easy = ints[2], st->cutbacks = ints[3];
   st->newton = ints[4];
   PetscCall(VecGetArray(Uc, &a));
-  PetscCall(ReadOwned(path, order, f, "u_committed", Layout::Nodes, 3, a));
+  PetscCall(H5ReadNatural(path, order, f, "u_committed", Layout::Nodes, 3, a));
   PetscCall(VecRestoreArray(Uc, &a));
   PetscCall(VecGetArray(Up, &a));
-  PetscCall(ReadOwned(path, order, f, "u_previous", Layout::Nodes, 3, a));
+  PetscCall(H5ReadNatural(path, order, f, "u_previous", Layout::Nodes, 3, a));
   PetscCall(VecRestoreArray(Up, &a));
-  if (sh.history > 0) PetscCall(ReadOwned(path, order, f, "history", Layout::Cells, (int)sh.history, P->history.data()));
+  if (sh.history > 0) PetscCall(H5ReadNatural(path, order, f, "history", Layout::Cells, (int)sh.history, P->history.data()));
   if (P->contact) {
     std::vector<double> cst(7 * P->contact->pairs.size());
-    PetscCall(ReadOwned(path, order, f, "contact_state", Layout::Pairs, 7, cst.data()));
+    PetscCall(H5ReadNatural(path, order, f, "contact_state", Layout::Pairs, 7, cst.data()));
     for (size_t k = 0; k < P->contact->pairs.size(); ++k) {
       ContactState &c = P->contact->pairs[k].committed;
       for (int i = 0; i < 3; ++i) c.g[i] = cst[7 * k + i], c.f[i] = cst[7 * k + 3 + i];

@@ -234,4 +234,35 @@ PetscErrorCode H5ReadString(const std::string &file, hid_t obj, const char *name
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
+                              Layout layout, int ncomp, const double *owned, bool as_int) {
+  Vec nat = nullptr;
+  PetscInt row0 = 0, nrows = 0;
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(order.ToNatural(layout, ncomp, owned, &nat, &row0, &nrows));
+  const hsize_t total = order.GlobalRows(layout);
+  PetscCall(VecGetArrayRead(nat, &a));
+  if (as_int) {
+    std::vector<int> v(a, a + nrows * ncomp);
+    PetscCall(H5WriteRows(file, group, name, H5T_NATIVE_INT, total, ncomp, row0, nrows, v.data()));
+  } else {
+    PetscCall(H5WriteRows(file, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a));
+  }
+  PetscCall(VecRestoreArrayRead(nat, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
+                             Layout layout, int ncomp, double *owned) {
+  PetscInt row0, nrows;
+  PetscFunctionBeginUser;
+  PetscCall(order.RowBlock(layout, ncomp, &row0, &nrows));
+  std::vector<double> rows((size_t)nrows * ncomp);
+  PetscCall(H5ReadRows(file, group, name, H5T_NATIVE_DOUBLE, order.GlobalRows(layout), ncomp, row0, nrows,
+                       rows.data()));
+  PetscCall(order.FromNatural(layout, ncomp, rows.data(), owned));
+  PetscFunctionReturn(0);
+}
+
 } // namespace etfe

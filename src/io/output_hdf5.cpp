@@ -28,21 +28,7 @@ namespace {
 
 PetscErrorCode WriteField(OutputFile *out, hid_t group, const char *name, Layout layout, int ncomp,
                           const double *owned, bool as_int = false) {
-  Vec nat = nullptr;
-  PetscInt row0 = 0, nrows = 0;
-  const PetscScalar *a;
-  PetscFunctionBeginUser;
-  PetscCall(out->order->ToNatural(layout, ncomp, owned, &nat, &row0, &nrows));
-  const hsize_t total = out->order->GlobalRows(layout);
-  PetscCall(VecGetArrayRead(nat, &a));
-  if (as_int) {
-    std::vector<int> v(a, a + nrows * ncomp);
-    PetscCall(H5WriteRows(out->path, group, name, H5T_NATIVE_INT, total, ncomp, row0, nrows, v.data()));
-  } else {
-    PetscCall(H5WriteRows(out->path, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a));
-  }
-  PetscCall(VecRestoreArrayRead(nat, &a));
-  PetscFunctionReturn(0);
+  return H5WriteNatural(out->path, *out->order, group, name, layout, ncomp, owned, as_int);
 }
 
 // Contact pairs of a step: local force, slide (local and global X/Y), status, film node.
