@@ -122,6 +122,5 @@ PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields);
 
 // Collective look-ups by scene (natural) id, for scene reports and probes.
 PetscErrorCode ProblemGetNodeDisplacement(Problem *problem, Vec U, PetscInt node, double u[3]);
-PetscErrorCode ProblemGetNodeCoordinates(Problem *problem, PetscInt node, double X[3]);
 
 } // namespace etfe

@@ -54,7 +54,7 @@ static PetscErrorCode BuildReferenceGeometry(Problem *P) {
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CreateMatrix(Problem *P, const MeshData &gm, const std::vector<int> &owner,
+static PetscErrorCode CreateMatrix(Problem *P, const MeshData &gm,
                                    const std::vector<PetscInt> &petsc_id) {
   LocalMesh &m = P->mesh;
   const PetscInt n = m.num_owned, start = m.owned_start;
@@ -85,7 +85,6 @@ static PetscErrorCode CreateMatrix(Problem *P, const MeshData &gm, const std::ve
     d_nnz[r] = d;
     o_nnz[r] = o;
   }
-  (void)owner;
   PetscCall(MatCreate(P->comm, &P->J));
   PetscCall(MatSetSizes(P->J, 3 * n, 3 * n, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetBlockSize(P->J, 3));
@@ -256,7 +255,7 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   PetscCall(VecDuplicate(P->U, &P->reaction));
   PetscCall(ISLocalToGlobalMappingCreate(comm, 3, nl, m.global_id.data(), PETSC_COPY_VALUES,
                                          &P->l2g));
-  PetscCall(CreateMatrix(P, gm, owner, petsc_id));
+  PetscCall(CreateMatrix(P, gm, petsc_id));
   if (P->scene.contact.active) {
     PetscCall(ContactCreate(P, &P->contact));
     if (P->contact->law != FrictionLaw::Fixed && P->contact->params.mu > 0)
@@ -314,12 +313,6 @@ PetscErrorCode ProblemGetNodeDisplacement(Problem *P, Vec U, PetscInt node, doub
 
 PetscErrorCode ProblemGetNodePosition(Problem *P, Vec U, PetscInt node, double x[3]) {
   return NodeValue(P, U, node, true, x);
-}
-
-PetscErrorCode ProblemGetNodeCoordinates(Problem *P, PetscInt node, double X[3]) {
-  PetscFunctionBeginUser;
-  for (int i = 0; i < 3; ++i) X[i] = P->scene.mesh.coords[3 * node + i];
-  PetscFunctionReturn(0);
 }
 
 } // namespace etfe
