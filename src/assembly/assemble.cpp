@@ -147,9 +147,9 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   if (P->has_pressure) {
     const double p = P->pressure_value.At(P->scene.schedules, P->time);
     for (PetscInt e : P->pressure_elements) {
-      double x[9], fe[9], L[81];
+      double x[9], fe[9];
       GatherCoordinates(m, e, u, x);
-      PressureLoad(p, x, fe, L);
+      PressureLoad(p, x, fe, nullptr);  // the residual needs no load stiffness
       for (int a = 0; a < 3; ++a)
         for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] -= fe[3 * a + i];
       for (int k = 0; k < 9; ++k) ext2 += fe[k] * fe[k];

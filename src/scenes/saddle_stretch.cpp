@@ -146,8 +146,10 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
   }
   if (P->contact)
     for (const ContactPair &pr : P->contact->pairs)
-      loc[3] = std::max(loc[3], std::hypot(ContactReport(*P->contact, pr).slide_local[0],
-                                           ContactReport(*P->contact, pr).slide_local[1]));
+    {
+      const ContactPairReport r = ContactReport(*P->contact, pr);
+      loc[3] = std::max(loc[3], std::hypot(r.slide_local[0], r.slide_local[1]));
+    }
   PetscCallMPI(MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, P->comm));
   PetscCallMPI(MPI_Allreduce(loc + 2, glob + 2, 2, MPI_DOUBLE, MPI_MAX, P->comm));
   PetscCall(PetscPrintf(P->comm,
