@@ -19,6 +19,8 @@ public:
   // HistorySize() == 0. Returns a KernelStatus.
   virtual int Evaluate(const double E[3], const double *hist_old, double *hist_new, double S[3],
                        double D[9]) const = 0;
+  // Whether the history holds a plastic strain (then PlasticStrain reads it).
+  virtual bool HasPlasticStrain() const { return false; }
   // Plastic strain (Voigt) and its equivalent value from a history record, if the law has one.
   virtual bool PlasticStrain(const double *hist, double ep[3], double *ep_bar) const {
     return false;

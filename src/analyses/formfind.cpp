@@ -131,6 +131,12 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
   const double size = ModelSize(P->scene.mesh);
   P->time = P->scene.NumStages();  // boundaries at their final (prescribed) positions
   res->converged = PETSC_FALSE;
+  // A scene may give each element its own stress ratio (the saddle: middle 1:1, corners 3:1).
+  // The prescribed-stress material keeps (S_MD, S_TD) as its element history.
+  const auto &ratio = P->scene.element_stress_ratio;
+  if (!ratio.empty())
+    for (PetscInt e = 0; e < P->mesh.num_elements; ++e)
+      P->history[2 * e] = ratio[P->mesh.element_natural[e]] * P->history[2 * e + 1];
   for (PetscInt it = 1; it <= o.max_iterations; ++it) {
     PetscCall(VecZeroEntries(P->U));
     PetscCall(ApplyConstraints(P, P->time, P->U));

@@ -74,6 +74,23 @@ PetscErrorCode ScatterToLocal(Vec global, Vec ghosted) {
   PetscFunctionReturn(0);
 }
 
+// U with its ghost values as one local array (owned nodes, then ghosts), read-only; every
+// element loop starts with it. Pair with RestoreLocalArray.
+PetscErrorCode GetLocalArray(Vec U, Vec ghosted, Vec *local, const PetscScalar **a) {
+  PetscFunctionBeginUser;
+  PetscCall(ScatterToLocal(U, ghosted));
+  PetscCall(VecGhostGetLocalForm(ghosted, local));
+  PetscCall(VecGetArrayRead(*local, a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RestoreLocalArray(Vec ghosted, Vec *local, const PetscScalar **a) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(*local, a));
+  PetscCall(VecGhostRestoreLocalForm(ghosted, local));
+  PetscFunctionReturn(0);
+}
+
 // Agrees on the worst element status over all ranks and remembers which element it was.
 PetscErrorCode ReduceStatus(Problem *P, int status, PetscInt element) {
   int local[2] = {status, (int)element}, global[2];
@@ -126,11 +143,9 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscInt bad = -1;
   double ext2 = 0.0;  // sum of squares of external nodal loads (an estimate of their norm)
   PetscFunctionBeginUser;
-  PetscCall(ScatterToLocal(U, P->U_work));
-  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
+  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   PetscCall(VecGhostGetLocalForm(P->F_work, &Fl));
   PetscCall(VecZeroEntries(Fl));
-  PetscCall(VecGetArrayRead(Ul, &u));
   PetscCall(VecGetArray(Fl, &f));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double x[9], F[6], E[3], S[3], D[9], fe[9];
@@ -172,9 +187,8 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
     }
   }
   PetscCall(VecRestoreArray(Fl, &f));
-  PetscCall(VecRestoreArrayRead(Ul, &u));
   PetscCall(VecGhostRestoreLocalForm(P->F_work, &Fl));
-  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   PetscCall(VecGhostUpdateBegin(P->F_work, ADD_VALUES, SCATTER_REVERSE));
   PetscCall(VecGhostUpdateEnd(P->F_work, ADD_VALUES, SCATTER_REVERSE));
   PetscCall(VecCopy(P->F_work, Fout));
@@ -212,10 +226,8 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   int status = KERNEL_OK;
   PetscInt bad = -1;
   PetscFunctionBeginUser;
-  PetscCall(ScatterToLocal(U, P->U_work));
   PetscCall(MatZeroEntries(Pmat));
-  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
-  PetscCall(VecGetArrayRead(Ul, &u));
+  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   const double p = P->has_pressure ? P->pressure_value.At(P->scene.schedules, P->time) : 0.0;
   std::vector<char> loaded;
   if (P->has_pressure && p != 0.0) {
@@ -262,8 +274,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
       PetscCall(MatSetValuesBlockedLocal(Pmat, 1, &l, 1, &l, K, ADD_VALUES));
     }
   }
-  PetscCall(VecRestoreArrayRead(Ul, &u));
-  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   for (PetscInt d : P->con_owned_dof) {
     const PetscScalar one = 1.0;
     PetscCall(MatSetValuesLocal(Pmat, 1, &d, 1, &d, &one, ADD_VALUES));
@@ -292,12 +303,8 @@ PetscErrorCode CheckStep(Problem *P, Vec X, Vec W, PetscBool *ok) {
   int status = KERNEL_OK;
   PetscInt bad = -1;
   PetscFunctionBeginUser;
-  PetscCall(ScatterToLocal(X, P->F_work));
-  PetscCall(ScatterToLocal(W, P->U_work));
-  PetscCall(VecGhostGetLocalForm(P->F_work, &Xl));
-  PetscCall(VecGhostGetLocalForm(P->U_work, &Wl));
-  PetscCall(VecGetArrayRead(Xl, &xa));
-  PetscCall(VecGetArrayRead(Wl, &wa));
+  PetscCall(GetLocalArray(X, P->F_work, &Xl, &xa));
+  PetscCall(GetLocalArray(W, P->U_work, &Wl, &wa));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double x0[9], x1[9], n0[3], n1[3];
     GatherCoordinates(m, e, xa, x0);
@@ -311,10 +318,8 @@ PetscErrorCode CheckStep(Problem *P, Vec X, Vec W, PetscBool *ok) {
       break;
     }
   }
-  PetscCall(VecRestoreArrayRead(Wl, &wa));
-  PetscCall(VecRestoreArrayRead(Xl, &xa));
-  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Wl));
-  PetscCall(VecGhostRestoreLocalForm(P->F_work, &Xl));
+  PetscCall(RestoreLocalArray(P->U_work, &Wl, &wa));
+  PetscCall(RestoreLocalArray(P->F_work, &Xl, &xa));
   PetscCall(ReduceStatus(P, status, bad));
   *ok = P->bad_status == KERNEL_OK ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
@@ -327,13 +332,10 @@ PetscErrorCode UpdateReference(Problem *P, Vec U) {
   int status = KERNEL_OK;
   PetscInt bad = -1;
   PetscFunctionBeginUser;
-  PetscCall(ScatterToLocal(U, P->U_work));
-  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
-  PetscCall(VecGetArrayRead(Ul, &u));
+  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   for (PetscInt i = 0; i < 3 * m.NumLocal(); ++i) m.X[i] += u[i];
   for (size_t k = 0; k < P->con_owned_dof.size(); ++k) P->con_owned_offset[k] += u[P->con_owned_dof[k]];
-  PetscCall(VecRestoreArrayRead(Ul, &u));
-  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double X[9];
     for (int a = 0; a < 3; ++a)
@@ -354,9 +356,7 @@ PetscErrorCode CommitHistory(Problem *P, Vec U) {
   PetscInt bad = -1;
   PetscFunctionBeginUser;
   if (nh == 0) PetscFunctionReturn(0);
-  PetscCall(ScatterToLocal(U, P->U_work));
-  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
-  PetscCall(VecGetArrayRead(Ul, &u));
+  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double x[9], F[6], E[3], S[3], D[9];
     GatherCoordinates(m, e, u, x);
@@ -365,8 +365,7 @@ PetscErrorCode CommitHistory(Problem *P, Vec U) {
                                    &P->history_trial[(size_t)nh * e], S, D);
     if (st != KERNEL_OK) status = st, bad = m.element_natural[e];
   }
-  PetscCall(VecRestoreArrayRead(Ul, &u));
-  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   PetscCall(ReduceStatus(P, status, bad));
   PetscCheck(P->bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
              "committing the history: element %" PetscInt_FMT ": %s", P->bad_element,
@@ -389,11 +388,7 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
   c->smin.assign(ne, 0);
   c->emin.assign(ne, 0);
   c->area_ratio.assign(ne, 0);
-  bool plastic = false;
-  if (nh) {
-    double h0[16] = {0}, ep[3], epb;
-    plastic = P->material->PlasticStrain(h0, ep, &epb);
-  }
+  const bool plastic = P->material->HasPlasticStrain();
   c->ep.assign(plastic ? 3 * ne : 0, 0);
   c->ep_bar.assign(plastic ? ne : 0, 0);
   // Nodal averages: (sum, count) per node in a ghosted block-2 vector.
@@ -404,9 +399,7 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
   PetscCall(VecGhostGetLocalForm(acc, &accl));
   PetscCall(VecZeroEntries(accl));
   PetscCall(VecGetArray(accl, &a));
-  PetscCall(ScatterToLocal(U, P->U_work));
-  PetscCall(VecGhostGetLocalForm(P->U_work, &Ul));
-  PetscCall(VecGetArrayRead(Ul, &u));
+  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   for (PetscInt e = 0; e < ne; ++e) {
     double x[9], F[6], E[3], S[3], D[9], hist[16];
     GatherCoordinates(m, e, u, x);
@@ -432,8 +425,7 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
       a[2 * m.tri[3 * e + k] + 1] += 1.0;
     }
   }
-  PetscCall(VecRestoreArrayRead(Ul, &u));
-  PetscCall(VecGhostRestoreLocalForm(P->U_work, &Ul));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   PetscCall(VecRestoreArray(accl, &a));
   PetscCall(VecGhostRestoreLocalForm(acc, &accl));
   PetscCall(VecGhostUpdateBegin(acc, ADD_VALUES, SCATTER_REVERSE));

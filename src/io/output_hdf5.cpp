@@ -63,7 +63,7 @@ PetscErrorCode WriteXdmf(OutputFile *out) {
   const LocalMesh &m = out->problem->mesh;
   const std::string h5 = std::filesystem::path(out->path).filename().string();
   const long long N = m.num_nodes_global, E = m.num_elements_global;
-  const bool plastic = !out->problem->history.empty();
+  const bool plastic = out->problem->material->HasPlasticStrain();
   const std::string tmp = out->xdmf_path + ".tmp";
   FILE *f = std::fopen(tmp.c_str(), "w");
   PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", tmp.c_str());
@@ -306,9 +306,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(WriteField(out, g, "min_principal_stress", Layout::Cells, 1, c.smin.data()));
   PetscCall(WriteField(out, g, "min_principal_strain", Layout::Cells, 1, c.emin.data()));
   PetscCall(WriteField(out, g, "area_ratio", Layout::Cells, 1, c.area_ratio.data()));
-  if (!c.ep_bar.empty() || !P->history.empty()) {
-    c.ep.resize(3 * P->mesh.num_elements);
-    c.ep_bar.resize(P->mesh.num_elements);
+  if (P->material->HasPlasticStrain()) {
     PetscCall(WriteField(out, g, "plastic_strain", Layout::Cells, 3, c.ep.data()));
     PetscCall(WriteField(out, g, "plastic_strain_eq", Layout::Cells, 1, c.ep_bar.data()));
   }

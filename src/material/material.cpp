@@ -49,6 +49,7 @@ public:
     if (hnew) std::memcpy(hnew, &trial, sizeof trial);
     return st;
   }
+  bool HasPlasticStrain() const override { return true; }
   bool PlasticStrain(const double *h, double ep[3], double *ep_bar) const override {
     ep[0] = h[0], ep[1] = h[1], ep[2] = h[2];
     *ep_bar = h[3];

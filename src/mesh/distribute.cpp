@@ -183,11 +183,6 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
     P->history.resize((size_t)nh * m.num_elements);
     P->history_trial.resize((size_t)nh * m.num_elements);
     for (PetscInt e = 0; e < m.num_elements; ++e) P->material->InitHistory(&P->history[nh * e]);
-    // Form finding with a stress ratio per element: (S_MD, S_TD) = (ratio * S_TD, S_TD).
-    const auto &ratio = P->scene.element_stress_ratio;
-    if (!ratio.empty() && std::string(P->material->Name()) == "prescribed_stress")
-      for (PetscInt e = 0; e < m.num_elements; ++e)
-        P->history[nh * e] = ratio[m.element_natural[e]] * P->history[nh * e + 1];
   }
 
   // Constraints: every local DOF (owned or ghost) knows whether it is constrained.

@@ -19,6 +19,7 @@ namespace {
 struct CapstanContext {
   double theta, t1, tB[3];
   std::vector<int> end_b;    // scene node ids of end B
+  std::vector<char> is_b;    // per scene node: on end B
   double t2_onset = -1.0, t2_last = 0.0;
   PetscInt monitor = 1;
   PetscInt onset_step = -1;
@@ -27,9 +28,8 @@ struct CapstanContext {
 PetscErrorCode EndBTension(Problem *P, CapstanContext *c, double *t2) {
   const PetscScalar *r;
   double mine = 0.0;
-  std::vector<char> is_b(P->mesh.num_nodes_global, 0);
+  const std::vector<char> &is_b = c->is_b;
   PetscFunctionBeginUser;
-  for (int n : c->end_b) is_b[n] = 1;
   PetscCall(VecGetArrayRead(P->reaction, &r));
   for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
     if (is_b[P->mesh.natural_id[l]])
@@ -45,8 +45,7 @@ PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t) {
   PetscInt local[2] = {0, 0}, global[2];
   PetscFunctionBeginUser;
   PetscCall(EndBTension(P, c, &t2));
-  std::vector<char> is_b(P->mesh.num_nodes_global, 0);
-  for (int n : c->end_b) is_b[n] = 1;
+  const std::vector<char> &is_b = c->is_b;
   for (const ContactPair &pr : P->contact->pairs) {
     if (is_b[pr.natural_node]) continue;  // held by the grip: their slide is prescribed
     local[0] += pr.committed.status != CONTACT_OPEN;
@@ -123,9 +122,11 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene) {
   const int s_pull = scene->AddSchedule({"pull", 0.0, {0.0, 1.0}});
   const double phiA = -0.5 * theta, phiB = 0.5 * theta;
   const double tA[3] = {std::cos(phiA), 0.0, -std::sin(phiA)};
-  auto *ctx = new CapstanContext{theta, t1, {std::cos(phiB), 0.0, -std::sin(phiB)}, {}};
+  auto *ctx = new CapstanContext{theta, t1, {std::cos(phiB), 0.0, -std::sin(phiB)}, {}, {}};
   const auto &end_a = scene->mesh.node_sets.at("left");
   ctx->end_b = scene->mesh.node_sets.at("right");
+  ctx->is_b.assign(scene->mesh.NumNodes(), 0);
+  for (int n : ctx->end_b) ctx->is_b[n] = 1;
   for (int n : end_a) {
     const double y = scene->mesh.coords[3 * n + 1];
     const double share = (std::fabs(std::fabs(y) - 0.5 * width) < 1e-9 * width ? 0.5 : 1.0) / ny;

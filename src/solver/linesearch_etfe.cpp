@@ -31,22 +31,20 @@ struct EtfeLineSearch {
   PetscReal armijo = 1e-4;
 };
 
-PetscErrorCode CheckLinearResidual(SNESLineSearch ls, EtfeLineSearch *d, Vec F, Vec Y,
+// r is scratch (the line search's trial residual, overwritten by the trials that follow).
+PetscErrorCode CheckLinearResidual(SNESLineSearch ls, EtfeLineSearch *d, Vec F, Vec Y, Vec r,
                                    PetscReal fnorm, PetscBool *ok) {
   SNES snes;
   Mat J;
-  Vec r;
   PetscReal rnorm;
   PetscFunctionBeginUser;
   *ok = PETSC_TRUE;
   PetscCall(SNESLineSearchGetSNES(ls, &snes));
   PetscCall(SNESGetJacobian(snes, &J, nullptr, nullptr, nullptr));
   if (!J || fnorm == 0.0) PetscFunctionReturn(0);
-  PetscCall(VecDuplicate(F, &r));
   PetscCall(MatMult(J, Y, r));
   PetscCall(VecAXPY(r, -1.0, F));
   PetscCall(VecNorm(r, NORM_2, &rnorm));
-  PetscCall(VecDestroy(&r));
   const PetscReal rel = rnorm / fnorm;
   if (!(rel <= d->linear_fail)) {
     PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ls),
@@ -75,7 +73,7 @@ PetscErrorCode Apply(SNESLineSearch ls) {
   if (ls->norms) PetscCall(VecNorm(F, NORM_2, &fnorm));
 
   if (d->check_linear) {
-    PetscCall(CheckLinearResidual(ls, d, F, Y, fnorm, &ok));
+    PetscCall(CheckLinearResidual(ls, d, F, Y, G, fnorm, &ok));
     if (!ok) {
       PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_USER));
       PetscFunctionReturn(0);

@@ -202,8 +202,8 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     // Predictor: extrapolate the last converged increment, then impose the new prescribed values.
     PetscCall(VecCopy(U_committed, P->U));
     // ... and only within a stage: at a stage end the load path turns (loading -> unloading).
-    const bool same_stage = std::floor(t - dt_last + eps) == std::floor(t + eps - 1e-9) &&
-                            std::fabs(t - std::round(t)) > eps;
+    // (increments never cross a stage end, so away from one the last increment is in this stage)
+    const bool same_stage = std::fabs(t - std::round(t)) > eps;
     // Within a stage the extrapolation carries the path's curvature; where there is none to
     // extrapolate (first increment, a new stage) the tangent predictor takes the jump.
     if (o.extrapolate && dt_last > 0.0 && converged_states >= 2 && same_stage)
