@@ -38,6 +38,8 @@ struct Problem {
   double thickness = 0.25;  // mm
   double min_area_ratio = 1e-4;
   double tangent_shift = 0.0;
+  PetscBool tangent_shift_adaptive = PETSC_FALSE;  // shift x |F_k|/|F_0| (vanishes at convergence)
+  double shift_fnorm0 = 0.0;
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only  // N/mm added to the tangent's diagonal (-membrane_tangent_shift x E h)
   std::unique_ptr<Material> material;
   std::vector<double> history;        // committed history, HistorySize() per local element

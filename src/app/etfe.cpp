@@ -33,6 +33,9 @@ PetscErrorCode ReadMembraneOptions(MPI_Comm comm, Problem *P) {
   PetscCall(PetscOptionsReal("-membrane_tangent_shift",
                              "Tangent-only diagonal shift, relative to E h (slack starts; the answer is unchanged)",
                              "", P->tangent_shift, &P->tangent_shift, nullptr));
+  PetscCall(PetscOptionsBool("-membrane_tangent_shift_adaptive",
+                             "Scale the tangent shift by |F_k|/|F_0| of the Newton solve, so it vanishes at convergence",
+                             "", P->tangent_shift_adaptive, &P->tangent_shift_adaptive, nullptr));
   PetscCall(PetscOptionsBool("-membrane_tangent_tension_only",
                              "Geometric stiffness from the tensile part of the stress only (wrinkling films; "
                              "the answer is unchanged)", "", P->tangent_tension_only, &P->tangent_tension_only,

@@ -284,7 +284,18 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   // Slack starts: a shift of the tangent's diagonal (not of the residual) lets Newton take its
   // first steps where a stress-free film has no out-of-plane stiffness; the converged answer is
   // unchanged, the convergence rate slightly lowered while the shift matters.
-  if (P->tangent_shift > 0) PetscCall(MatShift(Pmat, P->tangent_shift));
+  if (P->tangent_shift > 0) {
+    double shift = P->tangent_shift;
+    if (snes && P->tangent_shift_adaptive) {
+      PetscInt it;
+      PetscReal fnorm;
+      PetscCall(SNESGetIterationNumber(snes, &it));
+      PetscCall(SNESGetFunctionNorm(snes, &fnorm));
+      if (it == 0) P->shift_fnorm0 = fnorm;
+      if (P->shift_fnorm0 > 0) shift *= std::min(1.0, (double)(fnorm / P->shift_fnorm0));
+    }
+    PetscCall(MatShift(Pmat, shift));
+  }
   if (J != Pmat) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
