@@ -11,6 +11,11 @@ present in only one file, a shape mismatch or a results file whose root attribut
 "complete" (unless --allow-incomplete) is a failure. Prints a table; exits 1 on any failure,
 2 on a usage error.
 
+--family-scale measures a field against the largest value of its family in the same step
+(stresses against the stresses, strains against the strains): a field that is round-off in one
+case, e.g. min_principal_stress of a uniaxial patch (~1e-12 MPa beside stresses of ~20 MPa), is
+then not held to a tolerance relative to its own near-zero size.
+
 --step last compares the last written step of A with the last of B (their step numbers must
 match); --step <k> compares step k of both; --step all compares every step (the sets of written
 steps must match). --field sets the tolerances of one field (a dataset name such as displacement,
@@ -70,6 +75,21 @@ def datasets(group, prefix=""):
     return res
 
 
+# Fields that share a scale (same unit, same physics): see --family-scale.
+FAMILIES = {
+    "stress": ("stress", "mises", "min_principal_stress", "nodal_mises", "cauchy_stress",
+               "cauchy_mises", "principal_stress"),
+    "strain": ("strain", "min_principal_strain", "plastic_strain", "plastic_strain_eq"),
+}
+
+
+def family_of(name):
+    for fam, members in FAMILIES.items():
+        if name in members:
+            return fam
+    return None
+
+
 def _parse_field_spec(spec):
     parts = spec.split(":")
     if len(parts) != 3:
@@ -93,11 +113,13 @@ def _diff(a, b):
 
 
 def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, default_atol=1e-12,
-                 only=False, allow_incomplete=False):
+                 only=False, allow_incomplete=False, family_scale=False):
     """Compare results file a_path against the reference b_path.
 
     step: "last", "all" or an int. fields: {name: (rtol, atol)} overriding the defaults (name is a
     dataset name such as "displacement" or "mesh/coordinates"). only: compare just those fields.
+    family_scale: a field's rtol applies to the largest |b| of its family in that step (see
+    FAMILIES) instead of its own largest |b|.
     Returns (failures, rows); rows are dicts with keys field, step, shape, max_abs, max_rel, tol, ok.
     """
     fields = dict(fields or {})
@@ -109,7 +131,7 @@ def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, de
     def wanted(name):
         return (not only) or name in fields
 
-    def check(label, stepname, name, da, db):
+    def check(label, stepname, name, da, db, scale=None):
         if da.shape != db.shape:
             failures.append("%s%s: shape %s in %s but %s in %s" % (
                 name, " (step %s)" % stepname if stepname else "", da.shape, a_path, db.shape, b_path))
@@ -118,6 +140,8 @@ def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, de
             return
         rtol, atol = tol_of(name)
         max_abs, max_b = _diff(da, db)
+        if scale is not None:
+            max_b = max(max_b, scale)
         tol = atol + rtol * max_b
         max_rel = max_abs / max_b if max_b > 0 else (0.0 if max_abs == 0 else float("inf"))
         ok = max_abs <= tol
@@ -172,6 +196,14 @@ def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, de
             da, db = datasets(ga), datasets(gb)
             stepname = _step_name(ka) if ka == kb else "%s/%s" % (_step_name(ka), _step_name(kb))
             names = sorted(set(da) | set(db))
+            fam_scale = {}
+            if family_scale:
+                for n in names:
+                    fam = family_of(n.split("/")[-1])
+                    if fam and n in db:
+                        b = np.asarray(db[n][()], dtype=np.float64)
+                        m = float(np.nanmax(np.abs(b))) if b.size and np.isfinite(b).any() else 0.0
+                        fam_scale[fam] = max(fam_scale.get(fam, 0.0), m)
             if only:
                 for n in fields:
                     if not n.startswith("mesh/") and n not in names:
@@ -185,7 +217,8 @@ def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, de
                     rows.append(dict(field=n, step=stepname, shape="missing", max_abs=float("nan"),
                                      max_rel=float("nan"), tol=float("nan"), ok=False))
                     continue
-                check(n, stepname, n, da[n][()], db[n][()])
+                check(n, stepname, n, da[n][()], db[n][()],
+                      fam_scale.get(family_of(n.split("/")[-1])))
             if not only:
                 for at in STEP_ATTRS:
                     if at in ga.attrs and at in gb.attrs:
@@ -198,10 +231,10 @@ def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, de
 
 
 def compare(a_path, b_path, step="last", fields=None, default_rtol=1e-9, default_atol=1e-12,
-            only=False, allow_incomplete=False):
+            only=False, allow_incomplete=False, family_scale=False):
     """List of failures (empty: the files agree within tolerance). See compare_rows."""
     return compare_rows(a_path, b_path, step, fields, default_rtol, default_atol, only,
-                        allow_incomplete)[0]
+                        allow_incomplete, family_scale)[0]
 
 
 def format_table(rows):
@@ -224,6 +257,8 @@ def main(argv=None):
                     help="tolerances of one field (repeatable)")
     ap.add_argument("--default-rtol", type=float, default=1e-9)
     ap.add_argument("--default-atol", type=float, default=1e-12)
+    ap.add_argument("--family-scale", action="store_true",
+                    help="measure each field against the largest value of its family (stresses, strains)")
     ap.add_argument("--only", action="store_true", help="compare only the fields given with --field")
     ap.add_argument("--allow-incomplete", action="store_true",
                     help="accept files whose status is not 'complete'")
@@ -244,7 +279,8 @@ def main(argv=None):
             print("h5compare: cannot open %s: %s" % (p, e))
             return 1
     failures, rows = compare_rows(args.a, args.b, args.step, fields, args.default_rtol,
-                                  args.default_atol, args.only, args.allow_incomplete)
+                                  args.default_atol, args.only, args.allow_incomplete,
+                                  args.family_scale)
     print(format_table(rows))
     if failures:
         print("\nh5compare: %d failure(s):" % len(failures))

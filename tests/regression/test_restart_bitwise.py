@@ -30,7 +30,10 @@ with scratch_dir() as tmp:
             chk.check(os.path.exists(ck) and "stopped as asked" in out1, "%s np=%d: stopped at 13 with a checkpoint" % (name, np))
             rc, out2 = run(etfe, common + ["-output_file", part, "-restart", ck], np=np)
             tol = 0.0 if exact else 1e-10
-            fails = h5compare.compare(full, part, step="all", default_rtol=tol, default_atol=tol * 1e-3)
+            # Parallel MUMPS round-off differs between runs: fields are measured against their
+            # family (min_principal_stress of the uniaxial patch is ~1e-12 MPa beside ~20 MPa).
+            fails = h5compare.compare(full, part, step="all", default_rtol=tol, default_atol=tol * 1e-3,
+                                      family_scale=not exact)
             chk.check(not fails, "%s np=%d%s: restarted results equal the uninterrupted run %s (all steps)%s"
                       % (name, np, "" if exact else " (parallel MUMPS)", "bit for bit" if exact else "to 1e-10",
                          "" if not fails else ": " + "; ".join(map(str, fails[:3]))))
