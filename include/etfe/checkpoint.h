@@ -1,8 +1,9 @@
 // Checkpoint/restart of a load history (options -checkpoint_*, -restart). A checkpoint holds
 // the committed state in the scene's order, so any number of ranks can read it:
-//   attrs: format "etfe-checkpoint-1", scene, nodes, elements, pairs, history_size, stages,
+//   attrs: format "etfe-checkpoint-2", scene, nodes, elements, pairs, history_size, stages,
 //          mesh_checksum, options (the command line, for the record) and the stepper state
-//          (t, dt, dt_last, step, converged_states, easy, cutbacks, newton)
+//          (t, dt, dt_last, step, converged_states, easy, cutbacks, newton), data_checksum (a
+//          rank-count-independent 64-bit checksum of every value above and below)
 //   u_committed (N,3), u_previous (N,3), history (E,h) if the material has one,
 //   contact_state (C,7: g x0 y0 z0, f x0 y0 z0, status) if the scene has contact.
 // It is written to <file>.tmp and renamed, so a killed run leaves the previous checkpoint
@@ -32,7 +33,11 @@ PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const 
                                Vec U_committed, Vec U_previous);
 // The increment a checkpoint was written at (collective; refuses unreadable files).
 PetscErrorCode CheckpointPeekStep(MPI_Comm comm, const std::string &path, PetscInt *step);
-// Refuses (with the reason) a checkpoint of another scene, mesh, material or contact set.
+// Everything CheckpointRead checks, without changing the problem: call it before anything on disk
+// is touched, so a refused restart changes nothing. Returns the checkpoint's increment.
+PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step);
+// Refuses (with the reason) a checkpoint of another scene, mesh, material, contact set or
+// physics options, or one whose data do not match its checksum.
 PetscErrorCode CheckpointRead(Problem *problem, const std::string &path, StepperState *state,
                               Vec U_committed, Vec U_previous);
 

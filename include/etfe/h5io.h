@@ -5,6 +5,7 @@
 #include <hdf5.h>
 #include <petscvec.h>
 
+#include <cstdint>
 #include <map>
 #include <string>
 #include <utility>
@@ -21,6 +22,7 @@ public:
   explicit NaturalOrder(Problem *p) : problem_(p) {}
   ~NaturalOrder();
   PetscInt GlobalRows(Layout layout) const;
+  MPI_Comm Comm() const;
   // owned (PETSc order, ncomp per row) -> this rank's block of natural rows.
   PetscErrorCode ToNatural(Layout layout, int ncomp, const double *owned, Vec *natural, PetscInt *row0,
                            PetscInt *nrows);
@@ -40,12 +42,21 @@ private:
 };
 
 // Collective: owned rows (PETSc order) written as the dataset `name` in the scene's order,
-// as doubles or (as_int) integers.
+// as doubles or (as_int) integers. With `checksum`, adds the dataset's DataChecksum to it.
 PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
-                              Layout layout, int ncomp, const double *owned, bool as_int = false);
-// Collective: the dataset `name` (scene order) read back into owned rows (PETSc order).
+                              Layout layout, int ncomp, const double *owned, bool as_int = false,
+                              uint64_t *checksum = nullptr);
+// Collective: the dataset `name` (scene order) read back into owned rows (PETSc order). With
+// `checksum`, adds the DataChecksum of what was read to it.
 PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
-                             Layout layout, int ncomp, double *owned);
+                             Layout layout, int ncomp, double *owned, uint64_t *checksum = nullptr);
+
+// A checksum of a dataset that does not depend on how its rows are split over ranks: the sum
+// (mod 2^64, collective) of a 64-bit mix of (dataset name, position, bit pattern) over this
+// rank's rows [row0, row0 + nrows) of ncomp doubles. Any flipped bit or moved value changes it.
+PetscErrorCode DataChecksum(MPI_Comm comm, const char *name, PetscInt row0, PetscInt nrows, int ncomp,
+                            const double *rows, uint64_t *sum);
+uint64_t ValueChecksum(const char *name, double value);
 
 // Collective on the file's communicator. `file` names the file in messages.
 PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,

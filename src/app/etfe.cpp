@@ -259,7 +259,9 @@ PetscErrorCode Run() {
   // 5. Run the schedule, writing results as it goes.
   OutputFile *out = nullptr;
   PetscInt restart_step = -1;
-  if (cko.restart[0]) PetscCall(CheckpointPeekStep(comm, cko.restart, &restart_step));
+  // A refused restart must leave every file as it was: check the checkpoint completely before
+  // the results file is opened (and truncated to the checkpoint's step).
+  if (cko.restart[0]) PetscCall(CheckpointValidate(P, cko.restart, &restart_step));
   if (oo.enabled) PetscCall(OutputOpen(P, oo, &out, restart_step));
   LoadStepperResult res;
   if (formfind) {

@@ -1,6 +1,7 @@
 // Parallel HDF5 helpers (see h5io.h).
 #include "etfe/h5io.h"
 
+#include <cstring>
 #include <vector>
 
 #include "etfe/problem.h"
@@ -31,6 +32,8 @@ PetscInt NaturalOrder::GlobalRows(Layout layout) const {
   }
   return 0;
 }
+
+MPI_Comm NaturalOrder::Comm() const { return problem_->comm; }
 
 PetscErrorCode NaturalOrder::Get(Layout layout, int ncomp, Entry **result) {
   Problem *P = problem_;
@@ -234,8 +237,49 @@ PetscErrorCode H5ReadString(const std::string &file, hid_t obj, const char *name
   PetscFunctionReturn(0);
 }
 
+namespace {
+
+uint64_t Mix(uint64_t x) {  // splitmix64's finalizer: every input bit reaches every output bit
+  x ^= x >> 30;
+  x *= 0xbf58476d1ce4e5b9ULL;
+  x ^= x >> 27;
+  x *= 0x94d049bb133111ebULL;
+  x ^= x >> 31;
+  return x;
+}
+
+uint64_t NameHash(const char *name) {  // FNV-1a
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (const char *c = name; *c; ++c) h = (h ^ (unsigned char)*c) * 0x100000001b3ULL;
+  return h;
+}
+
+uint64_t Bits(double v) {
+  uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+
+} // namespace
+
+uint64_t ValueChecksum(const char *name, double value) { return Mix(NameHash(name) ^ Mix(Bits(value))); }
+
+PetscErrorCode DataChecksum(MPI_Comm comm, const char *name, PetscInt row0, PetscInt nrows, int ncomp,
+                            const double *rows, uint64_t *sum) {
+  const uint64_t salt = NameHash(name);
+  uint64_t local = 0, total = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < nrows * ncomp; ++i) {
+    const uint64_t pos = (uint64_t)(row0 * ncomp + i);
+    local += Mix(salt ^ Mix(pos + 0x9e3779b97f4a7c15ULL) ^ Mix(Bits(rows[i]) + pos));
+  }
+  PetscCallMPI(MPI_Allreduce(&local, &total, 1, MPI_UINT64_T, MPI_SUM, comm));
+  *sum += total;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
-                              Layout layout, int ncomp, const double *owned, bool as_int) {
+                              Layout layout, int ncomp, const double *owned, bool as_int, uint64_t *checksum) {
   Vec nat = nullptr;
   PetscInt row0 = 0, nrows = 0;
   const PetscScalar *a;
@@ -243,6 +287,7 @@ PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_
   PetscCall(order.ToNatural(layout, ncomp, owned, &nat, &row0, &nrows));
   const hsize_t total = order.GlobalRows(layout);
   PetscCall(VecGetArrayRead(nat, &a));
+  if (checksum) PetscCall(DataChecksum(PetscObjectComm((PetscObject)nat), name, row0, nrows, ncomp, a, checksum));
   if (as_int) {
     std::vector<int> v(a, a + nrows * ncomp);
     PetscCall(H5WriteRows(file, group, name, H5T_NATIVE_INT, total, ncomp, row0, nrows, v.data()));
@@ -254,13 +299,14 @@ PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_
 }
 
 PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
-                             Layout layout, int ncomp, double *owned) {
+                             Layout layout, int ncomp, double *owned, uint64_t *checksum) {
   PetscInt row0, nrows;
   PetscFunctionBeginUser;
   PetscCall(order.RowBlock(layout, ncomp, &row0, &nrows));
   std::vector<double> rows((size_t)nrows * ncomp);
   PetscCall(H5ReadRows(file, group, name, H5T_NATIVE_DOUBLE, order.GlobalRows(layout), ncomp, row0, nrows,
                        rows.data()));
+  if (checksum) PetscCall(DataChecksum(order.Comm(), name, row0, nrows, ncomp, rows.data(), checksum));
   PetscCall(order.FromNatural(layout, ncomp, rows.data(), owned));
   PetscFunctionReturn(0);
 }

@@ -5,8 +5,11 @@ schedules its factorisation dynamically, so on a busy machine its round-off can 
 to run; with it the 2-rank restart is checked to 1e-10 instead): a plastic patch over load/unload/reload stages (history variables) and the
 capstan (contact state, the scene's own slip-onset monitor). A checkpoint of another scene, mesh
 or material, and a truncated file, are refused with a message."""
+import hashlib
 import os
 import shutil
+
+import h5py
 
 from etfe_testlib import Checker, etfe_path, opts, run, scratch_dir
 import h5compare
@@ -49,12 +52,35 @@ with scratch_dir() as tmp:
         data = f.read()
     with open(bad, "wb") as f:
         f.write(data[:len(data) // 3])
-    capstan = cases["capstan"] + ["-load_monitor", 0, "-output_file", os.path.join(tmp, "x.h5")]
+    flipped = os.path.join(tmp, "flipped.h5")
+    shutil.copy(ck_cap, flipped)
+    with h5py.File(ck_cap, "r") as f:
+        offset = f["u_committed"].id.get_offset()
+    with open(flipped, "r+b") as f:  # one bit of one displacement value
+        f.seek(offset + 8 * 7 + 2)
+        byte = f.read(1)
+        f.seek(offset + 8 * 7 + 2)
+        f.write(bytes([byte[0] ^ 0x04]))
+    # A refused restart leaves the results file it would continue exactly as it was (here a
+    # complete run's file, which a restart would first cut back to the checkpoint's step).
+    results = os.path.join(tmp, "capstan1_full.h5")
+    digest = hashlib.sha256(open(results, "rb").read()).hexdigest()
+    capstan = cases["capstan"] + ["-load_monitor", 0, "-output_file", results]
     for args, words in ((["-restart", ck_patch], "scene patch"),
+                        (["-contact_mu", 0.5, "-restart", ck_cap], "-contact_mu: checkpoint 0.3, this run 0.5"),
+                        (["-membrane_thickness", 0.3, "-restart", ck_cap], "-membrane_thickness"),
+                        (["-load_increments", 80, "-restart", ck_cap], "-load_increments"),
+                        (["-restart", flipped], "checksum"),
                         (["-mesh_nx", 32, "-restart", ck_cap], "mesh"),
                         (["-material_type", "plastic", "-restart", ck_cap], "history"),
                         (["-restart", bad], "corrupt"),
                         (["-restart", os.path.join(tmp, "none.h5")], "checkpoint")):
         rc, out = run(etfe, capstan + args, expect_fail=True)
-        chk.check(words in out, "refused %s with a message naming the %s" % (" ".join(map(str, args[-2:])), words))
+        chk.check(words in out, "refused %s with a message naming the %s" % (" ".join(map(str, args)), words))
+        chk.check(hashlib.sha256(open(results, "rb").read()).hexdigest() == digest,
+                  "the refused restart (%s) left the results file unchanged" % " ".join(map(str, args)))
+    # Solver and output options may change on a restart.
+    rc, out = run(etfe, capstan[:-1] + [os.path.join(tmp, "solver_change.h5"), "-restart", ck_cap,
+                                        "-snes_rtol", "1e-10", "-load_max_cutbacks", 8])
+    chk.check(rc == 0 and "restart: from" in out, "a restart with other solver options (-snes_rtol, -load_max_cutbacks) runs")
 chk.finish()
