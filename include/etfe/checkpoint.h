@@ -29,13 +29,14 @@ struct CheckpointOptions {
 };
 
 PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const char *scene, CheckpointOptions *o);
+// run_id: the load history's identity (OutputRunId), checked against the results file on restart.
 PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const StepperState &state,
-                               Vec U_committed, Vec U_previous);
+                               Vec U_committed, Vec U_previous, const std::string &run_id);
 // The increment a checkpoint was written at (collective; refuses unreadable files).
 PetscErrorCode CheckpointPeekStep(MPI_Comm comm, const std::string &path, PetscInt *step);
 // Everything CheckpointRead checks, without changing the problem: call it before anything on disk
 // is touched, so a refused restart changes nothing. Returns the checkpoint's increment.
-PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step);
+PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id);
 // Refuses (with the reason) a checkpoint of another scene, mesh, material, contact set or
 // physics options, or one whose data do not match its checksum.
 PetscErrorCode CheckpointRead(Problem *problem, const std::string &path, StepperState *state,

@@ -70,8 +70,9 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], d
 PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[3]);
 const char *FrictionLawName(FrictionLaw law);
 ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);
-// Appends one line per probe pair to <dir>/contact_node<id>.csv (written by the owning rank):
-// step, time, status, slide x0/y0 (local), slide X/Y (global), force x0/y0/z0.
-PetscErrorCode ContactWriteProbes(Problem *problem, const std::string &dir, PetscInt step, double time);
+// Appends one line per probe pair to <stem>_contact_node<id>.csv, stem = the results file without
+// its extension (written by the owning rank): step, time, status, slide x0/y0 (local), slide X/Y
+// (global), force x0/y0/z0. Rows after a restart's step are dropped first (csv_history.h).
+PetscErrorCode ContactWriteProbes(Problem *problem, const std::string &stem, PetscInt step, double time);
 
 } // namespace etfe

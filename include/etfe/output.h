@@ -1,6 +1,6 @@
 // Results file: HDF5 (written in parallel with MPI-IO) plus an XDMF index that ParaView opens
 // as a time series. Layout (stable, documented in the README):
-//   /                      attributes: format "etfe-results-1", scene, status
+//   /                      attributes: format "etfe-results-1", scene, run_id, status
 //                          ("running" | "complete" | "failed: <why>"), steps_written
 //   /mesh/coordinates      (N, 3) float64  reference coordinates, scene node order
 //   /mesh/triangles        (E, 3) int32    0-based node ids, scene element order
@@ -34,10 +34,17 @@ struct OutputOptions {
 };
 
 PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, OutputOptions *o);
-// restart_step >= 0: continue an existing results file of this scene, dropping the steps after
-// restart_step (a run killed after its last checkpoint wrote them); a missing or unreadable
-// file is started anew.
-PetscErrorCode OutputOpen(Problem *problem, const OutputOptions &o, OutputFile **out, PetscInt restart_step = -1);
+// restart_step >= 0: continue the results file of the load history run_id (the checkpoint's),
+// dropping the steps after restart_step (a run killed after its last checkpoint wrote them); a
+// missing file is started anew, an unreadable one moved aside, one of another scene or history
+// refused untouched. A fresh run (restart_step < 0) gets a new run_id unless one is given.
+PetscErrorCode OutputOpen(Problem *problem, const OutputOptions &o, OutputFile **out, PetscInt restart_step = -1,
+                          const std::string &run_id = "");
+// The load history's identity, stored in the results file and in its checkpoints.
+const std::string &OutputRunId(const OutputFile *out);
+PetscErrorCode NewRunId(MPI_Comm comm, std::string *id);
+// Error exits: marks the open results file (if any) "failed: why" and closes it (collective).
+PetscErrorCode OutputAbandon(const std::string &why);
 // U is the displacement from the scene's mesh; fields (stress, strain, ...) are evaluated at
 // U_fields on the problem's current reference (nullptr: U itself — they differ only in form
 // finding, where the reference moves).
@@ -51,5 +58,7 @@ PetscInt OutputLastStep(const OutputFile *out);
 PetscInt OutputEvery(const OutputFile *out);
 // Directory of the results file (for CSV histories beside it).
 std::string OutputDirectory(const OutputFile *out);
+// The results file's path without its extension: CSV histories are named <stem>_<what>.csv.
+std::string OutputStem(const OutputFile *out);
 
 } // namespace etfe

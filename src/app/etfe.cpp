@@ -8,6 +8,8 @@ static const char help[] =
 #include <petscsnes.h>
 
 #include <cstring>
+#include <filesystem>
+#include <string>
 
 #include "etfe/checkpoint.h"
 #include "etfe/formfind.h"
@@ -153,9 +155,36 @@ PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool final_check) {
 
 // PETSc's default report repeats the whole option table and configure line; a user needs the
 // message and where it came from. -etfe_traceback restores PETSc's full report.
-PetscErrorCode ConciseErrorHandler(MPI_Comm, int line, const char *fun, const char *file,
+// The first error of the run, for the results file's status; collective when raised on a
+// communicator of every rank (then every rank can mark the file together).
+struct FirstError {
+  std::string message;
+  bool collective = false;
+  bool set = false;
+} g_first_error;
+
+void RecordError(MPI_Comm comm, const char *mess) {
+  if (g_first_error.set) return;
+  g_first_error.set = true;
+  g_first_error.message = mess ? mess : "error";
+  for (char &c : g_first_error.message)
+    if (c == '\n') c = ' ';
+  int size = 1, world = 1;
+  if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &size);
+  MPI_Comm_size(PETSC_COMM_WORLD, &world);
+  g_first_error.collective = size == world;
+}
+
+PetscErrorCode TracebackErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n,
+                                     PetscErrorType p, const char *mess, void *ctx) {
+  if (p == PETSC_ERROR_INITIAL) RecordError(comm, mess);
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+PetscErrorCode ConciseErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file,
                                    PetscErrorCode n, PetscErrorType p, const char *mess, void *) {
   if (p == PETSC_ERROR_INITIAL) {
+    RecordError(comm, mess);
     (*PetscErrorPrintf)("%s\n", mess ? mess : "(no message)");
     (*PetscErrorPrintf)("  (raised in %s() at %s:%d; -etfe_traceback gives PETSc's full report)\n",
                         fun, file, line);
@@ -244,6 +273,15 @@ PetscErrorCode Run() {
   PetscCall(OutputOptionsFromCommandLine(comm, P->scene.name.c_str(), &oo));
   CheckpointOptions cko;
   PetscCall(CheckpointOptionsFromCommandLine(comm, P->scene.name.c_str(), &cko));
+  {
+    // Checkpoints belong to their results: <output stem>.checkpoint.h5 unless named, so two runs
+    // with their own -output_file never share (and overwrite) one checkpoint.
+    PetscBool named = PETSC_FALSE;
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, "-checkpoint_file", &named));
+    if (!named && oo.enabled)
+      std::snprintf(cko.file, sizeof cko.file, "%s.checkpoint.h5",
+                    std::filesystem::path(oo.path).replace_extension("").c_str());
+  }
   PetscCheck(!(formfind && (cko.restart[0] || cko.every > 0)), comm, PETSC_ERR_SUP,
              "checkpoint/restart is for load histories (-analysis stretch); form finding restarts from its "
              "Gmsh output instead");
@@ -261,8 +299,9 @@ PetscErrorCode Run() {
   PetscInt restart_step = -1;
   // A refused restart must leave every file as it was: check the checkpoint completely before
   // the results file is opened (and truncated to the checkpoint's step).
-  if (cko.restart[0]) PetscCall(CheckpointValidate(P, cko.restart, &restart_step));
-  if (oo.enabled) PetscCall(OutputOpen(P, oo, &out, restart_step));
+  std::string run_id;
+  if (cko.restart[0]) PetscCall(CheckpointValidate(P, cko.restart, &restart_step, &run_id));
+  if (oo.enabled) PetscCall(OutputOpen(P, oo, &out, restart_step, run_id));
   LoadStepperResult res;
   if (formfind) {
     FormFindResult ffr;
@@ -315,10 +354,18 @@ int main(int argc, char **argv) {
   PetscMPIInt size;
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-etfe_traceback", &traceback, nullptr));
-  if (!traceback) PetscCall(PetscPushErrorHandler(ConciseErrorHandler, nullptr));
+  PetscCall(PetscPushErrorHandler(traceback ? TracebackErrorHandler : ConciseErrorHandler, nullptr));
   PetscErrorCode ierr = Run();
   if (ierr) {
     PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+    // Every error exit after the results file exists marks it failed (a reader must tell a dead
+    // run from a live one). Only when all ranks raised the error together: a collective write
+    // from one rank alone would hang.
+    if (g_first_error.collective || size == 1) {
+      PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+      OutputAbandon(g_first_error.message);
+      PetscPopErrorHandler();
+    }
     // An error raised on one rank only would leave the others waiting in PetscFinalize.
     if (size > 1) MPI_Abort(PETSC_COMM_WORLD, (int)ierr);
     PetscFinalize();

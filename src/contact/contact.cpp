@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "etfe/contact.h"
+#include "etfe/csv_history.h"
 #include "etfe/problem.h"
 
 namespace etfe {
@@ -289,16 +290,15 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[3]) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactWriteProbes(Problem *P, const std::string &dir, PetscInt step, double time) {
+PetscErrorCode ContactWriteProbes(Problem *P, const std::string &stem, PetscInt step, double time) {
   PetscFunctionBeginUser;
   for (PetscInt node : P->contact->probe_nodes)
     for (const ContactPair &pr : P->contact->pairs) {
       if (pr.natural_node != node) continue;
-      const std::string path = dir + "/contact_node" + std::to_string((long long)node) + ".csv";
-      FILE *f = std::fopen(path.c_str(), step <= 1 ? "w" : "a");
+      const std::string path = stem + "_contact_node" + std::to_string((long long)node) + ".csv";
+      FILE *f = CsvHistoryOpen(path, step,
+                               "step,time,status,slide_x0,slide_y0,slide_X,slide_Y,force_x0,force_y0,force_z0");
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
-      if (step <= 1)
-        std::fprintf(f, "step,time,status,slide_x0,slide_y0,slide_X,slide_Y,force_x0,force_y0,force_z0\n");
       const ContactPairReport r = ContactReport(*P->contact, pr);
       std::fprintf(f, "%lld,%.10g,%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e\n", (long long)step, time, r.status,
                    r.slide_local[0], r.slide_local[1], r.slide_global[0], r.slide_global[1], r.force[0], r.force[1],

@@ -120,7 +120,8 @@ PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const char *scene
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const StepperState &st, Vec Uc, Vec Up) {
+PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const StepperState &st, Vec Uc, Vec Up,
+                               const std::string &run_id) {
   const std::string tmp = path + ".tmp";
   NaturalOrder order(P);
   const PetscScalar *a;
@@ -155,7 +156,8 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
     sum += StringChecksum("options", opts ? opts : "");
     PetscCall(PetscFree(opts));
   }
-  sum += StringChecksum("scene", P->scene.name) + ValueChecksum("mesh_checksum", cs);
+  PetscCall(H5WriteString(tmp, f, "run_id", run_id));
+  sum += StringChecksum("scene", P->scene.name) + ValueChecksum("mesh_checksum", cs) + StringChecksum("run_id", run_id);
   const double dbl[3] = {st.t, st.dt, st.dt_last};
   const long long ints[6] = {(long long)st.step, (long long)st.converged_states, (long long)st.easy,
                              (long long)st.cutbacks, (long long)st.newton, 0};
@@ -313,12 +315,14 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
   unsigned long long stored = 0;
   PetscFunctionBeginUser;
   const Shape sh = ProblemShape(P);
-  std::string scene, options;
+  std::string scene, options, run_id;
   double cs;
   PetscCall(H5ReadString(path, f, "scene", &scene));
   PetscCall(H5ReadString(path, f, "options", &options));
+  PetscCall(H5ReadString(path, f, "run_id", &run_id));
   PetscCall(H5ReadAttribute(path, f, "mesh_checksum", H5T_NATIVE_DOUBLE, &cs));
-  sum += StringChecksum("options", options) + StringChecksum("scene", scene) + ValueChecksum("mesh_checksum", cs);
+  sum += StringChecksum("options", options) + StringChecksum("scene", scene) + ValueChecksum("mesh_checksum", cs) +
+         StringChecksum("run_id", run_id);
   double dbl[3];
   long long ints[5];
   const char *dnames[3] = {"t", "dt", "dt_last"};
@@ -370,7 +374,7 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
 
 } // namespace
 
-PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step) {
+PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step, std::string *run_id) {
   hid_t f = -1;
   Vec Uc, Up;
   StepperState st;
@@ -393,6 +397,13 @@ PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt 
   PetscCall(VecDestroy(&Up));
   PetscCall(ierr);
   *step = st.step;
+  {
+    hid_t g = -1;
+    PetscCall(OpenChecked(P, path, &g));
+    PetscErrorCode e2 = H5ReadString(path, g, "run_id", run_id);
+    H5Fclose(g);
+    PetscCall(e2);
+  }
   PetscFunctionReturn(0);
 }
 

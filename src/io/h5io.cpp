@@ -11,8 +11,9 @@ namespace etfe {
 #define ETFE_H5CHECK(call, what)                                                                   \
   do {                                                                                             \
     if ((call) < 0)                                                                                \
-      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "HDF5: %s failed in %s", what,            \
-              file.c_str());                                                                       \
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED,                                          \
+              "HDF5: %s failed in %s (disk full, quota, or the file removed or damaged?); the "      \
+              "steps listed in its .xmf are complete", what, file.c_str());                        \
   } while (0)
 
 NaturalOrder::~NaturalOrder() {

@@ -4,8 +4,10 @@
 #include <hdf5.h>
 #include <petscvec.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <random>
 #include <map>
 #include <memory>
 #include <utility>
@@ -22,7 +24,11 @@ struct OutputFile {
   std::vector<std::pair<PetscInt, double>> steps;  // written steps (step, time)
   std::unique_ptr<NaturalOrder> order;
   PetscInt every = 1;
+  std::string run_id;  // the same in the results file and the checkpoints of one load history
 };
+
+// The file an error exit must mark as failed (see OutputAbandon).
+static OutputFile *g_open_output = nullptr;
 
 namespace {
 
@@ -164,7 +170,8 @@ herr_t CollectStep(hid_t g, const char *name, const H5L_info_t *, void *data) {
 }
 
 // Reopens a results file to continue it after a restart. Returns false (nothing changed) when
-// the file is missing, unreadable or of another scene.
+// the file is missing; an unreadable one (cut short by a kill) is moved aside, never
+// overwritten; a file of another scene or another load history (run_id) is refused untouched.
 PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok) {
   Problem *P = out->problem;
   PetscFunctionBeginUser;
@@ -173,22 +180,51 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   *ok = false;
   if (!exists) PetscFunctionReturn(0);
   // Probe serially first: a file cut short by a kill may not open.
-  int good = 0;
+  int state = 0;  // 0 unreadable, 1 this run's, 2 another scene, 3 another run
+  char other[256] = "";
   if (P->rank == 0) {
     H5E_BEGIN_TRY {
       hid_t f = H5Fopen(out->path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
       if (f >= 0) {
-        std::string scene;
+        std::string scene, id;
         if (H5Aexists(f, "scene") > 0 && H5ReadString(out->path, f, "scene", &scene) == 0 &&
-            scene == P->scene.name && H5Lexists(f, "steps", H5P_DEFAULT) > 0)
-          good = 1;
+            H5Lexists(f, "steps", H5P_DEFAULT) > 0) {
+          if (H5Aexists(f, "run_id") > 0) H5ReadString(out->path, f, "run_id", &id);
+          state = scene != P->scene.name ? 2 : id != out->run_id ? 3 : 1;
+          std::snprintf(other, sizeof other, "%s", state == 2 ? scene.c_str() : id.empty() ? "(none)" : id.c_str());
+        }
         H5Fclose(f);
       }
     }
     H5E_END_TRY;
   }
-  PetscCallMPI(MPI_Bcast(&good, 1, MPI_INT, 0, P->comm));
-  if (!good) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Bcast(&state, 1, MPI_INT, 0, P->comm));
+  PetscCallMPI(MPI_Bcast(other, sizeof other, MPI_CHAR, 0, P->comm));
+  PetscCheck(state != 2, P->comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-output_file %s holds results of scene %s, not of this checkpoint's %s: nothing was changed; give "
+             "the results file of the run that wrote the checkpoint, or a new -output_file",
+             out->path.c_str(), other, P->scene.name.c_str());
+  PetscCheck(state != 3, P->comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-output_file %s holds another load history (run %s, the checkpoint's is %s): continuing it would "
+             "mix two runs, so nothing was changed; give the results file of the run that wrote the checkpoint, "
+             "or a new -output_file",
+             out->path.c_str(), other, out->run_id.c_str());
+  if (state == 0) {
+    int moved = 0;
+    std::string aside = out->path + ".unreadable";
+    if (P->rank == 0) {
+      std::error_code ec;
+      std::filesystem::rename(out->path, aside, ec);
+      moved = ec ? 0 : 1;
+    }
+    PetscCallMPI(MPI_Bcast(&moved, 1, MPI_INT, 0, P->comm));
+    PetscCheck(moved, P->comm, PETSC_ERR_FILE_WRITE,
+               "-output_file %s is unreadable and cannot be moved aside to %s: move it yourself", out->path.c_str(),
+               aside.c_str());
+    PetscCall(PetscPrintf(P->comm, "  output: %s was unreadable (cut short?); kept as %s, the restarted run "
+                          "starts the results anew\n", out->path.c_str(), aside.c_str()));
+    PetscFunctionReturn(0);
+  }
   hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
   H5Pset_fapl_mpio(fapl, P->comm, MPI_INFO_NULL);
   out->file = H5Fopen(out->path.c_str(), H5F_ACC_RDWR, fapl);
@@ -211,10 +247,13 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
 
 } // namespace
 
-PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **result, PetscInt restart_step) {
+PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **result, PetscInt restart_step,
+                          const std::string &run_id) {
   auto *out = new OutputFile();
   PetscFunctionBeginUser;
   out->problem = P;
+  out->run_id = run_id;
+  if (out->run_id.empty()) PetscCall(NewRunId(P->comm, &out->run_id));
   out->path = o.path;
   out->every = o.every;
   std::filesystem::path xp(out->path);
@@ -225,7 +264,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
     PetscCall(ReopenForRestart(out, restart_step, &ok));
     if (ok) {
       PetscCall(WriteXdmf(out));
-      *result = out;
+      *result = g_open_output = out;
       PetscFunctionReturn(0);
     }
     PetscCall(PetscPrintf(P->comm, "  output: %s missing or unreadable; the restarted run starts it anew\n",
@@ -249,6 +288,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
              out->path.c_str());
   PetscCall(H5WriteString(out->path, out->file, "format", "etfe-results-1"));
   PetscCall(H5WriteString(out->path, out->file, "scene", P->scene.name));
+  PetscCall(H5WriteString(out->path, out->file, "run_id", out->run_id));
   PetscCall(H5WriteString(out->path, out->file, "status", "running"));
   long long zero = 0;
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
@@ -270,7 +310,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   H5Gclose(mesh);
   H5Gclose(steps);
   H5Fflush(out->file, H5F_SCOPE_GLOBAL);
-  *result = out;
+  *result = g_open_output = out;
   PetscFunctionReturn(0);
 }
 
@@ -359,11 +399,42 @@ PetscErrorCode OutputGatherShape(Problem *P, Vec U, MeshData *shape) {
   PetscFunctionReturn(0);
 }
 
+const std::string &OutputRunId(const OutputFile *out) {
+  static const std::string none;
+  return out ? out->run_id : none;
+}
+
+PetscErrorCode NewRunId(MPI_Comm comm, std::string *id) {
+  char buf[32] = "";
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    std::random_device rd;
+    const unsigned long long a = ((unsigned long long)rd() << 32) ^ rd();
+    const unsigned long long b = (unsigned long long)std::chrono::steady_clock::now().time_since_epoch().count();
+    std::snprintf(buf, sizeof buf, "%016llx", a ^ (b * 0x9e3779b97f4a7c15ULL));
+  }
+  PetscCallMPI(MPI_Bcast(buf, sizeof buf, MPI_CHAR, 0, comm));
+  *id = buf;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode OutputAbandon(const std::string &why) {
+  PetscFunctionBeginUser;
+  if (g_open_output) PetscCall(OutputClose(&g_open_output, "failed: " + why));
+  PetscFunctionReturn(0);
+}
+
 PetscInt OutputLastStep(const OutputFile *out) {
   return (!out || out->steps.empty()) ? -1 : out->steps.back().first;
 }
 
 PetscInt OutputEvery(const OutputFile *out) { return out ? out->every : 1; }
+
+std::string OutputStem(const OutputFile *out) {
+  return std::filesystem::path(out->path).replace_extension("").string();
+}
 
 std::string OutputDirectory(const OutputFile *out) {
   const std::string d = std::filesystem::path(out->path).parent_path().string();
@@ -374,6 +445,7 @@ PetscErrorCode OutputClose(OutputFile **pout, const std::string &status) {
   OutputFile *out = *pout;
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
+  if (out == g_open_output) g_open_output = nullptr;
   PetscCall(H5WriteString(out->path, out->file, "status", status));
   H5Fclose(out->file);
   delete out;

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "etfe/csv_history.h"
 #include "etfe/problem.h"
 #include "saddle_geometry.h"
 
@@ -97,17 +98,11 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t) {
   PetscCall(ComputeCellFields(P, P->U, &f));
   PetscCall(Measure(P, c, f, &v));
   if (P->rank == 0) {
-    std::error_code ec;
-    const auto dir = std::filesystem::path(c->history).parent_path();
-    if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-    const bool first = !std::filesystem::exists(c->history) || step == 1;
-    FILE *out = std::fopen(c->history.c_str(), first ? "w" : "a");
+    std::string header = "step,time,A_Exx,A_Eyy,A_Exy,A_mises,B_Exx,B_Eyy,B_Exy,B_mises,I_smin,I_emin,II_smin,II_emin";
+    for (size_t k = 0; k < c->slide_nodes.size(); ++k)
+      header += ",slide" + std::to_string(k + 1) + "_X,slide" + std::to_string(k + 1) + "_Y";
+    FILE *out = CsvHistoryOpen(c->history, step, header.c_str());
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", c->history.c_str());
-    if (first) {
-      std::fprintf(out, "step,time,A_Exx,A_Eyy,A_Exy,A_mises,B_Exx,B_Eyy,B_Exy,B_mises,I_smin,I_emin,II_smin,II_emin");
-      for (size_t k = 0; k < c->slide_nodes.size(); ++k) std::fprintf(out, ",slide%zu_X,slide%zu_Y", k + 1, k + 1);
-      std::fprintf(out, "\n");
-    }
     std::fprintf(out, "%lld,%.10g", (long long)step, t);
     for (double x : v.a) std::fprintf(out, ",%.8e", x);
     for (double x : v.b) std::fprintf(out, ",%.8e", x);

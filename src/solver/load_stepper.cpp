@@ -191,7 +191,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     StepperState st;
     st.t = t, st.dt = dt, st.dt_last = dt_last, st.step = step, st.converged_states = converged_states;
     st.easy = easy, st.cutbacks = res->cutbacks, st.newton = res->newton_iterations;
-    return CheckpointWrite(P, ck.file, st, U_committed, U_previous);
+    return CheckpointWrite(P, ck.file, st, U_committed, U_previous, OutputRunId(out));
   };
   res->completed = PETSC_FALSE;
   while (t < t_end - eps) {
@@ -243,7 +243,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
         PetscCall(PetscPrintf(P->comm, "             contact: open %" PetscInt_FMT " stick %" PetscInt_FMT
                               " slip %" PetscInt_FMT "\n", contact_counts[0], contact_counts[1], contact_counts[2]));
       if (P->scene.step_monitor) PetscCall(P->scene.step_monitor(P, P->scene.report_ctx, step, t));
-      if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputDirectory(out), step, t));
+      if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputStem(out), step, t));
       const bool last = t >= t_end - eps;
       const bool stop = o.stop_after >= 0 && step >= o.stop_after;
       if (out && (last || stop || step % OutputEvery(out) == 0))
