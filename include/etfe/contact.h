@@ -17,6 +17,10 @@ struct Problem;
 
 enum class FrictionLaw { Lagged, Implicit, None, Fixed };
 
+// The largest round-off floor of the penalty forces (1e2 eps k |u| sqrt(pairs)) the force-balance
+// test may accept, as a fraction of the forces it balances: above it a penalty is refused.
+constexpr double kPenaltyFloorMax = 0.05;
+
 struct ContactPair {
   PetscInt local_node;    // owned local node of the film
   PetscInt natural_node;  // scene node id

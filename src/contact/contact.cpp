@@ -161,6 +161,22 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
              "contact: no film node lies within -contact_search_tol %g mm of a support; check the "
              "support geometry or raise the tolerance",
              tol);
+  {
+    // The force-balance test cannot see below the round-off of the penalty forces, about
+    // 1e2 eps k |u| sqrt(pairs) (load_stepper.cpp). Against forces of about E h |u| / 10 (|u| per
+    // unit force measured 5x (capstan) to 18x (saddle) above 1 / (E h)) that floor is the fraction
+    // below of the forces to balance; past kPenaltyFloorMax the test would accept visibly wrong
+    // answers (kn 1e15 on the saddle: displacements 20 % off), so refuse before solving.
+    const double k = std::max(c->params.kn, c->params.kt);
+    const double per_k = 10 * 1e2 * PETSC_MACHINE_EPSILON * std::sqrt((double)c->num_global) / (young * P->thickness);
+    PetscCheck(per_k * k <= kPenaltyFloorMax, P->comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-contact_kn %g / -contact_kt %g: the round-off of forces this stiff (~%.2g of the film forces, with "
+               "%" PetscInt_FMT " pairs and E h = %g N/mm) would exceed the force tolerance, so a wrong answer could pass "
+               "as converged; the largest usable penalty here is ~%.1e N/mm (the default 1e3 E h = %.3g N/mm is "
+               "usually right)",
+               c->params.kn, c->params.kt, per_k * k, c->num_global, young * P->thickness, kPenaltyFloorMax / per_k,
+               1e3 * young * P->thickness);
+  }
   *out = c;
   PetscFunctionReturn(0);
 }

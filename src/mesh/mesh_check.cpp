@@ -1,6 +1,8 @@
 // MeshCheck: the checks every mesh passes before the solver distributes it, whether it came from
 // a file or a generator. Each message names the mesh, the offending element or node and what to
 // change, because the person reading it is looking at a mesh generator, not at this code.
+#include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -25,8 +27,176 @@ std::string Num(double v) {
 
 std::string Id(size_t v) { return std::to_string(v); }
 
+// Ids count from 0 in file order; a mesh read from a file also names the tags the file uses.
+std::string NodeName(const MeshData &mesh, size_t i) {
+  std::string s = "node " + Id(i);
+  if (i < mesh.node_tags.size()) s += " (tag " + std::to_string(mesh.node_tags[i]) + " in the file)";
+  return s;
+}
+
+std::string ElementName(const MeshData &mesh, size_t e) {
+  std::string s = "element " + Id(e);
+  if (e < mesh.element_tags.size()) {
+    s += " (tag " + std::to_string(mesh.element_tags[e]) + " in the file)";
+  }
+  return s;
+}
+
 std::string Nodes(const int *t) {
   return "nodes " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]);
+}
+
+// One directed edge of a triangle, keyed by its sorted end nodes; forward when the triangle
+// runs from a to b. A manifold edge has two entries, and they run opposite ways when the two
+// triangles are oriented alike.
+struct Edge {
+  int a, b, element;
+  bool forward;
+  bool operator<(const Edge &o) const {
+    return a != o.a ? a < o.a : b != o.b ? b < o.b : element < o.element;
+  }
+};
+
+std::vector<Edge> SortedEdges(const MeshData &mesh) {
+  std::vector<Edge> edges;
+  edges.reserve(mesh.triangles.size());
+  for (size_t e = 0; e < mesh.triangles.size() / 3; ++e) {
+    const int *t = &mesh.triangles[3 * e];
+    for (int k = 0; k < 3; ++k) {
+      const int p = t[k], q = t[(k + 1) % 3];
+      edges.push_back({std::min(p, q), std::max(p, q), (int)e, p < q});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  return edges;
+}
+
+// Ids in range and no repeated node: what the topology passes need to be meaningful.
+bool IdsValid(const MeshData &mesh) {
+  if (mesh.coords.size() % 3 != 0 || mesh.triangles.size() % 3 != 0) return false;
+  const long long nn = (long long)(mesh.coords.size() / 3);
+  for (size_t e = 0; e < mesh.triangles.size(); e += 3) {
+    const int *t = &mesh.triangles[e];
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] < 0 || t[k] >= nn) return false;
+    }
+    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) return false;
+  }
+  return true;
+}
+
+// First pair of triangles on the same three nodes, as (lower, higher) element ids; -1 if none.
+std::pair<int, int> DuplicateTriangle(const MeshData &mesh) {
+  std::vector<std::array<int, 4>> keys;
+  for (size_t e = 0; e < mesh.triangles.size() / 3; ++e) {
+    std::array<int, 4> k = {mesh.triangles[3 * e], mesh.triangles[3 * e + 1],
+                            mesh.triangles[3 * e + 2], (int)e};
+    std::sort(k.begin(), k.begin() + 3);
+    keys.push_back(k);
+  }
+  std::sort(keys.begin(), keys.end());
+  for (size_t i = 1; i < keys.size(); ++i) {
+    if (std::equal(keys[i].begin(), keys[i].begin() + 3, keys[i - 1].begin())) {
+      return {keys[i - 1][3], keys[i][3]};
+    }
+  }
+  return {-1, -1};
+}
+
+bool CheckTopology(const MeshData &mesh, std::string *err) {
+  const std::pair<int, int> dup = DuplicateTriangle(mesh);
+  if (dup.first >= 0) {
+    return Fail(mesh, err, ElementName(mesh, (size_t)dup.second) + " and " +
+                               ElementName(mesh, (size_t)dup.first) + " are the same triangle (" +
+                               Nodes(&mesh.triangles[3 * (size_t)dup.first]) +
+                               "): remove the duplicate in the mesh generator (a surface "
+                               "meshed twice, or two physical surfaces on one entity)");
+  }
+  const std::vector<Edge> edges = SortedEdges(mesh);
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i + 1;
+    while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
+    if (j - i > 2) {
+      std::string who;
+      for (size_t k = i; k < j && k < i + 4; ++k) {
+        who += (k > i ? ", " : "") + ElementName(mesh, (size_t)edges[k].element);
+      }
+      return Fail(mesh, err, "the edge between " + NodeName(mesh, (size_t)edges[i].a) + " and " +
+                                 NodeName(mesh, (size_t)edges[i].b) + " belongs to " + Id(j - i) +
+                                 " triangles (" + who +
+                                 "), so the surface is not a membrane (non-manifold): a membrane "
+                                 "edge has one or two triangles; split the mesh or remove the "
+                                 "extra surface");
+    }
+    if (j - i == 2 && edges[i].forward == edges[i + 1].forward) {
+      return Fail(mesh, err, ElementName(mesh, (size_t)edges[i].element) + " and " +
+                                 ElementName(mesh, (size_t)edges[i + 1].element) +
+                                 " run the same way along their common edge (" +
+                                 NodeName(mesh, (size_t)edges[i].a) + ", " +
+                                 NodeName(mesh, (size_t)edges[i].b) +
+                                 "): the surface has no consistent orientation; reorient the "
+                                 "triangles in the mesh generator (Gmsh: Mesh.ReverseOrientation or "
+                                 "reorient the surface)");
+    }
+    i = j;
+  }
+  return true;
+}
+
+// Coincident nodes that triangles use separately leave a crack: the two sides are not joined.
+// Nodes are binned on a grid of the tolerance, and each node is compared with the 27 cells
+// around it, so the pass is n log n whatever the mesh's shape.
+bool CheckCoincidentNodes(const MeshData &mesh, std::string *err) {
+  const size_t nn = mesh.coords.size() / 3, ne = mesh.triangles.size() / 3;
+  double sum = 0;
+  for (size_t e = 0; e < ne; ++e) {
+    for (int k = 0; k < 3; ++k) {
+      const double *p = &mesh.coords[3 * (size_t)mesh.triangles[3 * e + k]];
+      const double *q = &mesh.coords[3 * (size_t)mesh.triangles[3 * e + (k + 1) % 3]];
+      sum += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                       (p[2] - q[2]) * (p[2] - q[2]));
+    }
+  }
+  const double mean_edge = sum / (3.0 * (double)ne);
+  const double tol = 1e-6 * mean_edge;
+  if (!(tol > 0) || !std::isfinite(tol)) return true;  // a zero-size mesh fails the area check
+  double lo[3] = {mesh.coords[0], mesh.coords[1], mesh.coords[2]};
+  for (size_t i = 0; i < nn; ++i) {
+    for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], mesh.coords[3 * i + c]);
+  }
+  using Cell = std::array<long long, 3>;
+  std::vector<std::pair<Cell, int>> cells(nn);
+  for (size_t i = 0; i < nn; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const double x = std::floor((mesh.coords[3 * i + c] - lo[c]) / tol);
+      cells[i].first[c] = x < 4e18 ? (long long)x : (long long)4e18;
+    }
+    cells[i].second = (int)i;
+  }
+  std::sort(cells.begin(), cells.end());
+  for (size_t i = 0; i < nn; ++i) {
+    const Cell &ci = cells[i].first;
+    for (int d = 0; d < 27; ++d) {
+      const Cell cj = {ci[0] + d % 3 - 1, ci[1] + d / 3 % 3 - 1, ci[2] + d / 9 - 1};
+      auto it = std::lower_bound(cells.begin(), cells.end(), std::make_pair(cj, -1));
+      for (; it != cells.end() && it->first == cj; ++it) {
+        const int a = cells[i].second, b = it->second;
+        if (b <= a) continue;
+        const double *p = &mesh.coords[3 * (size_t)a], *q = &mesh.coords[3 * (size_t)b];
+        const double dist = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                      (p[2] - q[2]) * (p[2] - q[2]));
+        if (dist <= tol) {
+          return Fail(mesh, err, NodeName(mesh, (size_t)a) + " and " + NodeName(mesh, (size_t)b) +
+                                     " are at the same place (" + Num(p[0]) + ", " + Num(p[1]) +
+                                     ", " + Num(p[2]) + "; " + Num(dist) + " mm apart, within 1e-6 "
+                                     "of the mean edge length " + Num(mean_edge) +
+                                     " mm): the mesh has a crack there; merge duplicate nodes in the "
+                                     "mesh generator (Gmsh: Geometry.Tolerance, or Coherence Mesh)");
+        }
+      }
+    }
+  }
+  return true;
 }
 
 // Sets index into the mesh; a stale or unsorted set would silently pick the wrong nodes later.
@@ -118,6 +288,7 @@ bool MeshCheck(const MeshData &mesh, double min_area, std::string *err) {
                                ": remove or merge it in the mesh generator, or lower "
                                "-mesh_min_area");
   }
+  if (!CheckTopology(mesh, err) || !CheckCoincidentNodes(mesh, err)) return false;
   size_t unused = 0, first_unused = 0;
   for (size_t i = 0; i < nn; ++i) {
     if (!used[i] && unused++ == 0) first_unused = i;
@@ -130,6 +301,67 @@ bool MeshCheck(const MeshData &mesh, double min_area, std::string *err) {
   }
   if (!CheckSets(mesh, mesh.node_sets, "node", nn, err)) return false;
   return CheckSets(mesh, mesh.element_sets, "element", ne, err);
+}
+
+bool MeshOrient(MeshData *mesh, std::string *err) {
+  if (!IdsValid(*mesh) || DuplicateTriangle(*mesh).first >= 0) return true;
+  const std::vector<Edge> edges = SortedEdges(*mesh);
+  const size_t ne = mesh->triangles.size() / 3;
+  // Neighbours across manifold edges, with whether they must be flipped relative to each other.
+  std::vector<std::vector<std::pair<int, bool>>> nbr(ne);
+  for (size_t i = 0; i < edges.size();) {
+    size_t j = i + 1;
+    while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
+    if (j - i > 2) return true;  // non-manifold: MeshCheck says so
+    if (j - i == 2) {
+      const bool differ = edges[i].forward == edges[i + 1].forward;
+      nbr[(size_t)edges[i].element].push_back({edges[i + 1].element, differ});
+      nbr[(size_t)edges[i + 1].element].push_back({edges[i].element, differ});
+    }
+    i = j;
+  }
+  std::vector<int> flip(ne, -1);
+  std::vector<int> piece, stack;
+  size_t flipped = 0, pieces = 0;
+  for (size_t seed = 0; seed < ne; ++seed) {
+    if (flip[seed] >= 0) continue;
+    ++pieces;
+    piece.clear();
+    flip[seed] = 0;
+    stack.assign(1, (int)seed);
+    while (!stack.empty()) {
+      const int e = stack.back();
+      stack.pop_back();
+      piece.push_back(e);
+      for (const auto &n : nbr[(size_t)e]) {
+        const int want = flip[(size_t)e] ^ (n.second ? 1 : 0);
+        if (flip[(size_t)n.first] < 0) {
+          flip[(size_t)n.first] = want;
+          stack.push_back(n.first);
+        } else if (flip[(size_t)n.first] != want) {
+          return Fail(*mesh, err, "the surface through " + ElementName(*mesh, seed) + " and " +
+                                      ElementName(*mesh, (size_t)n.first) +
+                                      " cannot be oriented (like a Moebius strip): a membrane "
+                                      "needs a two-sided surface; cut it or remesh it");
+        }
+      }
+    }
+    size_t against = 0;
+    for (int e : piece) against += (size_t)flip[(size_t)e];
+    const int minority = 2 * against > piece.size() ? 0 : 1;  // ties keep the seed's way
+    for (int e : piece) {
+      if (flip[(size_t)e] != minority) continue;
+      std::swap(mesh->triangles[3 * (size_t)e + 1], mesh->triangles[3 * (size_t)e + 2]);
+      ++flipped;
+    }
+  }
+  if (flipped > 0) {
+    mesh->notes.push_back("flipped " + Id(flipped) + " of " + Id(ne) +
+                          " triangles to the orientation of their neighbours (the majority of " +
+                          (pieces > 1 ? "each of the " + Id(pieces) + " connected pieces" :
+                                        std::string("the surface")) + ")");
+  }
+  return true;
 }
 
 } // namespace etfe

@@ -37,10 +37,15 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                              "Converged when |R| <= this * (norm of reactions and external loads)",
                              "", o->force_rtol, &o->force_rtol, nullptr));
   PetscOptionsEnd();
-  PetscCheck(o->increments >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-load_increments %" PetscInt_FMT ": need at least one increment", o->increments);
-  PetscCheck(o->max_cutbacks >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-load_max_cutbacks %" PetscInt_FMT ": must be >= 0", o->max_cutbacks);
+  // Bounds keep the step arithmetic (increments + stages, 2^cutbacks) far from overflow and the
+  // smallest increment far above the round-off of the load time.
+  const PetscInt max_increments = 1000000, max_cutbacks = 30;
+  PetscCheck(o->increments >= 1 && o->increments <= max_increments, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-load_increments %" PetscInt_FMT ": use 1 to %" PetscInt_FMT " increments", o->increments,
+             max_increments);
+  PetscCheck(o->max_cutbacks >= 0 && o->max_cutbacks <= max_cutbacks, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-load_max_cutbacks %" PetscInt_FMT ": use 0 to %" PetscInt_FMT " (each halves the increment)",
+             o->max_cutbacks, max_cutbacks);
   PetscFunctionReturn(0);
 }
 
@@ -67,7 +72,17 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
     PetscCall(SNESGetSolution(snes, &X));
     PetscCall(VecNorm(X, NORM_INFINITY, &umax));
     const double k = std::max(P->contact->params.kn, P->contact->params.kt);
-    tol = std::max(tol, 1e2 * PETSC_MACHINE_EPSILON * k * umax * std::sqrt((double)P->contact->num_global));
+    const double floor = 1e2 * PETSC_MACHINE_EPSILON * k * umax * std::sqrt((double)P->contact->num_global);
+    // Accepting on a floor that is a visible part of the forces would report a wrong answer as
+    // converged; ContactCreate refuses most such penalties up front, this catches the rest.
+    PetscCheck(!(fnorm > tol && fnorm <= floor && floor > kPenaltyFloorMax * P->force_scale), P->comm,
+               PETSC_ERR_ARG_OUTOFRANGE,
+               "-contact_kn %g / -contact_kt %g: the round-off of the penalty forces (%.3g N) is %.2g of the forces "
+               "balanced (%.3g N), above the force tolerance of the test (%g of them), so this answer cannot be "
+               "checked; the largest usable penalty here is ~%.1e N/mm",
+               P->contact->params.kn, P->contact->params.kt, floor, floor / P->force_scale, P->force_scale,
+               kPenaltyFloorMax, k * kPenaltyFloorMax * P->force_scale / floor);
+    tol = std::max(tol, floor);
   }
   if (fnorm <= tol) *reason = SNES_CONVERGED_FNORM_ABS;
   PetscFunctionReturn(0);

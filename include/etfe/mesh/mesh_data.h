@@ -15,14 +15,30 @@ struct MeshData {
   std::map<std::string, std::vector<int>> node_sets;     // sorted, unique node ids
   std::map<std::string, std::vector<int>> element_sets;  // sorted, unique element ids
   std::string source;            // file name or generator description, for messages
+  // Gmsh tags of the nodes and triangles (empty for a generated mesh), so that messages name
+  // what the user sees in the file; both halves of a split quadrangle carry the quad's tag.
+  std::vector<long long> node_tags, element_tags;
+  // What was changed on reading or repairing (split quadrangles, flipped triangles), one
+  // sentence each, for the log: nothing is changed silently.
+  std::vector<std::string> notes;
 
   int NumNodes() const { return (int)(coords.size() / 3); }
   int NumElements() const { return (int)(triangles.size() / 3); }
 };
 
 // Checks a mesh: finite coordinates, node ids in range, no repeated node in a triangle, no
-// triangle with area below min_area (mm^2), every node used, sets in range. On failure returns
-// false and writes a message naming the source, the element/node and the way out.
+// triangle with area below min_area (mm^2), every node used, sets in range, and the topology of
+// a membrane surface: no two nodes at one place (a crack: tolerance 1e-6 of the mean edge
+// length), no triangle twice, no edge shared by more than two triangles, neighbours oriented
+// alike. On failure returns false and writes a message naming the source, the element/node
+// (with its file tag when read from a file) and the way out.
 bool MeshCheck(const MeshData &mesh, double min_area, std::string *err);
+
+// Makes the orientation of the triangles agree across every shared edge: in each connected
+// piece the triangles that disagree with the majority (ties: with the lowest-numbered triangle)
+// are flipped, and a sentence saying how many goes into mesh->notes. Returns false with a
+// message when no consistent orientation exists (a Moebius-like surface). Leaves meshes with
+// bad ids or non-manifold edges alone: MeshCheck refuses those with their own message.
+bool MeshOrient(MeshData *mesh, std::string *err);
 
 } // namespace etfe
