@@ -1,0 +1,236 @@
+// Gmsh MSH 4.1 ASCII writer for MeshData (form finding hands its surface to the stretch scenes
+// this way). Writes only what keeps the file self-consistent; quality checks are MeshCheck's.
+#include <charconv>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "etfe/mesh/gmsh_reader.h"
+#include "gmsh_tokenizer.h"
+
+namespace etfe {
+namespace {
+
+using gmsh::Quote;
+using gmsh::Str;
+
+void Append(std::string *out, double v) {
+  char b[32];
+  const auto r = std::to_chars(b, b + sizeof b, v);  // shortest form that reads back exactly
+  out->append(b, r.ptr);
+}
+void Append(std::string *out, long long v) {
+  char b[24];
+  const auto r = std::to_chars(b, b + sizeof b, v);
+  out->append(b, r.ptr);
+}
+void Append(std::string *out, const char *s) { out->append(s); }
+template <typename T> void Field(std::string *out, T v) {
+  out->push_back(' ');
+  Append(out, v);
+}
+template <typename T, typename... Rest> void Line(std::string *out, T first, Rest... rest) {
+  Append(out, first);
+  (Field(out, rest), ...);
+  out->push_back('\n');
+}
+
+bool WriteFail(const std::string &path, const MeshData &mesh, const std::string &msg,
+               std::string *err) {
+  if (err) *err = path + ": cannot write mesh " + Quote(mesh.source) + ": " + msg;
+  return false;
+}
+
+// The writer needs only what keeps the file self-consistent; quality checks are MeshCheck's.
+bool WriterCheck(const std::string &path, const MeshData &mesh, std::string *err) {
+  if (mesh.coords.size() % 3 != 0 || mesh.triangles.size() % 3 != 0) {
+    return WriteFail(path, mesh, "coords or triangles is not a multiple of 3 long", err);
+  }
+  const size_t nn = mesh.coords.size() / 3, ne = mesh.triangles.size() / 3;
+  if (nn + ne >= (size_t)INT_MAX) {  // element tags run over triangles and then points
+    return WriteFail(path, mesh, "too many nodes or elements", err);
+  }
+  for (size_t i = 0; i < mesh.coords.size(); ++i) {
+    if (!std::isfinite(mesh.coords[i])) {
+      return WriteFail(path, mesh,
+                       "node " + Str((long long)(i / 3)) + " has a non-finite coordinate", err);
+    }
+  }
+  for (size_t i = 0; i < mesh.triangles.size(); ++i) {
+    if (mesh.triangles[i] < 0 || (size_t)mesh.triangles[i] >= nn) {
+      return WriteFail(path, mesh, "element " + Str((long long)(i / 3)) + " refers to node " +
+                                       Str((long long)mesh.triangles[i]) + ", out of range", err);
+    }
+  }
+  for (int dim = 0; dim < 2; ++dim) {
+    const auto &sets = dim == 0 ? mesh.node_sets : mesh.element_sets;
+    const size_t n = dim == 0 ? nn : ne;
+    for (const auto &s : sets) {
+      if (s.first.empty() || s.first.find_first_of("\"\n\r") != std::string::npos) {
+        return WriteFail(path, mesh, "set name " + Quote(s.first) +
+                                         " is empty or has a double quote or line break", err);
+      }
+      for (int v : s.second) {
+        if (v < 0 || (size_t)v >= n) {
+          return WriteFail(path, mesh, std::string(dim == 0 ? "node" : "element") + " set " +
+                                           Quote(s.first) + " holds id " + Str((long long)v) +
+                                           ", out of range", err);
+        }
+      }
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+// Layout: all nodes in one block on surface entity 1. Triangles go to one surface entity per
+// distinct combination of element sets (a triangle can only sit on one entity), written in runs
+// so that the file keeps the triangle order. A node set is the node set of the element set with
+// the same name (the reader derives it) plus, for the nodes that adds, a 0-D physical group of
+// the same name carried by one point entity per node, as Gmsh itself models points.
+bool WriteGmshFile(const std::string &path, const MeshData &mesh, std::string *err) {
+  if (!WriterCheck(path, mesh, err)) return false;
+  const size_t nn = mesh.coords.size() / 3, ne = mesh.triangles.size() / 3;
+
+  // 2-D physical tags 1..E for the element sets, then 0-D tags for the node sets that need them.
+  std::vector<std::pair<long long, const std::string *>> phys2, phys0;
+  std::vector<std::vector<long long>> tri_groups(ne);
+  for (const auto &s : mesh.element_sets) {
+    const long long tag = (long long)phys2.size() + 1;
+    phys2.emplace_back(tag, &s.first);
+    for (int e : s.second) {
+      if (tri_groups[(size_t)e].empty() || tri_groups[(size_t)e].back() != tag) {
+        tri_groups[(size_t)e].push_back(tag);
+      }
+    }
+  }
+  std::map<int, std::vector<long long>> point_groups;  // node -> 0-D physical tags
+  for (const auto &s : mesh.node_sets) {
+    std::vector<char> covered;
+    const auto es = mesh.element_sets.find(s.first);
+    if (es != mesh.element_sets.end()) {
+      covered.assign(nn, 0);
+      for (int e : es->second) {
+        for (int k = 0; k < 3; ++k) covered[(size_t)mesh.triangles[3 * (size_t)e + k]] = 1;
+      }
+    }
+    std::vector<int> extra;
+    for (int v : s.second) {
+      if (covered.empty() || !covered[(size_t)v]) extra.push_back(v);
+    }
+    // An empty node set without an element set is kept as a named group with no entity.
+    if (extra.empty() && !(s.second.empty() && es == mesh.element_sets.end())) continue;
+    const long long tag = (long long)(phys2.size() + phys0.size()) + 1;
+    phys0.emplace_back(tag, &s.first);
+    for (int v : extra) {
+      std::vector<long long> &g = point_groups[v];
+      if (g.empty() || g.back() != tag) g.push_back(tag);
+    }
+  }
+
+  // Surface entities: one per distinct group combination, in order of first use.
+  std::map<std::vector<long long>, long long> surface_of;
+  std::vector<const std::vector<long long> *> surface_groups;
+  std::vector<long long> tri_surface(ne);
+  for (size_t e = 0; e < ne; ++e) {
+    const auto ins = surface_of.emplace(tri_groups[e], (long long)surface_groups.size() + 1);
+    if (ins.second) surface_groups.push_back(&ins.first->first);
+    tri_surface[e] = ins.first->second;
+  }
+  static const std::vector<long long> kNoGroups;
+  if (surface_groups.empty()) surface_groups.push_back(&kNoGroups);  // to carry the nodes
+  const size_t nsurf = surface_groups.size();
+  std::vector<double> box(6 * nsurf, 0.0);
+  std::vector<char> box_set(nsurf, 0);
+  for (size_t e = 0; e < ne; ++e) {
+    const size_t s = (size_t)tri_surface[e] - 1;
+    for (int k = 0; k < 3; ++k) {
+      const double *x = &mesh.coords[3 * (size_t)mesh.triangles[3 * e + k]];
+      for (int c = 0; c < 3; ++c) {
+        if (!box_set[s] || x[c] < box[6 * s + c]) box[6 * s + c] = x[c];
+        if (!box_set[s] || x[c] > box[6 * s + 3 + c]) box[6 * s + 3 + c] = x[c];
+      }
+      box_set[s] = 1;
+    }
+  }
+
+  std::string out;
+  out.reserve(64 * (nn + ne) + 4096);
+  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  out += "$PhysicalNames\n";
+  Line(&out, (long long)(phys0.size() + phys2.size()));
+  for (const auto &p : phys0) {
+    Line(&out, 0LL, p.first, ("\"" + *p.second + "\"").c_str());
+  }
+  for (const auto &p : phys2) {
+    Line(&out, 2LL, p.first, ("\"" + *p.second + "\"").c_str());
+  }
+  out += "$EndPhysicalNames\n$Entities\n";
+  Line(&out, (long long)point_groups.size(), 0LL, (long long)nsurf, 0LL);
+  long long point_tag = 0;
+  for (const auto &pg : point_groups) {
+    const double *x = &mesh.coords[3 * (size_t)pg.first];
+    Append(&out, ++point_tag);
+    for (int c = 0; c < 3; ++c) Field(&out, x[c]);
+    Field(&out, (long long)pg.second.size());
+    for (long long t : pg.second) Field(&out, t);
+    out += '\n';
+  }
+  for (size_t s = 0; s < nsurf; ++s) {
+    Append(&out, (long long)s + 1);
+    for (int c = 0; c < 6; ++c) Field(&out, box[6 * s + c]);
+    Field(&out, (long long)surface_groups[s]->size());
+    for (long long t : *surface_groups[s]) Field(&out, t);
+    out += " 0\n";  // no bounding curves: a discrete surface
+  }
+  out += "$EndEntities\n$Nodes\n";
+  Line(&out, 1LL, (long long)nn, nn ? 1LL : 0LL, (long long)nn);
+  Line(&out, 2LL, 1LL, 0LL, (long long)nn);
+  for (size_t i = 0; i < nn; ++i) Line(&out, (long long)i + 1);
+  for (size_t i = 0; i < nn; ++i) {
+    Line(&out, mesh.coords[3 * i], mesh.coords[3 * i + 1], mesh.coords[3 * i + 2]);
+  }
+  out += "$EndNodes\n$Elements\n";
+  size_t nruns = 0;
+  for (size_t e = 0; e < ne; ++e) nruns += (e == 0 || tri_surface[e] != tri_surface[e - 1]);
+  const size_t nelem = ne + point_groups.size();
+  Line(&out, (long long)(nruns + point_groups.size()), (long long)nelem, nelem ? 1LL : 0LL,
+       (long long)nelem);
+  for (size_t e = 0; e < ne;) {
+    size_t end = e;
+    while (end < ne && tri_surface[end] == tri_surface[e]) ++end;
+    Line(&out, 2LL, tri_surface[e], 2LL, (long long)(end - e));
+    for (; e < end; ++e) {
+      Line(&out, (long long)e + 1, (long long)mesh.triangles[3 * e] + 1,
+           (long long)mesh.triangles[3 * e + 1] + 1, (long long)mesh.triangles[3 * e + 2] + 1);
+    }
+  }
+  long long elem_tag = (long long)ne;
+  point_tag = 0;
+  for (const auto &pg : point_groups) {
+    Line(&out, 0LL, ++point_tag, 15LL, 1LL);
+    Line(&out, ++elem_tag, (long long)pg.first + 1);
+  }
+  out += "$EndElements\n";
+
+  std::FILE *f = std::fopen(path.c_str(), "wb");
+  if (!f) {
+    if (err) *err = path + ": cannot open for writing: " + std::strerror(errno);
+    return false;
+  }
+  const bool wrote = std::fwrite(out.data(), 1, out.size(), f) == out.size();
+  const int write_errno = errno;
+  if (std::fclose(f) != 0 || !wrote) {
+    if (err) *err = path + ": cannot write: " + std::strerror(wrote ? errno : write_errno);
+    return false;
+  }
+  return true;
+}
+
+} // namespace etfe
