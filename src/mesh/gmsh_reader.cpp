@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <new>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -22,19 +23,43 @@ namespace {
 
 using namespace gmsh;
 
+// A mesh of at most 2^31 nodes (kMaxTag) in ASCII fits in a few GiB; past this the file is not a
+// mesh for this solver, and reading it would only exhaust memory.
+constexpr unsigned long long kMaxFileBytes = 1ull << 33;
+
 // Physical groups can make the sets far larger than the file (many groups on one big entity, or
 // a great many tiny groups, each of which costs a named set). Past this many set entries per
 // input byte, a group counting as kGroupCost entries, the file is rejected instead of allocated.
 constexpr size_t kSetEntriesPerByte = 8;
 constexpr size_t kGroupCost = 64;  // about the bytes of two map entries, in ints
 
-// Dimension of the element types that feed the mesh or its sets; -1 for the skipped ones.
+// Dimension of the element types that feed the mesh or its sets; -1 for the refused ones.
 int KeptTypeDim(long long type) {
   switch (type) {
     case 15: return 0;  // point
     case 1: return 1;   // 2-node line
     case 2: return 2;   // 3-node triangle
+    case 3: return 2;   // 4-node quadrangle, split into two triangles
     default: return -1;
+  }
+}
+
+// For the message that refuses an element type: what a user would call it.
+std::string TypeName(long long type) {
+  switch (type) {
+    case 4: return "4-node tetrahedron";
+    case 5: return "8-node hexahedron";
+    case 6: return "6-node prism";
+    case 7: return "5-node pyramid";
+    case 8: return "3-node second-order line";
+    case 9: return "6-node second-order triangle";
+    case 10: return "9-node second-order quadrangle";
+    case 11: return "10-node second-order tetrahedron";
+    case 16: return "8-node second-order quadrangle";
+    default: {
+      const int n = NodesPerElement(type);
+      return n > 0 ? Str((long long)n) + "-node element" : "unknown element";
+    }
   }
 }
 
@@ -90,12 +115,8 @@ class Reader {
     if (!seen_nodes_) return in_.FailAt(in_.size(), "no $Nodes section");
     if (!seen_elements_) return in_.FailAt(in_.size(), "no $Elements section");
     if (tri_.empty()) {
-      std::string msg = "no 3-node triangles (element type 2) in $Elements";
-      if (skipped_ > 0) {
-        msg += "; skipped " + Str(skipped_) + " elements of other types (the first of type " +
-               Str(first_skipped_type_) + "): this reader needs a first-order triangle mesh";
-      }
-      return in_.FailAt(elements_pos_, msg);
+      return in_.FailAt(elements_pos_, "no triangles (element type 2) or quadrangles (type 3) in "
+                                       "$Elements: the membrane needs a surface mesh");
     }
     return Finish(mesh);
   }
@@ -335,8 +356,7 @@ class Reader {
         if (sorted_[i].first == sorted_[i - 1].first) return DuplicateNode(sorted_[i].second);
       }
     }
-    std::vector<int>().swap(node_tags_);
-    std::vector<size_t>().swap(node_tag_pos_);
+    std::vector<size_t>().swap(node_tag_pos_);  // the tags stay: MeshCheck's messages name them
     return true;
   }
   bool DuplicateNode(size_t i) {
@@ -371,20 +391,45 @@ class Reader {
     return true;
   }
 
-  void Skipped(long long type, size_t count) {
-    if (skipped_ == 0) first_skipped_type_ = type;
-    skipped_ += (long long)count;
+  // Silently dropping elements would leave holes in the membrane; volume or second-order
+  // elements mean the file was meshed for something else.
+  bool Refuse(long long type, unsigned long long elem_tag) {
+    return in_.Fail("element " + Str(elem_tag) + " is of type " + Str(type) + " (" + TypeName(type) +
+                    "): this reader takes first-order triangles (type 2), quadrangles (type 3, split "
+                    "into two triangles), lines (1) and points (15); remesh the surface only, first "
+                    "order (Gmsh: -2 -order 1)");
   }
 
-  bool AddTriangle(const int *idx, Carrier *c) {
+  bool AddTriangle(const int *idx, Carrier *c, unsigned long long elem_tag) {
     if (tri_.size() / 3 >= (size_t)INT_MAX) return in_.Fail("too many triangles");
     const int id = (int)(tri_.size() / 3);
     tri_.insert(tri_.end(), idx, idx + 3);
+    tri_tags_.push_back((long long)elem_tag);
     if (c) {
       c->tris.push_back(id);
       c->nodes.insert(c->nodes.end(), idx, idx + 3);
     }
     return true;
+  }
+
+  // A quadrangle becomes two triangles along its shorter diagonal (the better-shaped pair), in
+  // the quadrangle's own orientation.
+  bool AddQuadrangle(const int *q, Carrier *c, unsigned long long elem_tag) {
+    auto dist2 = [this](int a, int b) {
+      double d = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double x = xyz_[3 * (size_t)a + k] - xyz_[3 * (size_t)b + k];
+        d += x * x;
+      }
+      return d;
+    };
+    ++quads_;
+    if (dist2(q[0], q[2]) <= dist2(q[1], q[3])) {
+      const int t0[3] = {q[0], q[1], q[2]}, t1[3] = {q[0], q[2], q[3]};
+      return AddTriangle(t0, c, elem_tag) && AddTriangle(t1, c, elem_tag);
+    }
+    const int t0[3] = {q[0], q[1], q[3]}, t1[3] = {q[1], q[2], q[3]};
+    return AddTriangle(t0, c, elem_tag) && AddTriangle(t1, c, elem_tag);
   }
 
   bool ParseElements41() {
@@ -403,10 +448,6 @@ class Reader {
       const size_t entity_pos = in_.at();
       if (!in_.ReadInt(&type, "element type", 1, INT_MAX)) return false;
       const int npe = NodesPerElement(type);
-      if (npe == 0 && binary_) {
-        return in_.Fail("element type " + Str(type) +
-                        " is unknown, so its binary records cannot be skipped");
-      }
       size_t n;
       if (!in_.ReadCount(&n, "elements in the block", 1 + (size_t)npe, 8 * (1 + (size_t)npe))) {
         return false;
@@ -417,8 +458,14 @@ class Reader {
       }
       total += n;
       const int kept_dim = KeptTypeDim(type);
+      if (kept_dim < 0) {
+        if (n == 0) continue;
+        unsigned long long tag;
+        if (!in_.ReadSize(&tag, "element tag", 1, kMaxTag)) return false;
+        return Refuse(type, tag);
+      }
       Carrier *carrier = nullptr;
-      if (kept_dim >= 0) {
+      {
         if (kept_dim != dim) {
           return in_.Fail("element type " + Str(type) + " in a block of entity dimension " +
                           Str(dim) + " (expected " + Str((long long)kept_dim) + ")");
@@ -428,21 +475,17 @@ class Reader {
                                             ", tag " + Str(entity) + "), which $Entities lacks");
         }
         carrier = &carriers_[Key((int)dim, entity)];
-        if (type == 2) Grow(&tri_, 3 * n);
-      } else {
-        Skipped(type, n);
+        if (type == 2 || type == 3) Grow(&tri_, 3 * n * (size_t)(type - 1));
       }
       for (size_t i = 0; i < n; ++i) {
         unsigned long long tag;
         if (!in_.ReadSize(&tag, "element tag", 1, kMaxTag)) return false;
-        if (npe == 0) {
-          in_.SkipLine();
-          continue;
-        }
-        int idx[3] = {-1, -1, -1};
-        if (!ReadElementNodes(npe, kept_dim >= 0, tag, idx)) return false;
+        int idx[4] = {-1, -1, -1, -1};
+        if (!ReadElementNodes(npe, true, tag, idx)) return false;
         if (type == 2) {
-          if (!AddTriangle(idx, carrier)) return false;
+          if (!AddTriangle(idx, carrier, tag)) return false;
+        } else if (type == 3) {
+          if (!AddQuadrangle(idx, carrier, tag)) return false;
         } else if (carrier) {
           carrier->nodes.insert(carrier->nodes.end(), idx, idx + npe);
         }
@@ -461,10 +504,10 @@ class Reader {
     size_t n;
     if (!in_.ReadCount(&n, "elements", 3, 0)) return false;
     // Gmsh 2 writes an element once per physical group it belongs to, as consecutive records
-    // with the same elementary tag and nodes: those are one triangle in several groups.
-    bool prev_tri = false;
+    // with the same elementary tag and nodes: those are one surface element in several groups.
+    int prev_tris = 0;  // triangles the previous record made (quadrangles make two)
     long long prev_elementary = 0, prev_phys = 0;
-    int prev_idx[3] = {-1, -1, -1};
+    int prev_idx[4] = {-1, -1, -1, -1};
     for (size_t i = 0; i < n; ++i) {
       unsigned long long tag;
       long long type;
@@ -481,36 +524,28 @@ class Reader {
       }
       const int npe = NodesPerElement(type);
       const int dim = KeptTypeDim(type);
-      if (dim < 0) {
-        prev_tri = false;
-        Skipped(type, 1);
-        if (npe == 0) {
-          in_.SkipLine();
-        } else if (!ReadElementNodes(npe, false, tag, nullptr)) {
-          return false;
-        }
-        continue;
-      }
-      int idx[3] = {-1, -1, -1};
+      if (dim < 0) return Refuse(type, tag);
+      int idx[4] = {-1, -1, -1, -1};
       if (!ReadElementNodes(npe, true, tag, idx)) return false;
       Carrier *carrier = (phys != 0) ? &carriers_[Key(dim, phys)] : nullptr;
-      if (type == 2) {
-        const bool repeat = prev_tri && elementary == prev_elementary && phys != prev_phys &&
-                            std::equal(idx, idx + 3, prev_idx);
+      if (type == 2 || type == 3) {
+        const int ntri = type == 2 ? 1 : 2;
+        const bool repeat = prev_tris == ntri && elementary == prev_elementary &&
+                            phys != prev_phys && std::equal(idx, idx + npe, prev_idx);
         if (repeat) {
           if (carrier) {
-            carrier->tris.push_back((int)(tri_.size() / 3) - 1);
-            carrier->nodes.insert(carrier->nodes.end(), idx, idx + 3);
+            for (int k = ntri; k >= 1; --k) carrier->tris.push_back((int)(tri_.size() / 3) - k);
+            carrier->nodes.insert(carrier->nodes.end(), idx, idx + npe);
           }
-        } else if (!AddTriangle(idx, carrier)) {
+        } else if (!(type == 2 ? AddTriangle(idx, carrier, tag) : AddQuadrangle(idx, carrier, tag))) {
           return false;
         }
-        prev_tri = true;
+        prev_tris = ntri;
         prev_elementary = elementary;
         prev_phys = phys;
-        std::copy(idx, idx + 3, prev_idx);
+        std::copy(idx, idx + npe, prev_idx);
       } else {
-        prev_tri = false;
+        prev_tris = 0;
         if (carrier) carrier->nodes.insert(carrier->nodes.end(), idx, idx + npe);
       }
     }
@@ -538,6 +573,16 @@ class Reader {
     }
     mesh.triangles.resize(tri_.size());
     for (size_t i = 0; i < tri_.size(); ++i) mesh.triangles[i] = new_id[(size_t)tri_[i]];
+    mesh.node_tags.reserve((size_t)next);
+    for (size_t i = 0; i < nall; ++i) {
+      if (new_id[i] >= 0) mesh.node_tags.push_back(node_tags_[i]);
+    }
+    mesh.element_tags = tri_tags_;
+    if (quads_ > 0) {
+      mesh.notes.push_back("split " + Str((unsigned long long)quads_) +
+                           " quadrangles (element type 3) into two triangles each, along their "
+                           "shorter diagonal");
+    }
 
     // Physical group -> the carriers it covers; named groups exist even when empty.
     std::map<Key, std::vector<const Carrier *>> groups;
@@ -602,10 +647,11 @@ class Reader {
   std::vector<std::pair<int, int>> sorted_;  // (tag, index) when the tags are sparse
 
   std::vector<int> tri_;  // 3 file-order node indices per triangle
+  std::vector<long long> tri_tags_;  // the element tag each triangle came from
+  size_t quads_ = 0;                 // quadrangles split into two triangles
   std::map<Key, std::vector<long long>> entities_;  // (dim, entity tag) -> physical tags
   std::map<Key, Carrier> carriers_;  // (dim, entity tag) in 4.1, (dim, physical tag) in 2.2
   std::map<Key, std::string> names_;
-  long long skipped_ = 0, first_skipped_type_ = 0;
 };
 
 } // namespace
@@ -623,15 +669,44 @@ bool ReadGmshBuffer(const std::string &buffer, const std::string &name, MeshData
 }
 
 bool ReadGmshFile(const std::string &path, MeshData *mesh, std::string *err) {
+  // Only a regular file has a size to bound the reading by: /dev/zero never ends, and opening a
+  // FIFO blocks until someone writes to it. Refuse them before opening.
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    if (err) *err = path + ": cannot open: " + std::strerror(errno);
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    if (err) {
+      *err = path + ": not a regular file (" +
+             (S_ISDIR(st.st_mode) ? "a directory" : S_ISFIFO(st.st_mode) ? "a FIFO" : "a device or socket") +
+             "): give a Gmsh .msh file";
+    }
+    return false;
+  }
+  if ((unsigned long long)st.st_size > kMaxFileBytes) {
+    if (err) {
+      *err = path + ": " + Str((unsigned long long)st.st_size) + " bytes, more than the " +
+             Str(kMaxFileBytes) + " a mesh of at most 2^31 nodes needs: is it the right file?";
+    }
+    return false;
+  }
   std::FILE *f = std::fopen(path.c_str(), "rb");
   if (!f) {
     if (err) *err = path + ": cannot open: " + std::strerror(errno);
     return false;
   }
+  // Read exactly the size stat gave (a file that grows meanwhile is read as it was), into one
+  // allocation: the peak memory is the file size, not twice it.
   std::string buf;
-  char chunk[1 << 16];
-  size_t got;
-  while ((got = std::fread(chunk, 1, sizeof chunk, f)) > 0) buf.append(chunk, got);
+  try {
+    buf.resize((size_t)st.st_size);
+  } catch (const std::bad_alloc &) {
+    std::fclose(f);
+    if (err) *err = path + ": not enough memory to read its " + Str((unsigned long long)st.st_size) + " bytes";
+    return false;
+  }
+  const size_t got = buf.empty() ? 0 : std::fread(&buf[0], 1, buf.size(), f);
   const bool bad = std::ferror(f) != 0;
   const int read_errno = errno;
   std::fclose(f);
@@ -639,6 +714,7 @@ bool ReadGmshFile(const std::string &path, MeshData *mesh, std::string *err) {
     if (err) *err = path + ": cannot read: " + std::strerror(read_errno);
     return false;
   }
+  buf.resize(got);  // a file that shrank meanwhile: the reader reports where it ends
   return ReadGmshBuffer(buf, path, mesh, err);
 }
 

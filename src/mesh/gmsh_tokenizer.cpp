@@ -45,8 +45,17 @@ bool Input::Token(std::string_view *tok, const std::string &what) {
   at_ = pos_;
   if (pos_ >= buf_.size()) return Fail("unexpected end of file, expected " + what);
   const size_t start = pos_;
-  while (pos_ < buf_.size() && !IsSpace(buf_[pos_])) ++pos_;
+  const size_t stop = std::min(buf_.size(), start + kMaxTokenChars + 1);
+  while (pos_ < stop && !IsSpace(buf_[pos_])) ++pos_;
   *tok = std::string_view(buf_).substr(start, pos_ - start);
+  if (pos_ - start > kMaxTokenChars) {
+    return Fail("a token longer than " + Str((unsigned long long)kMaxTokenChars) + " characters (" +
+                Quote(*tok) + "): not an ASCII MSH line; is the file damaged or not a mesh?");
+  }
+  if (pos_ - line_start_ > kMaxLineBytes) {
+    return Fail("a line longer than " + Str((unsigned long long)kMaxLineBytes) +
+                " bytes: not an ASCII MSH line; is the file damaged or not a mesh?");
+  }
   return true;
 }
 
@@ -170,7 +179,11 @@ bool Input::QuotedName(std::string *name) {
     return Fail("expected a physical name in double quotes");
   }
   const size_t start = ++pos_;
-  while (pos_ < buf_.size() && buf_[pos_] != '"' && buf_[pos_] != '\n') ++pos_;
+  const size_t stop = std::min(buf_.size(), start + kMaxTokenChars + 1);
+  while (pos_ < stop && buf_[pos_] != '"' && buf_[pos_] != '\n') ++pos_;
+  if (pos_ - start > kMaxTokenChars) {
+    return Fail("physical name longer than " + Str((unsigned long long)kMaxTokenChars) + " characters");
+  }
   if (pos_ >= buf_.size() || buf_[pos_] != '"') {
     return Fail("physical name has no closing double quote on its line");
   }

@@ -41,6 +41,12 @@ template <typename T> void Grow(std::vector<T> *v, size_t extra) {
   if (need > v->capacity()) v->reserve(std::max(need, 2 * v->capacity()));
 }
 
+// No ASCII MSH token (a number, a section name) is anywhere near this long, nor any line
+// ($Entities lines list bounding entities, a few per curve): a file of zeros or binary junk is
+// refused at its first token instead of being scanned or held to the end.
+constexpr size_t kMaxTokenChars = 1024;
+constexpr size_t kMaxLineBytes = 1u << 20;
+
 inline bool IsSpace(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
@@ -60,7 +66,10 @@ class Input {
   size_t at() const { return at_; }  // start of the last value read
   size_t size() const { return buf_.size(); }
   size_t Remaining() const { return buf_.size() - pos_; }
-  void SetBinary(bool binary) { binary_ = binary; }
+  void SetBinary(bool binary) {
+    binary_ = binary;
+    line_start_ = pos_;
+  }
   void SetBinaryLayout(bool swap, int size_width) {
     swap_ = swap;
     size_width_ = size_width;
@@ -70,7 +79,9 @@ class Input {
   bool Fail(const std::string &msg) { return FailAt(at_, msg); }
 
   void SkipSpace() {
-    while (pos_ < buf_.size() && IsSpace(buf_[pos_])) ++pos_;
+    for (; pos_ < buf_.size() && IsSpace(buf_[pos_]); ++pos_) {
+      if (buf_[pos_] == '\n') line_start_ = pos_ + 1;
+    }
   }
   bool AtEnd() {
     SkipSpace();
@@ -113,11 +124,6 @@ class Input {
   // Binary data starts right after the newline that ends the section header line.
   bool EndHeaderLine(const std::string &header);
 
-  // The rest of a record whose length is unknown (an element of an unknown type in ASCII).
-  void SkipLine() {
-    while (pos_ < buf_.size() && buf_[pos_] != '\n') ++pos_;
-  }
-
   bool ExpectEnd(const std::string &section);
 
   // Sections this reader does not need ($Periodic, $NodeData, ...) are skipped by looking for
@@ -134,6 +140,7 @@ class Input {
   const std::string &name_;
   size_t pos_ = 0;
   size_t at_ = 0;  // where the value being read starts: the place errors point at
+  size_t line_start_ = 0;  // of the ASCII line being read, for the line-length cap
   bool binary_ = false;
   bool swap_ = false;
   int size_width_ = 8;

@@ -138,6 +138,21 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
     for (const char *name : {"left", "right", "bottom", "top"})
       PetscCheck(scene->mesh.node_sets.count(name), comm, PETSC_ERR_ARG_WRONG,
                  "%s: the patch scene needs a physical group named \"%s\" (lines of that edge)", mesh_file, name);
+    // The stretch is a strain of the mesh's own size, whatever -patch_lx/-patch_ly (which size
+    // the generated mesh) say: the prescribed displacement is ex times the real length.
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int i = 0; i < scene->mesh.NumNodes(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        lo[c] = std::min(lo[c], scene->mesh.coords[3 * i + c]);
+        hi[c] = std::max(hi[c], scene->mesh.coords[3 * i + c]);
+      }
+    lx = hi[0] - lo[0];
+    ly = hi[1] - lo[1];
+    PetscCheck(lx > 0 && ly > 0 && hi[2] - lo[2] <= 1e-9 * std::max(lx, ly), comm, PETSC_ERR_ARG_WRONG,
+               "%s: the patch scene needs a flat mesh in the XY plane; this one spans %g x %g x %g mm", mesh_file,
+               lx, ly, hi[2] - lo[2]);
+    PetscCall(PetscPrintf(comm, "patch: %s spans %g x %g mm; the strains apply to that size (-patch_lx/-patch_ly size "
+                                "the generated mesh only)\n", mesh_file, lx, ly));
     scene->mesh.node_sets["all"].resize(scene->mesh.NumNodes());
     for (int i = 0; i < scene->mesh.NumNodes(); ++i) scene->mesh.node_sets["all"][i] = i;
   } else {

@@ -107,10 +107,10 @@ PetscErrorCode MeshReadAndBroadcast(MPI_Comm comm, const char path[], MeshData *
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) {
-    ok = ReadGmshFile(path, mesh, &err) ? 1 : 0;
-    if (ok && !MeshCheck(*mesh, 0.0, &err)) ok = 0;
+    ok = ReadGmshFile(path, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
   }
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
+  for (const std::string &note : mesh->notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", path, note.c_str()));
   // Broadcast coordinates, triangles and the named sets.
   long long sizes[3] = {(long long)mesh->coords.size(), (long long)mesh->triangles.size(),
                         (long long)mesh->node_sets.size() + (long long)mesh->element_sets.size()};

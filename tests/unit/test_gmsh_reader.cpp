@@ -261,20 +261,38 @@ void TestDamagedInputs() {
   ExpectFailure("", 1, "empty", "empty buffer");
   ExpectFailure(std::string(kSmall) + "$NodeData\n1\n", 36, "no $EndNodeData",
                 "unterminated section");
-  // Only non-triangle elements: say what was found instead.
-  ExpectFailure(EditRange(29, 34, "2 2 1 2\n1 1 1 1\n1 1 2\n2 1 3 1\n2 1 2 3 4"), 28, "type 3",
-                "quads only");
+  // Element types the membrane cannot use are refused, naming the element and its type, not
+  // dropped: a tetrahedron among the triangles, a second-order triangle.
+  ExpectFailure(EditRange(29, 29, "3 4 1 9\n2 1 4 1\n9 1 2 3 4"), 31, "element 9 is of type 4",
+                "tetrahedron among triangles");
+  ExpectFailure(EditRange(29, 34, "2 2 1 2\n1 1 1 1\n1 1 2\n2 1 9 1\n2 1 2 3 4 1 2 3"), 33,
+                "type 9 (6-node second-order triangle)", "second-order triangle");
   {
-    // Harmless extras: a skipped quad block, CRLF line ends, sections this reader ignores.
-    const std::string body = EditRange(29, 29, "3 4 1 9\n2 1 3 1\n9 1 2 3 4");
+    // Quadrangles are split into two triangles along the shorter diagonal, with a note; their
+    // physical group gets both halves, and both carry the quad's tag.
+    const std::string s = EditRange(29, 34, "2 2 1 2\n1 1 1 1\n1 1 2\n2 1 3 1\n7 1 2 3 4");
+    MeshData m;
+    std::string err;
+    CHECK(etfe::ReadGmshBuffer(s, "quads.msh", &m, &err), "quads: %s", err.c_str());
+    CHECK(m.NumElements() == 2 && m.element_tags == std::vector<long long>({7, 7}),
+          "quads: %d elements", m.NumElements());
+    CHECK(m.element_sets["film"] == std::vector<int>({0, 1}), "quads: film set");
+    CHECK(m.notes.size() == 1 && Contains(m.notes[0], "split 1 quadrangles"), "quads: note");
+    CHECK(etfe::MeshCheck(m, 1e-9, &err), "quads: %s", err.c_str());
+  }
+  {
+    // Harmless extras: CRLF line ends, sections this reader ignores.
     std::string s;
-    for (const std::string &x : Lines(body)) s += x + "\r\n";
+    for (const std::string &x : Lines(kSmall)) s += x + "\r\n";
     s += "$Periodic\n0\n$EndPeriodic\n$NodeData\n1\n\"x\"\n$EndNodeData\n";
     MeshData m;
     std::string err;
     CHECK(etfe::ReadGmshBuffer(s, "extra.msh", &m, &err), "extras: %s", err.c_str());
     CHECK(m.NumElements() == 2, "extras: %d elements", m.NumElements());
+    CHECK(m.node_tags == std::vector<long long>({1, 2, 3, 4}), "extras: node tags");
   }
+  // A file of zeros or binary junk stops at its first token, long before its end.
+  ExpectFailure("$MeshFormat\n" + std::string(5000, '\0'), 2, "longer than 1024", "zeros");
   {
     // Sparse node tags and a node no triangle uses: dropped, also from its node set.
     const std::string s = EditRange(17, 34,
