@@ -104,6 +104,10 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene) {
              "-capstan_angle %g: the wrap angle must lie in (0, 350] degrees", angle);
   PetscCheck(nx >= 2 && ny >= 1 && refine >= 0 && refine < 10, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "capstan: need -mesh_nx >= 2, -mesh_ny >= 1, 0 <= -mesh_refine < 10");
+  PetscCheck(GeneratedTriangles(nx, ny, 2, refine) <= kMaxGeneratedTriangles, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_nx %" PetscInt_FMT " -mesh_ny %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more "
+             "than the %.3g a generated mesh may have", nx, ny, refine, GeneratedTriangles(nx, ny, 2, refine),
+             kMaxGeneratedTriangles);
   nx <<= refine;
   ny <<= refine;
   const double theta = angle * M_PI / 180.0;

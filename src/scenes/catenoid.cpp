@@ -67,6 +67,10 @@ PetscErrorCode SceneBuild_Catenoid(MPI_Comm comm, SceneSpec *scene) {
              "-catenoid_radius and -catenoid_separation must be positive");
   PetscCheck(ntheta >= 6 && nz >= 2 && nz % 2 == 0 && refine >= 0 && refine < 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "catenoid: need -mesh_ntheta >= 6, an even -mesh_nz >= 2, 0 <= -mesh_refine < 8");
+  PetscCheck(GeneratedTriangles(ntheta, nz, 2, refine) <= kMaxGeneratedTriangles, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_ntheta %" PetscInt_FMT " -mesh_nz %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, "
+             "more than the %.3g a generated mesh may have", ntheta, nz, refine, GeneratedTriangles(ntheta, nz, 2, refine),
+             kMaxGeneratedTriangles);
   ntheta <<= refine;
   nz <<= refine;
   // Start from the cylinder spanning the rings; the rings stay where they are.

@@ -81,6 +81,9 @@ PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene) {
              "-mesh_rings %" PetscInt_FMT " / -mesh_refine %" PetscInt_FMT ": need rings >= 1 and 0 <= refine < 12",
              rings, refine);
   if (bulge < 0) bulge = 0.1 * radius;
+  PetscCheck(GeneratedTriangles(rings, rings, 6, refine) <= kMaxGeneratedTriangles, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_rings %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more than the %.3g a "
+             "generated mesh may have", rings, refine, GeneratedTriangles(rings, rings, 6, refine), kMaxGeneratedTriangles);
   rings <<= refine;
   scene->mesh = MakeDiscMesh(radius, (int)rings);
   const int s = scene->AddSchedule({"pressure", 0.0, {1.0}});

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "etfe/kernels/elastic.h"
 #include "etfe/mesh/generators.h"
@@ -131,6 +132,10 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
   else if (ms == "biaxial") pmode = PatchMode::Biaxial;
   else if (ms == "pureshear") pmode = PatchMode::PureShear;
   else SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-patch_mode %s: use uniaxial, biaxial or pureshear", mode);
+  PetscCheck(GeneratedTriangles(nx, ny, ps == "crossed" ? 4 : 2, refine) <= kMaxGeneratedTriangles, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_nx %" PetscInt_FMT " -mesh_ny %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more "
+             "than the %.3g a generated mesh may have", nx, ny, refine, GeneratedTriangles(nx, ny, ps == "crossed" ? 4 : 2, refine),
+             kMaxGeneratedTriangles);
   nx <<= refine;
   ny <<= refine;
   if (file_set) {
@@ -151,8 +156,10 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
     PetscCheck(lx > 0 && ly > 0 && hi[2] - lo[2] <= 1e-9 * std::max(lx, ly), comm, PETSC_ERR_ARG_WRONG,
                "%s: the patch scene needs a flat mesh in the XY plane; this one spans %g x %g x %g mm", mesh_file,
                lx, ly, hi[2] - lo[2]);
-    PetscCall(PetscPrintf(comm, "patch: %s spans %g x %g mm; the strains apply to that size (-patch_lx/-patch_ly size "
-                                "the generated mesh only)\n", mesh_file, lx, ly));
+    char size[64];  // PETSc's %g writes 10 as "10."
+    std::snprintf(size, sizeof size, "%g x %g mm", lx, ly);
+    PetscCall(PetscPrintf(comm, "patch: %s spans %s; the strains apply to that size (-patch_lx/-patch_ly size "
+                                "the generated mesh only)\n", mesh_file, size));
     scene->mesh.node_sets["all"].resize(scene->mesh.NumNodes());
     for (int i = 0; i < scene->mesh.NumNodes(); ++i) scene->mesh.node_sets["all"][i] = i;
   } else {

@@ -94,6 +94,9 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
   PetscCheck(ratio_mid > 0 && ratio_corner > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: stress ratios must be positive");
   PetscCheck(n >= 2 && refine >= 0 && refine < 8, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "saddle: need -mesh_n >= 2 and 0 <= -mesh_refine < 8");
+  PetscCheck(GeneratedTriangles(2 * n, n, 8, refine) <= kMaxGeneratedTriangles, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_n %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more than the %.3g a generated "
+             "mesh may have", n, refine, GeneratedTriangles(2 * n, n, 8, refine), kMaxGeneratedTriangles);
   n <<= refine;
   auto *ctx = new SaddleContext();
   SaddleGeometry &g = ctx->g;

@@ -1,10 +1,23 @@
 // Structured mesh generators for the scenes (any density by option). PETSc-free.
 #pragma once
+#include <cmath>
+
 #include "etfe/mesh/mesh_data.h"
 
 namespace etfe {
 
 enum class DiagonalPattern { Right, Left, Alternate, Crossed };
+
+// The largest mesh a generator makes, in triangles: far past what runs on a workstation, and far
+// below an int overflow in the generators' index arithmetic. Scenes check their -mesh_* options
+// against it before generating.
+constexpr double kMaxGeneratedTriangles = 16777216.0;  // 2^24
+
+// Triangles of an n1 x n2 cell mesh with triangles_per_cell each, refined `refine` times (each
+// doubles n1 and n2); computed in double so that no option value can overflow it.
+inline double GeneratedTriangles(double n1, double n2, double triangles_per_cell, double refine) {
+  return n1 * n2 * triangles_per_cell * std::pow(4.0, refine);
+}
 
 // Rectangle [x0, x0+lx] x [y0, y0+ly] in the plane z = 0 with nx x ny cells, each split into two
 // triangles (four with Crossed: a centre node per cell). perturb moves interior nodes randomly
