@@ -225,6 +225,15 @@ std::string BinarySeed() {
   return out;
 }
 
+// Quadrangles beside triangles, one clockwise triangle and an MSH 2.2 repeat record, so that the
+// quad split, the orientation repair and the group bookkeeping of split elements are mutated too.
+std::string QuadSeed() {
+  return "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n1 1 \"edge\"\n2 2 \"film\"\n"
+         "$EndPhysicalNames\n$Nodes\n6\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n6 2 1 0\n"
+         "$EndNodes\n$Elements\n5\n1 1 2 1 1 1 2\n2 3 2 2 1 1 2 5 4\n3 3 2 3 1 1 2 5 4\n"
+         "4 2 2 2 1 2 6 5\n5 2 2 2 1 2 6 3\n$EndElements\n";
+}
+
 bool ReadFile(const char *path, std::string *out) {
   std::FILE *f = std::fopen(path, "rb");
   if (!f) return false;
@@ -252,6 +261,10 @@ bool Invariants(bool ok, const std::string &err, const etfe::MeshData &m, std::s
   const size_t nn = m.coords.size() / 3, ne = m.triangles.size() / 3;
   if (m.coords.size() % 3 || m.triangles.size() % 3 || ne == 0) {
     *why = "accepted mesh with ragged arrays or no triangles";
+    return false;
+  }
+  if (m.node_tags.size() != nn || m.element_tags.size() != ne) {
+    *why = "accepted mesh whose file tags do not match its nodes and triangles";
     return false;
   }
   for (double x : m.coords) {
@@ -322,6 +335,7 @@ int main(int argc, char **argv) {
     }
   }
   seeds.push_back(BinarySeed());
+  seeds.push_back(QuadSeed());
 
   const auto start = std::chrono::steady_clock::now();
   long long accepted = 0, rejected = 0, violations = 0;
@@ -343,7 +357,13 @@ int main(int argc, char **argv) {
     if (ok) {
       ++accepted;
       std::string check_err;
-      etfe::MeshCheck(mesh, 1e-9, &check_err);  // may fail (e.g. a flattened triangle): fine
+      // Orientation repair and the topology checks run on whatever the reader accepted; they
+      // may refuse (a flattened triangle, a fin): fine, but they must not crash or corrupt.
+      etfe::MeshData oriented = mesh;
+      if (etfe::MeshOrient(&oriented, &check_err)) etfe::MeshCheck(oriented, 1e-9, &check_err);
+      if (oriented.triangles.size() != mesh.triangles.size()) {
+        if (violations++ < 10) std::printf("iteration %lld: MeshOrient changed the triangle count\n", it);
+      }
     } else {
       ++rejected;
     }

@@ -523,6 +523,79 @@ void TestMeshCheck() {
   ExpectCheckFailure(empty, 1e-6, {"no triangles"}, "no triangles");
 }
 
+// A 2 x 2 grid of unit-free cells (nodes 0..8, node i + 3 j at (i, j)), 8 counter-clockwise
+// triangles, with file tags 1..9 and 11..18 as a reader would keep them.
+MeshData Grid() {
+  MeshData m;
+  m.source = "grid.msh";
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) m.coords.insert(m.coords.end(), {100.0 * i, 100.0 * j, 0.0});
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = i + 3 * j, b = a + 1, c = b + 3, d = a + 3;
+      m.triangles.insert(m.triangles.end(), {a, b, c, a, c, d});
+    }
+  for (int i = 0; i < 9; ++i) m.node_tags.push_back(i + 1);
+  for (int e = 0; e < 8; ++e) m.element_tags.push_back(e + 11);
+  return m;
+}
+
+void TestTopology() {
+  std::printf("topology:\n");
+  std::string err;
+  MeshData good = Grid();
+  CHECK(etfe::MeshCheck(good, 1e-6, &err), "grid: %s", err.c_str());
+  MeshData crack = Grid();  // node 9 on node 4, used by the right column
+  crack.coords.insert(crack.coords.end(), {100.0, 100.0, 1e-9});
+  for (int e = 2; e < 4; ++e)
+    for (int k = 0; k < 3; ++k)
+      if (crack.triangles[3 * e + k] == 4) crack.triangles[3 * e + k] = 9;
+  crack.node_tags.push_back(42);
+  ExpectCheckFailure(crack, 1e-6, {"node 4 (tag 5 in the file) and node 9 (tag 42", "same place", "crack"},
+                     "coincident nodes");
+  MeshData twice = Grid();
+  twice.triangles.insert(twice.triangles.end(), {4, 5, 8});
+  twice.element_tags.push_back(99);
+  ExpectCheckFailure(twice, 1e-6, {"element 8 (tag 99 in the file)", "same triangle"}, "duplicated triangle");
+  MeshData fin = Grid();
+  fin.coords.insert(fin.coords.end(), {50.0, 50.0, 80.0});
+  fin.triangles.insert(fin.triangles.end(), {1, 4, 9});
+  ExpectCheckFailure(fin, 1e-6, {"edge between node 1", "node 4", "3 triangles", "non-manifold"},
+                     "non-manifold edge");
+  MeshData mixed = Grid();
+  for (int e : {1, 4, 6}) std::swap(mixed.triangles[3 * e + 1], mixed.triangles[3 * e + 2]);
+  ExpectCheckFailure(mixed, 1e-6, {"run the same way", "orientation"}, "mixed orientation");
+  CHECK(etfe::MeshOrient(&mixed, &err), "orient: %s", err.c_str());
+  CHECK(mixed.triangles == Grid().triangles, "orient: the three clockwise triangles are flipped back");
+  CHECK(mixed.notes.size() == 1 && Contains(mixed.notes[0], "flipped 3 of 8"), "orient: note");
+  CHECK(etfe::MeshCheck(mixed, 1e-6, &err), "oriented: %s", err.c_str());
+  MeshData majority = Grid();  // five of eight clockwise: the majority wins, three are flipped
+  for (int e : {0, 2, 3, 5, 7}) std::swap(majority.triangles[3 * e + 1], majority.triangles[3 * e + 2]);
+  CHECK(etfe::MeshOrient(&majority, &err) && Contains(majority.notes.at(0), "flipped 3 of 8"),
+        "orient: the majority decides");
+  MeshData same = Grid();
+  CHECK(etfe::MeshOrient(&same, &err) && same.notes.empty(), "orient: nothing to do, no note");
+  // A Moebius strip: a band of 4 quads (8 triangles) closed with a half twist.
+  MeshData moebius;
+  moebius.source = "moebius.msh";
+  const int n = 4;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n, w = 0.3 * std::cos(t / 2), h = 0.3 * std::sin(t / 2);
+    for (int s : {-1, 1}) {
+      moebius.coords.insert(moebius.coords.end(),
+                            {(1 + s * w) * std::cos(t), (1 + s * w) * std::sin(t), s * h});
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 1;
+    int c = 2 * ((i + 1) % n), d = c + 1;
+    if (i == n - 1) std::swap(c, d);  // the half twist
+    moebius.triangles.insert(moebius.triangles.end(), {a, c, d, a, d, b});
+  }
+  MeshData mb = moebius;
+  CHECK(!etfe::MeshOrient(&mb, &err) && Contains(err, "cannot be oriented"), "moebius: %s", err.c_str());
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -532,5 +605,6 @@ int main(int argc, char **argv) {
   TestBinary();
   TestDamagedInputs();
   TestMeshCheck();
+  TestTopology();
   TEST_MAIN_END();
 }
