@@ -122,8 +122,8 @@ bool CheckTopology(const MeshData &mesh, std::string *err) {
         who += (k > i ? ", " : "") + ElementName(mesh, (size_t)edges[k].element);
       }
       return Fail(mesh, err, "the edge between " + NodeName(mesh, (size_t)edges[i].a) + " and " +
-                                 NodeName(mesh, (size_t)edges[i].b) + " belongs to " + Id(j - i) +
-                                 " triangles (" + who +
+                                 NodeName(mesh, (size_t)edges[i].b) + " belongs to three or more triangles (" +
+                                 Id(j - i) + ": " + who +
                                  "), so the surface is not a membrane (non-manifold): a membrane "
                                  "edge has one or two triangles; split the mesh or remove the "
                                  "extra surface");
@@ -187,8 +187,8 @@ bool CheckCoincidentNodes(const MeshData &mesh, std::string *err) {
                                       (p[2] - q[2]) * (p[2] - q[2]));
         if (dist <= tol) {
           return Fail(mesh, err, NodeName(mesh, (size_t)a) + " and " + NodeName(mesh, (size_t)b) +
-                                     " are at the same place (" + Num(p[0]) + ", " + Num(p[1]) +
-                                     ", " + Num(p[2]) + "; " + Num(dist) + " mm apart, within 1e-6 "
+                                     " coincide (at " + Num(p[0]) + ", " + Num(p[1]) + ", " +
+                                     Num(p[2]) + "; " + Num(dist) + " mm apart, within 1e-6 "
                                      "of the mean edge length " + Num(mean_edge) +
                                      " mm): the mesh has a crack there; merge duplicate nodes in the "
                                      "mesh generator (Gmsh: Geometry.Tolerance, or Coherence Mesh)");
