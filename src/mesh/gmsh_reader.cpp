@@ -394,10 +394,11 @@ class Reader {
   // Silently dropping elements would leave holes in the membrane; volume or second-order
   // elements mean the file was meshed for something else.
   bool Refuse(long long type, unsigned long long elem_tag) {
-    return in_.Fail("element " + Str(elem_tag) + " is of type " + Str(type) + " (" + TypeName(type) +
-                    "): this reader takes first-order triangles (type 2), quadrangles (type 3, split "
-                    "into two triangles), lines (1) and points (15); remesh the surface only, first "
-                    "order (Gmsh: -2 -order 1)");
+    return in_.Fail(
+        "element " + Str(elem_tag) + " is of type " + Str(type) + " (" + TypeName(type) +
+        "): this reader takes first-order triangles (type 2), quadrangles (type 3, split "
+        "into two triangles), lines (1) and points (15); remesh the surface only, first "
+        "order (Gmsh: -2 -order 1)");
   }
 
   bool AddTriangle(const int *idx, Carrier *c, unsigned long long elem_tag) {
@@ -537,7 +538,8 @@ class Reader {
             for (int k = ntri; k >= 1; --k) carrier->tris.push_back((int)(tri_.size() / 3) - k);
             carrier->nodes.insert(carrier->nodes.end(), idx, idx + npe);
           }
-        } else if (!(type == 2 ? AddTriangle(idx, carrier, tag) : AddQuadrangle(idx, carrier, tag))) {
+        } else if (!(type == 2 ? AddTriangle(idx, carrier, tag)
+                               : AddQuadrangle(idx, carrier, tag))) {
           return false;
         }
         prev_tris = ntri;
@@ -679,7 +681,9 @@ bool ReadGmshFile(const std::string &path, MeshData *mesh, std::string *err) {
   if (!S_ISREG(st.st_mode)) {
     if (err) {
       *err = path + ": not a regular file (" +
-             (S_ISDIR(st.st_mode) ? "a directory" : S_ISFIFO(st.st_mode) ? "a FIFO" : "a device or socket") +
+             (S_ISDIR(st.st_mode)    ? "a directory"
+              : S_ISFIFO(st.st_mode) ? "a FIFO"
+                                     : "a device or socket") +
              "): give a Gmsh .msh file";
     }
     return false;
@@ -703,7 +707,9 @@ bool ReadGmshFile(const std::string &path, MeshData *mesh, std::string *err) {
     buf.resize((size_t)st.st_size);
   } catch (const std::bad_alloc &) {
     std::fclose(f);
-    if (err) *err = path + ": not enough memory to read its " + Str((unsigned long long)st.st_size) + " bytes";
+    if (err)
+      *err = path + ": not enough memory to read its " + Str((unsigned long long)st.st_size) +
+             " bytes";
     return false;
   }
   const size_t got = buf.empty() ? 0 : std::fread(&buf[0], 1, buf.size(), f);

@@ -119,7 +119,8 @@ bool Input::ReadDouble(double *v, const std::string &what, bool finite) {
   return true;
 }
 
-bool Input::ReadCount(size_t *n, const std::string &what, size_t ascii_tokens, size_t binary_bytes) {
+bool Input::ReadCount(size_t *n, const std::string &what, size_t ascii_tokens,
+                      size_t binary_bytes) {
   unsigned long long v;
   if (!ReadSize(&v, "number of " + what, 0, ULLONG_MAX)) return false;
   const size_t per_item = binary_ ? binary_bytes : 2 * ascii_tokens;
@@ -182,7 +183,8 @@ bool Input::QuotedName(std::string *name) {
   const size_t stop = std::min(buf_.size(), start + kMaxTokenChars + 1);
   while (pos_ < stop && buf_[pos_] != '"' && buf_[pos_] != '\n') ++pos_;
   if (pos_ - start > kMaxTokenChars) {
-    return Fail("physical name longer than " + Str((unsigned long long)kMaxTokenChars) + " characters");
+    return Fail("physical name longer than " + Str((unsigned long long)kMaxTokenChars) +
+                " characters");
   }
   if (pos_ >= buf_.size() || buf_[pos_] != '"') {
     return Fail("physical name has no closing double quote on its line");

@@ -30,7 +30,8 @@ std::string Id(size_t v) { return std::to_string(v); }
 // Ids count from 0 in file order; a mesh read from a file also names the tags the file uses.
 std::string NodeName(const MeshData &mesh, size_t i) {
   std::string s = "node " + Id(i);
-  if (i < mesh.node_tags.size()) s += " (tag " + std::to_string(mesh.node_tags[i]) + " in the file)";
+  if (i < mesh.node_tags.size())
+    s += " (tag " + std::to_string(mesh.node_tags[i]) + " in the file)";
   return s;
 }
 
@@ -121,22 +122,24 @@ bool CheckTopology(const MeshData &mesh, std::string *err) {
       for (size_t k = i; k < j && k < i + 4; ++k) {
         who += (k > i ? ", " : "") + ElementName(mesh, (size_t)edges[k].element);
       }
-      return Fail(mesh, err, "the edge between " + NodeName(mesh, (size_t)edges[i].a) + " and " +
-                                 NodeName(mesh, (size_t)edges[i].b) + " belongs to three or more triangles (" +
-                                 Id(j - i) + ": " + who +
-                                 "), so the surface is not a membrane (non-manifold): a membrane "
-                                 "edge has one or two triangles; split the mesh or remove the "
-                                 "extra surface");
+      return Fail(mesh, err,
+                  "the edge between " + NodeName(mesh, (size_t)edges[i].a) + " and " +
+                      NodeName(mesh, (size_t)edges[i].b) + " belongs to three or more triangles (" +
+                      Id(j - i) + ": " + who +
+                      "), so the surface is not a membrane (non-manifold): a membrane "
+                      "edge has one or two triangles; split the mesh or remove the "
+                      "extra surface");
     }
     if (j - i == 2 && edges[i].forward == edges[i + 1].forward) {
-      return Fail(mesh, err, ElementName(mesh, (size_t)edges[i].element) + " and " +
-                                 ElementName(mesh, (size_t)edges[i + 1].element) +
-                                 " run the same way along their common edge (" +
-                                 NodeName(mesh, (size_t)edges[i].a) + ", " +
-                                 NodeName(mesh, (size_t)edges[i].b) +
-                                 "): the surface has no consistent orientation; reorient the "
-                                 "triangles in the mesh generator (Gmsh: Mesh.ReverseOrientation or "
-                                 "reorient the surface)");
+      return Fail(mesh, err,
+                  ElementName(mesh, (size_t)edges[i].element) + " and " +
+                      ElementName(mesh, (size_t)edges[i + 1].element) +
+                      " run the same way along their common edge (" +
+                      NodeName(mesh, (size_t)edges[i].a) + ", " +
+                      NodeName(mesh, (size_t)edges[i].b) +
+                      "): the surface has no consistent orientation; reorient the "
+                      "triangles in the mesh generator (Gmsh: Mesh.ReverseOrientation or "
+                      "reorient the surface)");
     }
     i = j;
   }
@@ -183,15 +186,19 @@ bool CheckCoincidentNodes(const MeshData &mesh, std::string *err) {
         const int a = cells[i].second, b = it->second;
         if (b <= a) continue;
         const double *p = &mesh.coords[3 * (size_t)a], *q = &mesh.coords[3 * (size_t)b];
-        const double dist = std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-                                      (p[2] - q[2]) * (p[2] - q[2]));
+        const double dist =
+            std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                      (p[2] - q[2]) * (p[2] - q[2]));
         if (dist <= tol) {
-          return Fail(mesh, err, NodeName(mesh, (size_t)a) + " and " + NodeName(mesh, (size_t)b) +
-                                     " coincide (at " + Num(p[0]) + ", " + Num(p[1]) + ", " +
-                                     Num(p[2]) + "; " + Num(dist) + " mm apart, within 1e-6 "
-                                     "of the mean edge length " + Num(mean_edge) +
-                                     " mm): the mesh has a crack there; merge duplicate nodes in the "
-                                     "mesh generator (Gmsh: Geometry.Tolerance, or Coherence Mesh)");
+          return Fail(mesh, err,
+                      NodeName(mesh, (size_t)a) + " and " + NodeName(mesh, (size_t)b) +
+                          " coincide (at " + Num(p[0]) + ", " + Num(p[1]) + ", " + Num(p[2]) +
+                          "; " + Num(dist) +
+                          " mm apart, within 1e-6 "
+                          "of the mean edge length " +
+                          Num(mean_edge) +
+                          " mm): the mesh has a crack there; merge duplicate nodes in the "
+                          "mesh generator (Gmsh: Geometry.Tolerance, or Coherence Mesh)");
         }
       }
     }

@@ -362,7 +362,8 @@ int main(int argc, char **argv) {
       etfe::MeshData oriented = mesh;
       if (etfe::MeshOrient(&oriented, &check_err)) etfe::MeshCheck(oriented, 1e-9, &check_err);
       if (oriented.triangles.size() != mesh.triangles.size()) {
-        if (violations++ < 10) std::printf("iteration %lld: MeshOrient changed the triangle count\n", it);
+        if (violations++ < 10)
+          std::printf("iteration %lld: MeshOrient changed the triangle count\n", it);
       }
     } else {
       ++rejected;

@@ -551,26 +551,31 @@ void TestTopology() {
     for (int k = 0; k < 3; ++k)
       if (crack.triangles[3 * e + k] == 4) crack.triangles[3 * e + k] = 9;
   crack.node_tags.push_back(42);
-  ExpectCheckFailure(crack, 1e-6, {"node 4 (tag 5 in the file) and node 9 (tag 42", "coincide", "crack"},
+  ExpectCheckFailure(crack, 1e-6,
+                     {"node 4 (tag 5 in the file) and node 9 (tag 42", "coincide", "crack"},
                      "coincident nodes");
   MeshData twice = Grid();
   twice.triangles.insert(twice.triangles.end(), {4, 5, 8});
   twice.element_tags.push_back(99);
-  ExpectCheckFailure(twice, 1e-6, {"element 8 (tag 99 in the file)", "same triangle"}, "duplicated triangle");
+  ExpectCheckFailure(twice, 1e-6, {"element 8 (tag 99 in the file)", "same triangle"},
+                     "duplicated triangle");
   MeshData fin = Grid();
   fin.coords.insert(fin.coords.end(), {50.0, 50.0, 80.0});
   fin.triangles.insert(fin.triangles.end(), {1, 4, 9});
-  ExpectCheckFailure(fin, 1e-6, {"edge between node 1", "node 4", "three or more triangles (3: ", "non-manifold"},
-                     "non-manifold edge");
+  ExpectCheckFailure(
+      fin, 1e-6, {"edge between node 1", "node 4", "three or more triangles (3: ", "non-manifold"},
+      "non-manifold edge");
   MeshData mixed = Grid();
   for (int e : {1, 4, 6}) std::swap(mixed.triangles[3 * e + 1], mixed.triangles[3 * e + 2]);
   ExpectCheckFailure(mixed, 1e-6, {"run the same way", "orientation"}, "mixed orientation");
   CHECK(etfe::MeshOrient(&mixed, &err), "orient: %s", err.c_str());
-  CHECK(mixed.triangles == Grid().triangles, "orient: the three clockwise triangles are flipped back");
+  CHECK(mixed.triangles == Grid().triangles,
+        "orient: the three clockwise triangles are flipped back");
   CHECK(mixed.notes.size() == 1 && Contains(mixed.notes[0], "flipped 3 of 8"), "orient: note");
   CHECK(etfe::MeshCheck(mixed, 1e-6, &err), "oriented: %s", err.c_str());
   MeshData majority = Grid();  // five of eight clockwise: the majority wins, three are flipped
-  for (int e : {0, 2, 3, 5, 7}) std::swap(majority.triangles[3 * e + 1], majority.triangles[3 * e + 2]);
+  for (int e : {0, 2, 3, 5, 7})
+    std::swap(majority.triangles[3 * e + 1], majority.triangles[3 * e + 2]);
   CHECK(etfe::MeshOrient(&majority, &err) && Contains(majority.notes.at(0), "flipped 3 of 8"),
         "orient: the majority decides");
   MeshData same = Grid();
@@ -593,7 +598,8 @@ void TestTopology() {
     moebius.triangles.insert(moebius.triangles.end(), {a, c, d, a, d, b});
   }
   MeshData mb = moebius;
-  CHECK(!etfe::MeshOrient(&mb, &err) && Contains(err, "cannot be oriented"), "moebius: %s", err.c_str());
+  CHECK(!etfe::MeshOrient(&mb, &err) && Contains(err, "cannot be oriented"), "moebius: %s",
+        err.c_str());
 }
 
 } // namespace
