@@ -9,7 +9,6 @@ Every mesh is the 1000 x 1000 mm square of the patch scene on a 2 x 2 grid of ce
 tag 1 + i + 3 j at (500 i, 500 j)), with the physical groups the patch scene needs.
 """
 import os
-import stat
 
 PATCH_OPTS = os.path.join("options", "patch.opts")
 
@@ -143,9 +142,3 @@ def cases(tmpdir):
     add("truncated file", p, "unexpected end of file", False)
     return out
 
-
-def is_fifo(path):
-    try:
-        return stat.S_ISFIFO(os.stat(path).st_mode)
-    except OSError:
-        return False
