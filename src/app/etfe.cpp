@@ -7,6 +7,7 @@ static const char help[] =
 
 #include <petscsnes.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -352,6 +353,12 @@ PetscErrorCode Run() {
 int main(int argc, char **argv) {
   PetscBool traceback = PETSC_FALSE;
   PetscMPIInt size;
+  // Open MPI's "sm" shared-file-pointer component guards every MPI_File_open with a named
+  // semaphore keyed by the file's base name (/dev/shm/sem.OMPIO_<name>): a run killed while
+  // writing leaves it taken, and the next run that opens a file of that name (its restart's
+  // checkpoint) waits forever. HDF5 never uses shared file pointers, so leave the component out
+  // unless the user chose otherwise.
+  setenv("OMPI_MCA_sharedfp", "^sm", 0);
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-etfe_traceback", &traceback, nullptr));
   PetscCall(PetscPushErrorHandler(traceback ? TracebackErrorHandler : ConciseErrorHandler, nullptr));
