@@ -61,7 +61,18 @@ struct ContactSet {
   std::vector<PetscInt> probe_nodes;  // scene node ids whose pair history goes to CSV
 };
 
-// Reads -contact_* options and creates the pairs of the scene's supports (collective).
+// The -contact_* options, read and range-checked once (collective). default_kn: the penalty when
+// none is given (the thesis's 1e3 E h); default_search_tol: the scene's pair search distance.
+struct ContactOptions {
+  ContactParameters params;
+  FrictionLaw law = FrictionLaw::Implicit;
+  bool follow = false;
+  PetscReal frictionless_until = 0.0, search_tol = 1e-6;
+  std::vector<PetscInt> probe_nodes;
+};
+PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,
+                                             ContactOptions *options);
+// Reads the -contact_* options and creates the pairs of the scene's supports (collective).
 PetscErrorCode ContactCreate(Problem *problem, ContactSet **contact);
 PetscErrorCode ContactDestroy(ContactSet **contact);
 // Force (global) and tangent of one pair at the film node's displacement u. The gap is

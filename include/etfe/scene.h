@@ -88,7 +88,8 @@ struct SceneSpec {
 typedef PetscErrorCode (*SceneBuilder)(MPI_Comm, SceneSpec *);
 
 PetscErrorCode SceneRegisterAll(void);
-PetscErrorCode SceneRegister(const char name[], SceneBuilder builder);
+// what: one line on what the scene computes; files: its options files (both for -scene_list).
+PetscErrorCode SceneRegister(const char name[], SceneBuilder builder, const char what[], const char files[]);
 // Builds the scene named by -scene (collective). Unknown names list the registered ones.
 PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene);
 

@@ -10,9 +10,14 @@ static const char help[] =
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
+#include "options_check.h"
+#include "options_files.h"
 #include "etfe/checkpoint.h"
+#include "etfe/contact.h"
 #include "etfe/formfind.h"
 #include "etfe/linesearch.h"
 #include "etfe/load_stepper.h"
@@ -118,40 +123,6 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
   PetscFunctionReturn(0);
 }
 
-// Unused options are mistakes (typos, options of another scene): refuse them before computing.
-// Options read only when a solver is first used (MUMPS, hypre, ...) are checked at the end.
-PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool final_check) {
-  PetscInt n;
-  char **names, **values;
-  PetscBool allow = PETSC_FALSE;
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-options_allow_unused", &allow, nullptr));
-  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
-  std::string list;
-  const char *lazy[] = {"mat_mumps_", "mat_superlu", "pc_hypre_", "pc_gamg_", "mg_", "sub_",
-                        "log", "options_left", "malloc", "fp_trap", "info", "history", "viewer_",
-                        "on_error", "check_pointer", "memory_view", "objects_dump", "mat_view", "snes_test_",
-                        "ksp_view", "snes_view", "etfe_traceback", "redundant_", "pc_factor_"};
-  for (PetscInt i = 0; i < n; ++i) {
-    bool skip = false;
-    if (!final_check)
-      for (const char *p : lazy) skip |= std::strncmp(names[i], p, std::strlen(p)) == 0;
-    if (!skip) list += std::string(" -") + names[i];
-  }
-  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
-  // After the run an unused option can only be one a solver never read (e.g. a factorisation
-  // option when another preconditioner was chosen): worth a warning, not a failed run.
-  if (!list.empty() && !allow && final_check) {
-    PetscCall(PetscPrintf(comm, "etfe: warning: option(s) never used:%s\n", list.c_str()));
-    PetscFunctionReturn(0);
-  }
-  if (!list.empty() && !allow)
-    SETERRQ(comm, PETSC_ERR_USER_INPUT,
-            "unknown or unused option(s):%s. Check the spelling against -help, or add "
-            "-options_allow_unused to accept them",
-            list.c_str());
-  PetscFunctionReturn(0);
-}
 
 
 // PETSc's default report repeats the whole option table and configure line; a user needs the
@@ -187,15 +158,59 @@ PetscErrorCode ConciseErrorHandler(MPI_Comm comm, int line, const char *fun, con
   if (p == PETSC_ERROR_INITIAL) {
     RecordError(comm, mess);
     (*PetscErrorPrintf)("%s\n", mess ? mess : "(no message)");
+    // PETSc's conversion errors ("Input string abc has no integer value") do not say which option
+    // held the string: find it in the database.
+    const char *lead = "Input string ";
+    if (mess && fun && std::strncmp(fun, "PetscOptionsStringTo", 20) == 0 && std::strncmp(mess, lead, 13) == 0) {
+      std::string bad(mess + 13);
+      bad = bad.substr(0, bad.find(' '));
+      char *all = nullptr;
+      if (!PetscOptionsGetAll(nullptr, &all) && all) {
+        std::string names, prev;
+        std::istringstream in(all);
+        for (std::string tok; in >> tok; prev = tok)
+          if (tok == bad && prev.size() > 1 && prev[0] == '-') names += " " + prev;
+        PetscFree(all);
+        if (!names.empty())
+          (*PetscErrorPrintf)("  (the value of%s: give a number of the option's type, see -help)\n", names.c_str());
+      }
+    }
     (*PetscErrorPrintf)("  (raised in %s() at %s:%d; -etfe_traceback gives PETSc's full report)\n",
                         fun, file, line);
   }
   return n;
 }
 
+// -analysis: stretch (load stepping, the default) or formfind; *formfind true for the latter.
+PetscErrorCode AnalysisFromOptions(MPI_Comm comm, PetscBool *formfind) {
+  static const char *const kinds[] = {"stretch", "formfind"};
+  PetscInt kind = 0;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Analysis", "Analysis");
+  PetscCall(PetscOptionsEList("-analysis", "stretch (load stepping) or formfind (prescribed-stress shape)", "", kinds,
+                              2, kinds[0], &kind, nullptr));
+  PetscOptionsEnd();
+  *formfind = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+// This program's own switches (read here so that -help lists them).
+PetscErrorCode ProgramOptions(MPI_Comm comm) {
+  PetscBool traceback = PETSC_FALSE, allow = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "etfe", "etfe");
+  PetscCall(PetscOptionsBool("-etfe_traceback", "Errors with PETSc's full report instead of one line", "", traceback,
+                             &traceback, nullptr));
+  PetscCall(PetscOptionsBool("-options_allow_unused", "Accept option names this project does not know (typos)", "",
+                             allow, &allow, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Run() {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscFunctionBeginUser;
+  PetscCall(ProgramOptions(comm));
   PetscBool help_only = PETSC_FALSE, list = PETSC_FALSE;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-help", &help_only));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-scene_list", &list));
@@ -228,6 +243,14 @@ PetscErrorCode Run() {
     PetscCall(OutputOptionsFromCommandLine(comm, "scene", &oo));
     CheckpointOptions cko;
     PetscCall(CheckpointOptionsFromCommandLine(comm, "scene", &cko));
+    PetscBool ff;
+    PetscCall(AnalysisFromOptions(comm, &ff));
+    {
+      double young, nu;
+      m->ElasticConstants(&young, &nu);
+      ContactOptions co;
+      PetscCall(ContactOptionsFromCommandLine(comm, 1e3 * young * throwaway.thickness, 1e-6, &co));
+    }
     PetscCall(SNESCreate(comm, &snes));
     PetscCall(SNESGetLineSearch(snes, &ls));
     PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
@@ -238,15 +261,10 @@ PetscErrorCode Run() {
 
   // 3. Analysis (stretch: load stepping; formfind: shape for a prescribed stress), material and
   //    membrane options, then the distributed problem.
-  char analysis[32] = "stretch";
+  PetscBool formfind_flag = PETSC_FALSE;
+  PetscCall(AnalysisFromOptions(comm, &formfind_flag));
+  const bool formfind = formfind_flag;
   FormFindOptions ffo;
-  PetscOptionsBegin(comm, nullptr, "Analysis", "Analysis");
-  PetscCall(PetscOptionsString("-analysis", "stretch (load stepping) or formfind (prescribed-stress shape)", "",
-                               analysis, analysis, sizeof analysis, nullptr));
-  PetscOptionsEnd();
-  const bool formfind = std::strcmp(analysis, "formfind") == 0;
-  PetscCheck(formfind || std::strcmp(analysis, "stretch") == 0, comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "-analysis %s: use stretch or formfind", analysis);
   std::unique_ptr<Material> material;
   if (formfind) {
     PetscCall(FormFindOptionsFromCommandLine(comm, &ffo));
@@ -292,7 +310,7 @@ PetscErrorCode Run() {
     delete P;
     PetscFunctionReturn(0);
   }
-  PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
+  PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
   PetscCall(PrintHeader(P, snes));
 
   // 5. Run the schedule, writing results as it goes.
@@ -344,7 +362,7 @@ PetscErrorCode Run() {
                       : "The last converged increment is in the results. Ways out: more "
                         "increments (-load_increments), more cut-backs (-load_max_cutbacks), or "
                         "check the supports and loads of the scene");
-  PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
+  PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -359,6 +377,19 @@ int main(int argc, char **argv) {
   // checkpoint) waits forever. HDF5 never uses shared file pointers, so leave the component out
   // unless the user chose otherwise.
   setenv("OMPI_MCA_sharedfp", "^sm", 0);
+  // Options files are expanded here, before PETSc reads the command line (options_files.h).
+  std::vector<std::string> args(argv + 1, argv + argc), expanded;
+  std::string error;
+  if (!ExpandOptionsFiles(args, &expanded, &error)) {
+    const char *rank = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (!rank || std::strcmp(rank, "0") == 0) std::fprintf(stderr, "etfe: %s\n", error.c_str());
+    return 2;
+  }
+  std::vector<char *> new_argv{argv[0]};
+  for (std::string &a : expanded) new_argv.push_back(a.data());
+  new_argv.push_back(nullptr);
+  argc = (int)expanded.size() + 1;
+  argv = new_argv.data();
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-etfe_traceback", &traceback, nullptr));
   PetscCall(PetscPushErrorHandler(traceback ? TracebackErrorHandler : ConciseErrorHandler, nullptr));

@@ -59,61 +59,73 @@ const char *FrictionLawName(FrictionLaw law) {
   return "?";
 }
 
+PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,
+                                             ContactOptions *o) {
+  static const char *const laws[] = {"lagged", "implicit", "none", "fixed"};
+  static const char *const frames[] = {"frozen", "follow"};
+  PetscInt law = (PetscInt)FrictionLaw::Implicit, frame = 0;
+  PetscInt probes[64] = {0}, nprobe = 64;
+  PetscFunctionBeginUser;
+  o->params.kn = default_kn;
+  o->params.kt = -1.0;
+  o->params.mu = 0.3;
+  o->search_tol = default_search_tol;
+  PetscOptionsBegin(comm, nullptr, "Friction contact with rigid supports", "Contact");
+  PetscCall(PetscOptionsEList("-contact_friction",
+                              "Friction law: lagged (thesis), implicit (return map), none, fixed (glued)", "",
+                              laws, 4, laws[law], &law, nullptr));
+  PetscCall(PetscOptionsReal("-contact_mu", "Coulomb friction coefficient", "", o->params.mu, &o->params.mu, nullptr));
+  PetscCall(PetscOptionsReal("-contact_kn", "Normal penalty [N/mm] (default 1e3 E h)", "", o->params.kn,
+                             &o->params.kn, nullptr));
+  PetscCall(PetscOptionsReal("-contact_kt", "Tangential penalty [N/mm] (default = kn)", "", o->params.kt,
+                             &o->params.kt, nullptr));
+  PetscCall(PetscOptionsEList("-contact_normal", "Contact frame: frozen (thesis) or follow (large slide)", "",
+                              frames, 2, frames[frame], &frame, nullptr));
+  PetscCall(PetscOptionsReal("-contact_frictionless_until",
+                             "Load time (in stages) up to which the pairs are frictionless (tensioning)", "",
+                             o->frictionless_until, &o->frictionless_until, nullptr));
+  PetscCall(PetscOptionsReal("-contact_search_tol",
+                             "A film node within this distance of a support surface gets a pair [mm]", "",
+                             o->search_tol, &o->search_tol, nullptr));
+  PetscCall(PetscOptionsIntArray("-contact_probe_nodes",
+                                 "Film node ids whose contact history is written as CSV beside the results (none by default)",
+                                 "", probes, &nprobe, nullptr));
+  PetscOptionsEnd();
+  o->probe_nodes.assign(probes, probes + nprobe);
+  o->law = (FrictionLaw)law;
+  o->follow = frame == 1;
+  if (o->params.kt < 0) o->params.kt = o->params.kn;
+  // Range checks on what was given, before "none" sets mu to zero.
+  PetscCheck(o->params.mu >= 0 && std::isfinite(o->params.mu), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_mu %g: the friction coefficient must be >= 0", o->params.mu);
+  PetscCheck(o->params.kn > 0 && o->params.kt > 0 && std::isfinite(o->params.kn) && std::isfinite(o->params.kt),
+             comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_kn %g / -contact_kt %g: penalties must be positive",
+             o->params.kn, o->params.kt);
+  PetscCheck(o->search_tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_search_tol %g must be positive",
+             o->search_tol);
+  PetscCheck(!(o->follow && o->law == FrictionLaw::Lagged), comm, PETSC_ERR_SUP,
+             "-contact_normal follow works with -contact_friction implicit, none or fixed; the lagged "
+             "(thesis) law keeps the thesis's frozen frame");
+  if (o->law == FrictionLaw::None) o->params.mu = 0.0;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   auto *c = new ContactSet();
   const ContactSpec &spec = P->scene.contact;
-  char law[32] = "implicit", normal[32] = "frozen";
   double young, nu;
-  PetscReal tol = spec.search_tol;
-  PetscInt probes[64], nprobe = 64;
+  ContactOptions o;
   PetscFunctionBeginUser;
   P->material->ElasticConstants(&young, &nu);
   // Default penalties: three orders above the axial film stiffness E h (the thesis's rule).
-  c->params.kn = 1e3 * young * P->thickness;
-  c->params.kt = -1.0;
-  c->params.mu = 0.3;
-  PetscOptionsBegin(P->comm, nullptr, "Friction contact with rigid supports", "Contact");
-  PetscCall(PetscOptionsString("-contact_friction", "Friction law: lagged, implicit, none, fixed", "",
-                               law, law, sizeof law, nullptr));
-  PetscCall(PetscOptionsReal("-contact_mu", "Coulomb friction coefficient", "", c->params.mu,
-                             &c->params.mu, nullptr));
-  PetscCall(PetscOptionsReal("-contact_kn", "Normal penalty [N/mm] (default 1e3 E h)", "",
-                             c->params.kn, &c->params.kn, nullptr));
-  PetscCall(PetscOptionsReal("-contact_kt", "Tangential penalty [N/mm] (default = kn)", "",
-                             c->params.kt, &c->params.kt, nullptr));
-  PetscCall(PetscOptionsString("-contact_normal", "Contact frame: frozen (thesis) or follow", "",
-                               normal, normal, sizeof normal, nullptr));
-  PetscCall(PetscOptionsReal("-contact_frictionless_until",
-                             "Load time (in stages) up to which the pairs are frictionless (tensioning)",
-                             "", c->frictionless_until, &c->frictionless_until, nullptr));
-  PetscCall(PetscOptionsReal("-contact_search_tol",
-                             "A film node within this distance of a support surface gets a pair [mm]",
-                             "", tol, &tol, nullptr));
-  PetscCall(PetscOptionsIntArray("-contact_probe_nodes",
-                                 "Film node ids whose contact history is written as CSV beside the results",
-                                 "", probes, &nprobe, nullptr));
-  PetscOptionsEnd();
-  c->probe_nodes.assign(probes, probes + nprobe);
-  if (c->params.kt < 0) c->params.kt = c->params.kn;
-  std::string ls = law;
-  if (ls == "lagged") c->law = FrictionLaw::Lagged;
-  else if (ls == "implicit") c->law = FrictionLaw::Implicit;
-  else if (ls == "none") c->law = FrictionLaw::None, c->params.mu = 0.0;
-  else if (ls == "fixed") c->law = FrictionLaw::Fixed;
-  else SETERRQ(P->comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-contact_friction %s: use lagged, implicit, none or fixed", law);
-  PetscCheck(std::strcmp(normal, "frozen") == 0 || std::strcmp(normal, "follow") == 0, P->comm,
-             PETSC_ERR_ARG_UNKNOWN_TYPE, "-contact_normal %s: use frozen (thesis) or follow", normal);
-  c->follow = std::strcmp(normal, "follow") == 0;
-  PetscCheck(!(c->follow && c->law == FrictionLaw::Lagged), P->comm, PETSC_ERR_SUP,
-             "-contact_normal follow works with -contact_friction implicit, none or fixed; the lagged "
-             "(thesis) law keeps the thesis's frozen frame");
+  PetscCall(ContactOptionsFromCommandLine(P->comm, 1e3 * young * P->thickness, spec.search_tol, &o));
+  c->params = o.params;
+  c->law = o.law;
+  c->follow = o.follow;
+  c->frictionless_until = o.frictionless_until;
+  c->probe_nodes = o.probe_nodes;
+  const PetscReal tol = o.search_tol;
   c->supports = spec.supports;
-  PetscCheck(c->params.mu >= 0 && std::isfinite(c->params.mu), P->comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-contact_mu %g: the friction coefficient must be >= 0", c->params.mu);
-  PetscCheck(c->params.kn > 0 && c->params.kt > 0 && std::isfinite(c->params.kn) && std::isfinite(c->params.kt),
-             P->comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_kn %g / -contact_kt %g: penalties must be positive",
-             c->params.kn, c->params.kt);
-  PetscCheck(tol > 0, P->comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_search_tol %g must be positive", tol);
 
   // Candidates: a node set of the mesh, or every owned node.
   const LocalMesh &m = P->mesh;

@@ -124,9 +124,12 @@ PetscErrorCode CreatePlastic(std::unique_ptr<Material> *out) {
   PetscInt ny = kMaxHardeningSegments, nH = kMaxHardeningSegments;
   PetscBool sety = PETSC_FALSE, setH = PETSC_FALSE;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Plastic material", "Material");
-  PetscCall(PetscOptionsRealArray("-material_yield", "Yield stresses where the hardening segments start [MPa]",
+  PetscCall(PetscOptionsRealArray("-material_yield",
+                                  "Yield stresses where the hardening segments start [MPa, 2nd Piola-Kirchhoff] "
+                                  "(default 13.28,23.04: thesis Table 4.2, case 1)",
                                   "", yield, &ny, &sety));
-  PetscCall(PetscOptionsRealArray("-material_hardening", "Plastic modulus H' of each segment [MPa]", "", H,
+  PetscCall(PetscOptionsRealArray("-material_hardening",
+                                  "Plastic modulus H' of each segment [MPa] (default 80.5,3.0)", "", H,
                                   &nH, &setH));
   PetscOptionsEnd();
   if (!sety) ny = 2;

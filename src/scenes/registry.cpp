@@ -19,24 +19,38 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
-std::vector<std::string> scene_names;  // for -scene_list, in registration order
+struct SceneEntry {
+  std::string name, what, files;
+};
+std::vector<SceneEntry> scene_entries;  // for -scene_list, in registration order
 }
 
-PetscErrorCode SceneRegister(const char name[], SceneBuilder builder) {
+PetscErrorCode SceneRegister(const char name[], SceneBuilder builder, const char what[], const char files[]) {
   PetscFunctionBeginUser;
   PetscCall(PetscFunctionListAdd(&scene_list, name, builder));
-  scene_names.push_back(name);
+  scene_entries.push_back({name, what ? what : "", files ? files : ""});
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SceneRegisterAll(void) {
   PetscFunctionBeginUser;
   if (scene_list) PetscFunctionReturn(0);
-  PetscCall(SceneRegister("hencky", SceneBuild_Hencky));
-  PetscCall(SceneRegister("patch", SceneBuild_Patch));
-  PetscCall(SceneRegister("capstan", SceneBuild_Capstan));
-  PetscCall(SceneRegister("catenoid", SceneBuild_Catenoid));
-  PetscCall(SceneRegister("saddle", SceneBuild_Saddle));
+  PetscCall(SceneRegister("hencky", SceneBuild_Hencky,
+                          "clamped circular membrane under pressure, against Hencky's closed form",
+                          "options/hencky.opts"));
+  PetscCall(SceneRegister("patch", SceneBuild_Patch,
+                          "in-plane stretch of a rectangle (uniaxial, biaxial, shear; load/unload stages)",
+                          "options/patch.opts"));
+  PetscCall(SceneRegister("capstan", SceneBuild_Capstan,
+                          "film strip over a fixed pipe pulled to gross slip: effective friction coefficient",
+                          "options/capstan.opts"));
+  PetscCall(SceneRegister("catenoid", SceneBuild_Catenoid,
+                          "form finding of a soap film between two rings, against the catenoid",
+                          "options/catenoid.opts"));
+  PetscCall(SceneRegister("saddle", SceneBuild_Saddle,
+                          "the thesis's saddle: form finding, cutting patterns, stretch fabrication over the arch, "
+                          "pressurization",
+                          "options/saddle/ff_r*_s*.opts, dd1511.opts, dd1531.opts, pd*.opts, dd1511_pressure*.opts"));
   PetscFunctionReturn(0);
 }
 
@@ -53,18 +67,19 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene) {
                              nullptr));
   PetscOptionsEnd();
   if (list) {
-    PetscCall(PetscPrintf(comm, "registered scenes:"));
-    for (const std::string &n : scene_names) PetscCall(PetscPrintf(comm, " %s", n.c_str()));
-    PetscCall(PetscPrintf(comm, "\n"));
+    PetscCall(PetscPrintf(comm, "scenes (-scene <name>; run one with: scripts/run <options file>):\n"));
+    for (const SceneEntry &e : scene_entries)
+      PetscCall(PetscPrintf(comm, "  %-9s %s\n            options files: %s\n", e.name.c_str(), e.what.c_str(),
+                            e.files.c_str()));
     PetscFunctionReturn(0);
   }
   PetscBool help = PETSC_FALSE;
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (!set && help) {
     // -help without a scene: show every scene's options (each builder reads its own).
-    for (const std::string &n : scene_names) {
+    for (const SceneEntry &e : scene_entries) {
       SceneSpec throwaway;
-      PetscCall(PetscFunctionListFind(scene_list, n.c_str(), &build));
+      PetscCall(PetscFunctionListFind(scene_list, e.name.c_str(), &build));
       PetscCall(build(comm, &throwaway));
     }
     scene->name.clear();

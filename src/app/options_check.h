@@ -1,0 +1,16 @@
+// Which options a run did not use, and what that means. This project's own options (its
+// prefixes: -scene, -mesh_, -material_, -contact_, ...) are checked against the names its sources
+// define (generated at build time): an unknown one is a typo and stops the run before it computes,
+// with the closest known name; a known one the chosen configuration does not read (e.g.
+// -material_yield with -material_type elastic) gets a one-line warning. PETSc's own options
+// (-snes_*, -ksp_*, -log_view, -options_view, ...) are PETSc's business: ones never read by the
+// end of the run get a warning then.
+#pragma once
+#include <petscsys.h>
+
+namespace etfe {
+
+// before_run: the check before computing (errors for typos); otherwise the end-of-run warning.
+PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool before_run);
+
+} // namespace etfe

@@ -1,0 +1,124 @@
+// Options files (see options_files.h).
+#include "options_files.h"
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+namespace etfe {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool IsKey(const std::string &t) {
+  return t.size() > 1 && t[0] == '-' && !(std::isdigit((unsigned char)t[1]) || t[1] == '.');
+}
+
+// Whitespace-separated tokens; a double-quoted token keeps its spaces (without the quotes).
+bool Tokenize(const std::string &line, std::vector<std::string> *tokens) {
+  size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace((unsigned char)line[i])) ++i;
+    if (i >= line.size()) break;
+    std::string t;
+    if (line[i] == '"') {
+      const size_t end = line.find('"', i + 1);
+      if (end == std::string::npos) return false;
+      t = line.substr(i + 1, end - i - 1);
+      i = end + 1;
+    } else {
+      while (i < line.size() && !std::isspace((unsigned char)line[i])) t += line[i++];
+    }
+    tokens->push_back(t);
+  }
+  return true;
+}
+
+// G named inside F: F's folder, then each folder above it.
+fs::path ResolveInclude(const fs::path &including, const std::string &name) {
+  const fs::path g(name);
+  if (g.is_absolute()) return g;
+  for (fs::path dir = fs::absolute(including).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    if (fs::exists(dir / g)) return dir / g;
+    if (dir == dir.root_path()) break;
+  }
+  return fs::absolute(including).parent_path() / g;  // for the message
+}
+
+bool ExpandFile(const fs::path &file, std::vector<std::string> *out, std::set<std::string> *open, int depth,
+                std::string *error) {
+  const std::string shown = file.string();
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) {
+    *error = "options file " + shown + ": no such file";
+    return false;
+  }
+  if (depth > 16 || open->count(fs::canonical(file, ec).string())) {
+    *error = "options file " + shown + ": includes itself (an -options_file loop)";
+    return false;
+  }
+  open->insert(fs::canonical(file, ec).string());
+  std::ifstream in(file);
+  std::string line;
+  int lineno = 0;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const std::string where = shown + ":" + std::to_string(lineno);
+    const size_t hash = line.find_first_of("#!%");
+    if (hash != std::string::npos) line.erase(hash);
+    std::vector<std::string> tokens;
+    if (!Tokenize(line, &tokens)) {
+      *error = where + ": a quote is not closed";
+      return false;
+    }
+    for (size_t k = 0; k < tokens.size(); ++k) {
+      const std::string &t = tokens[k];
+      if (!IsKey(t)) {
+        *error = where + ": '" + t + "' is neither an option (-name) nor the value of one; write one " +
+                 "\"-option value\" per line (comments start with #)";
+        return false;
+      }
+      const bool has_value = k + 1 < tokens.size() && !IsKey(tokens[k + 1]);
+      if (t == "-options_file") {
+        if (!has_value) {
+          *error = where + ": -options_file needs a file name";
+          return false;
+        }
+        if (!ExpandFile(ResolveInclude(file, tokens[k + 1]), out, open, depth + 1, error)) {
+          *error = where + ": in -options_file " + tokens[k + 1] + ": " + *error;
+          return false;
+        }
+        ++k;
+        continue;
+      }
+      out->push_back(t);
+      if (has_value) out->push_back(tokens[++k]);
+    }
+  }
+  open->erase(fs::canonical(file, ec).string());
+  return true;
+}
+
+} // namespace
+
+bool ExpandOptionsFiles(const std::vector<std::string> &args, std::vector<std::string> *expanded,
+                        std::string *error) {
+  expanded->clear();
+  for (size_t k = 0; k < args.size(); ++k) {
+    if (args[k] != "-options_file") {
+      expanded->push_back(args[k]);
+      continue;
+    }
+    if (k + 1 >= args.size()) {
+      *error = "-options_file needs a file name";
+      return false;
+    }
+    std::set<std::string> open;
+    if (!ExpandFile(fs::path(args[++k]), expanded, &open, 0, error)) return false;
+  }
+  return true;
+}
+
+} // namespace etfe

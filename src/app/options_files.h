@@ -1,0 +1,17 @@
+// Options files, read by etfe itself before PETSc starts: every "-options_file F" of the command
+// line is replaced in place by F's options, so the precedence stays PETSc's (later wins: options
+// after the file on the command line override it). An "-options_file G" line inside F names G
+// relative to F's folder or, failing that, to the nearest folder above F where G exists (the
+// repository root for the project's "options/solvers/..." includes): a run does not depend on
+// the current folder. A line that is not "-option [value]" stops with file:line and the reason.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace etfe {
+
+// args: argv[1..]; on success *expanded holds the new argument list (without argv[0]).
+bool ExpandOptionsFiles(const std::vector<std::string> &args, std::vector<std::string> *expanded,
+                        std::string *error);
+
+} // namespace etfe
