@@ -81,8 +81,8 @@ PetscErrorCode ContactDestroy(ContactSet **contact);
 int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], double time,
                     double fglobal[3], double Kglobal[9]);
 // After a converged increment: status update and cone correction (lagged), new committed state.
-// Counts (open, stick, slip) over all ranks; prints a line per newly opened pair.
-PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[3]);
+// Counts over all ranks: open, stick, slip, and pairs that lifted off in this increment.
+PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[4]);
 const char *FrictionLawName(FrictionLaw law);
 ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);
 // Appends one line per probe pair to <stem>_contact_node<id>.csv, stem = the results file without

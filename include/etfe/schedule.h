@@ -13,6 +13,9 @@ struct Schedule {
   std::string name;
   double initial = 0.0;
   std::vector<double> values;  // value at the end of each stage
+  // How progress lines show it: value x display_scale, then unit ("" for a load factor).
+  std::string unit;
+  double display_scale = 1.0;
 
   int NumStages() const { return (int)values.size(); }
   // Value at load time t (clamped to [0, NumStages()]).

@@ -292,7 +292,7 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
   return std::isfinite(fg[0] + fg[1] + fg[2]) ? 0 : 1;
 }
 
-PetscErrorCode ContactCommit(Problem *P, PetscInt counts[3]) {
+PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
   ContactSet &c = *P->contact;
   const PetscScalar *u;
   PetscInt local[4] = {0, 0, 0, 0};
@@ -311,10 +311,7 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[3]) {
   PetscCall(VecRestoreArrayRead(P->U, &u));
   PetscInt global[4];
   PetscCallMPI(MPI_Allreduce(local, global, 4, MPIU_INT, MPI_SUM, P->comm));
-  for (int i = 0; i < 3; ++i) counts[i] = global[i];
-  if (global[3] > 0)
-    PetscCall(PetscPrintf(P->comm, "  contact: %" PetscInt_FMT " pair(s) lifted off (gap opened; they "
-                          "carry no force until they close again)\n", global[3]));
+  for (int i = 0; i < 4; ++i) counts[i] = global[i];
   PetscFunctionReturn(0);
 }
 

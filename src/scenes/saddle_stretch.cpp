@@ -223,14 +223,14 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
     for (size_t k = 0; k < stages; ++k) out.push_back(gain_k * v[std::min(k, ns - 1)]);
     return out;
   };
-  const int sa = scene->AddSchedule({"draw_a", 0.0, extend(da, gain[0])});
-  const int sb = scene->AddSchedule({"draw_b", 0.0, extend(db, gain[1])});
-  const int sc = scene->AddSchedule({"draw_c", 0.0, extend(dc, gain[2])});
-  const int sd = scene->AddSchedule({"draw_d", 0.0, extend(dd, gain[3])});
+  const int sa = scene->AddSchedule({"draw_a", 0.0, extend(da, gain[0]), "mm"});
+  const int sb = scene->AddSchedule({"draw_b", 0.0, extend(db, gain[1]), "mm"});
+  const int sc = scene->AddSchedule({"draw_c", 0.0, extend(dc, gain[2]), "mm"});
+  const int sd = scene->AddSchedule({"draw_d", 0.0, extend(dd, gain[3]), "mm"});
   if (np > 0) {
     std::vector<double> p(ns, 0.0);
     for (double x : pressure) p.push_back(1e-3 * x);  // kPa -> MPa
-    const int sp = scene->AddSchedule({"pressure", 0.0, p});
+    const int sp = scene->AddSchedule({"pressure", 0.0, p, "kPa", 1e3});
     scene->pressure.active = true;
     scene->pressure.value = {{1.0, 0.0}, {sp, -1}};
   }

@@ -2,7 +2,9 @@
 // failed Newton solve restores U from the committed copy (history is untouched until commit),
 // so a cut-back repeats the increment from exactly the state it started from.
 #include <cmath>
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
@@ -153,6 +155,64 @@ PetscErrorCode WorstNode(Problem *P, Vec F, PetscInt *node, double *value) {
   PetscFunctionReturn(0);
 }
 
+// What the current stage does, from the schedules that change in it: "draw_a 4.20 mm, draw_d
+// 2.40 mm" or "pressure 1.50 kPa" (at most two named).
+std::string StageDescription(const SceneSpec &scene, double t) {
+  const int nstages = scene.NumStages();
+  const int s = std::max(0, std::min((int)std::floor(t - 1e-9), nstages - 1));
+  std::string d;
+  int shown = 0, more = 0;
+  for (const Schedule &sc : scene.schedules) {
+    const double a = sc.At(s), b = sc.At(s + 1);
+    if (std::fabs(b - a) <= 1e-14 * (std::fabs(a) + std::fabs(b))) continue;
+    if (shown == 2) {
+      ++more;
+      continue;
+    }
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%s%s %.3g%s%s", shown ? ", " : "", sc.name.c_str(), sc.At(t) * sc.display_scale,
+                  sc.unit.empty() ? "" : " ", sc.unit.c_str());
+    d += buf;
+    ++shown;
+  }
+  if (more) d += ", +" + std::to_string(more);
+  return d.empty() ? "held" : d;
+}
+
+std::string Clock(double seconds) {
+  const long s = (long)std::llround(std::max(0.0, seconds));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+  return buf;
+}
+
+// One line per increment: where the load history is (step k/N, %, the stage's meaning), how the
+// increment went (Newton iterations, residual, contact states inline) and the time to the end.
+PetscErrorCode PrintProgress(Problem *P, PetscInt step, PetscInt nominal, double t, double t_end, PetscInt its,
+                             PetscReal fnorm, const PetscInt counts[4], double increment_s, double elapsed_s,
+                             PetscInt cutbacks) {
+  PetscFunctionBeginUser;
+  const int nstages = P->scene.NumStages();
+  const int stage = std::min((int)std::floor(t - 1e-9), nstages - 1) + 1;
+  const double done = t / t_end;
+  std::string contact;
+  if (P->contact) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "  contact open %lld stick %lld slip %lld%s", (long long)counts[0],
+                  (long long)counts[1], (long long)counts[2], counts[3] ? " (lift-off)" : "");
+    contact = buf;
+  }
+  char cut[48] = "";
+  if (cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)cutbacks);
+  PetscCall(PetscPrintf(P->comm,
+                        "step %5" PetscInt_FMT "/%" PetscInt_FMT " %5.1f%%  t %.5f  stage %d/%d %s  newton %2" PetscInt_FMT
+                        "  |R| %.2e%s%s  %.2f s  elapsed %s  ETA %s\n",
+                        step, nominal, 100.0 * done, t, stage, nstages, StageDescription(P->scene, t).c_str(), its,
+                        (double)fnorm, contact.c_str(), cut, increment_s, Clock(elapsed_s).c_str(),
+                        done > 0 ? Clock(elapsed_s * (1.0 - done) / done).c_str() : "-"));
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode LoadStepperSetConvergenceTest(Problem *P, SNES snes, const LoadStepperOptions &o) {
@@ -171,7 +231,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   double t = 0.0, dt = dt_nominal, dt_last = 0.0;
   // Extrapolate only from converged states: a scene's initial guess is not one.
   PetscInt converged_states = P->scene.initial_guess.empty() ? 1 : 0;
-  PetscInt step = 0, easy = 0;
+  PetscInt step = 0, easy = 0, cutbacks_printed = 0;
   Vec U_committed, U_previous, F;
   PetscLogDouble t0, t_inc;
   PetscFunctionBeginUser;
@@ -238,7 +298,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     res->newton_iterations += its;
     if (reason > 0) {
       PetscCall(CommitHistory(P, P->U));
-      PetscInt contact_counts[3] = {0, 0, 0};
+      PetscInt contact_counts[4] = {0, 0, 0, 0};
       if (P->contact) PetscCall(ContactCommit(P, contact_counts));
       PetscCall(VecCopy(U_committed, U_previous));
       PetscCall(VecCopy(P->U, U_committed));
@@ -248,15 +308,13 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
       ++step;
       PetscLogDouble now;
       PetscCall(PetscTime(&now));
-      if (o.monitor)
-        PetscCall(PetscPrintf(P->comm,
-                              "step %5" PetscInt_FMT "  t %8.5f  stage %d  dt %.3e  newton %2" PetscInt_FMT
-                              "  |R| %.3e  cutbacks %" PetscInt_FMT "  %.3f s\n",
-                              step, t, (int)std::min<double>(std::floor(t - eps), nstages - 1) + 1,
-                              dt_last, its, (double)fnorm, res->cutbacks, now - t_inc));
-      if (o.monitor && P->contact)
-        PetscCall(PetscPrintf(P->comm, "             contact: open %" PetscInt_FMT " stick %" PetscInt_FMT
-                              " slip %" PetscInt_FMT "\n", contact_counts[0], contact_counts[1], contact_counts[2]));
+      const bool stage_end_reached = std::fabs(t - std::round(t)) < eps;
+      if (o.monitor > 0 && (step % o.monitor == 0 || step == 1 || stage_end_reached || t >= t_end - eps ||
+                            res->cutbacks != cutbacks_printed || contact_counts[3] > 0)) {
+        cutbacks_printed = res->cutbacks;
+        PetscCall(PrintProgress(P, step, per_stage * nstages, t, t_end, its, fnorm, contact_counts, now - t_inc,
+                                now - t0, res->cutbacks));
+      }
       if (P->scene.step_monitor) PetscCall(P->scene.step_monitor(P, P->scene.report_ctx, step, t));
       if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputStem(out), step, t));
       const bool last = t >= t_end - eps;

@@ -181,10 +181,10 @@ def summary(out):
 def increments(out):
     """Per converged increment: dict(step, t, stage, newton, residual) from the load monitor lines."""
     res = []
-    for m in re.finditer(r"^step +(\d+) +t +(%s) +stage (\d+) +dt (%s) +newton +(\d+) +\|R\| (%s)"
-                         % (NUMBER, NUMBER, NUMBER), out, re.M):
+    for m in re.finditer(r"^step +(\d+)/\d+ +[0-9.]+%% +t +(%s) +stage (\d+)/\d+ .*? newton +(\d+) +\|R\| (%s)"
+                         % (NUMBER, NUMBER), out, re.M):
         res.append(dict(step=int(m.group(1)), t=float(m.group(2)), stage=int(m.group(3)),
-                        newton=int(m.group(5)), residual=float(m.group(6))))
+                        newton=int(m.group(4)), residual=float(m.group(5))))
     return res
 
 
