@@ -1,6 +1,7 @@
 // Results file: HDF5 (written in parallel with MPI-IO) plus an XDMF index that ParaView opens
 // as a time series. Layout (stable, documented in the README):
-//   /                      attributes: format "etfe-results-1", scene, run_id, status
+//   /                      attributes: format "etfe-results-1", scene, run_id, options (the option
+//                          table of the run that created the file), version, status
 //                          ("running" | "complete" | "failed: <why>"), steps_written
 //   /mesh/coordinates      (N, 3) float64  reference coordinates, scene node order
 //   /mesh/triangles        (E, 3) int32    0-based node ids, scene element order

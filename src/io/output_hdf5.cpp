@@ -87,33 +87,75 @@ PetscErrorCode WriteXdmf(OutputFile *out) {
                       "Format=\"HDF\">%s:%s%s</DataItem>\n",
                    rows, type, prec, h5.c_str(), group.c_str(), path);
   };
+  const bool contact = out->problem->contact != nullptr;
+  const long long C = contact ? (long long)out->problem->contact->num_global : 0;
+  // One column of an (rows x cols) dataset, as a scalar attribute ParaView names.
+  auto column = [&](const char *name, const char *path, long long rows, int cols, int c, const char *center,
+                    const std::string &group) {
+    std::fprintf(f, " <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"%s\">\n", name, center);
+    std::fprintf(f, "  <DataItem ItemType=\"HyperSlab\" Dimensions=\"%lld 1\" Type=\"HyperSlab\">\n", rows);
+    std::fprintf(f, "   <DataItem Dimensions=\"3 2\" Format=\"XML\">0 %d 1 1 %lld 1</DataItem>\n", c, rows);
+    std::fprintf(f, "   <DataItem Dimensions=\"%lld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s%s"
+                    "</DataItem>\n  </DataItem>\n </Attribute>\n",
+                 rows, cols, h5.c_str(), group.c_str(), path);
+  };
   for (auto &s : out->steps) {
     char group[64];
     std::snprintf(group, sizeof group, "/steps/%06lld/", (long long)s.first);
-    std::fprintf(f, " <Grid Name=\"step_%06lld\" GridType=\"Uniform\">\n  <Time Value=\"%.12g\"/>\n",
-                 (long long)s.first, s.second);
+    if (contact)
+      std::fprintf(f, " <Grid Name=\"step_%06lld\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+                      "  <Time Value=\"%.12g\"/>\n", (long long)s.first, s.second);
+    std::fprintf(f, " <Grid Name=\"%s\" GridType=\"Uniform\">\n", contact ? "film" : ("step_" + std::string(group + 7, 6)).c_str());
+    if (!contact) std::fprintf(f, "  <Time Value=\"%.12g\"/>\n", s.second);
     std::fprintf(f, " <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n", E);
     item("/mesh/triangles", E, 3, "Int", 4, "");
     std::fprintf(f, " </Topology>\n <Geometry GeometryType=\"XYZ\">\n");
     item("/mesh/coordinates", N, 3, "Float", 8, "");
     std::fprintf(f, " </Geometry>\n");
-    struct Field { const char *name; bool cell; int ncomp; };
-    std::vector<Field> fields = {{"displacement", false, 3}, {"reaction", false, 3},
-                                 {"nodal_mises", false, 1}, {"stress", true, 3},
-                                 {"strain", true, 3}, {"mises", true, 1},
-                                 {"min_principal_stress", true, 1},
-                                 {"min_principal_strain", true, 1}, {"area_ratio", true, 1}};
-    if (plastic) {
-      fields.push_back({"plastic_strain", true, 3});
-      fields.push_back({"plastic_strain_eq", true, 1});
-    }
+    // The measure is in the name: PK2 stress and Green-Lagrange strain of the reference
+    // configuration, components in the element's MD/TD frame (x = MD).
+    struct Field { const char *name, *path; bool cell; int ncomp; };
+    std::vector<Field> fields = {{"displacement", "displacement", false, 3}, {"reaction", "reaction", false, 3},
+                                 {"nodal_mises_PK2", "nodal_mises", false, 1}, {"mises_PK2", "mises", true, 1},
+                                 {"min_principal_stress_PK2", "min_principal_stress", true, 1},
+                                 {"min_principal_strain_GL", "min_principal_strain", true, 1},
+                                 {"area_ratio", "area_ratio", true, 1}};
+    if (plastic) fields.push_back({"plastic_strain_eq", "plastic_strain_eq", true, 1});
     for (const Field &fl : fields) {
       std::fprintf(f, " <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", fl.name,
                    fl.ncomp == 3 ? "Vector" : "Scalar", fl.cell ? "Cell" : "Node");
-      item(fl.name, fl.cell ? E : N, fl.ncomp, "Float", 8, group);
+      item(fl.path, fl.cell ? E : N, fl.ncomp, "Float", 8, group);
       std::fprintf(f, " </Attribute>\n");
     }
+    const char *stress[3] = {"PK2_Sxx", "PK2_Syy", "PK2_Sxy"}, *strain[3] = {"GL_Exx", "GL_Eyy", "GL_Exy"},
+               *plast[3] = {"plastic_Exx", "plastic_Eyy", "plastic_Exy"};
+    for (int c = 0; c < 3; ++c) {
+      column(stress[c], "stress", E, 3, c, "Cell", group);
+      column(strain[c], "strain", E, 3, c, "Cell", group);
+      if (plastic) column(plast[c], "plastic_strain", E, 3, c, "Cell", group);
+    }
     std::fprintf(f, " </Grid>\n");
+    if (contact && C > 0) {
+      // The contact pairs as their own point set: one vertex per pair at its film node.
+      std::fprintf(f, " <Grid Name=\"contact\" GridType=\"Uniform\">\n");
+      std::fprintf(f, " <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n", C);
+      item("contact/node", C, 1, "Int", 4, group);
+      std::fprintf(f, " </Topology>\n <Geometry GeometryType=\"XYZ\">\n");
+      item("/mesh/coordinates", N, 3, "Float", 8, "");
+      std::fprintf(f, " </Geometry>\n <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n");
+      item("displacement", N, 3, "Float", 8, group);
+      std::fprintf(f, " </Attribute>\n <Attribute Name=\"contact_force\" AttributeType=\"Vector\" Center=\"Cell\">\n");
+      item("contact/force", C, 3, "Float", 8, group);
+      std::fprintf(f, " </Attribute>\n <Attribute Name=\"contact_status\" AttributeType=\"Scalar\" Center=\"Cell\">\n");
+      item("contact/status", C, 1, "Int", 4, group);
+      std::fprintf(f, " </Attribute>\n");
+      column("slide_X", "contact/slide_global", C, 2, 0, "Cell", group);
+      column("slide_Y", "contact/slide_global", C, 2, 1, "Cell", group);
+      column("slide_x0", "contact/slide_local", C, 2, 0, "Cell", group);
+      column("slide_y0", "contact/slide_local", C, 2, 1, "Cell", group);
+      std::fprintf(f, " </Grid>\n");
+    }
+    if (contact) std::fprintf(f, " </Grid>\n");
   }
   std::fprintf(f, "</Grid>\n</Domain>\n</Xdmf>\n");
   PetscCheck(std::fclose(f) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot write %s",
@@ -289,6 +331,15 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(H5WriteString(out->path, out->file, "format", "etfe-results-1"));
   PetscCall(H5WriteString(out->path, out->file, "scene", P->scene.name));
   PetscCall(H5WriteString(out->path, out->file, "run_id", out->run_id));
+  {
+    // What made this file: the options in force (options files expanded) and the solver's version,
+    // so a reader (scripts/figures, a colleague) need not guess them.
+    char *all = nullptr;
+    PetscCall(PetscOptionsGetAll(nullptr, &all));
+    PetscCall(H5WriteString(out->path, out->file, "options", all ? all : ""));
+    PetscCall(PetscFree(all));
+    PetscCall(H5WriteString(out->path, out->file, "version", ETFE_VERSION));
+  }
   PetscCall(H5WriteString(out->path, out->file, "status", "running"));
   long long zero = 0;
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));

@@ -57,6 +57,17 @@ def main_test(etfe, chk):
             items = root.iter("DataItem")
             nitems = bad = 0
             for it in items:
+                if it.get("Format") == "XML":  # a hyperslab's (start, stride, count)
+                    sel = [int(x) for x in it.text.split()]
+                    chk.check(len(sel) == 6 and sel[2:4] == [1, 1], "hyperslab selection %s" % sel)
+                    continue
+                if it.get("ItemType") == "HyperSlab":  # one column of the HDF item inside it
+                    inner = [c for c in it if c.get("Format") == "HDF"][0]
+                    rows, cols = (int(x) for x in inner.get("Dimensions").split())
+                    sel = [int(x) for x in [c for c in it if c.get("Format") == "XML"][0].text.split()]
+                    ok = it.get("Dimensions") == "%d 1" % rows and 0 <= sel[1] < cols and sel[4:] == [rows, 1]
+                    chk.check(ok, "hyperslab %s selects one column of %s" % (sel, inner.text.strip()))
+                    continue
                 nitems += 1
                 ref = it.text.strip()
                 fname, path = ref.split(":", 1)
@@ -97,14 +108,43 @@ def main_test(etfe, chk):
             chk.check(attrs_ok, "grid times equal the step attributes (step, stage, load_factor) and "
                       "attribute sizes match their centring")
             fields = {a.get("Name") for g in grids for a in g.findall("Attribute")}
-            chk.check({"displacement", "stress", "strain", "plastic_strain", "plastic_strain_eq"} <= fields,
-                      "XDMF attributes include the plastic fields: %s" % sorted(fields))
+            named = {"displacement", "PK2_Sxx", "PK2_Syy", "PK2_Sxy", "GL_Exx", "GL_Eyy", "GL_Exy", "plastic_Exx",
+                     "plastic_Eyy", "plastic_Exy", "plastic_strain_eq", "mises_PK2", "min_principal_stress_PK2"}
+            chk.check(named <= fields, "XDMF attributes are named by component and stress measure: %s" % sorted(fields))
+            chk.check(not fields & {"stress", "strain", "plastic_strain"},
+                      "no unnamed 3-vectors of tensor components in the XDMF")
+            chk.check("etfe" in T.h5compare._text(f.attrs["version"]) and "-patch_schedule 1,0.5,1.5" in
+                      T.h5compare._text(f.attrs["options"]), "the results file records the version and the options")
             eq = f["steps/%06d/plastic_strain_eq" % h5steps[-1]][()]
             chk.check(eq.shape == (E,) and bool((eq > 0).all()),
                       "plastic_strain_eq > 0 in every element at the end (min %.4e, max %.4e)" % (eq.min(), eq.max()))
             eq0 = f["steps/000000/plastic_strain_eq"][()]
             chk.check(bool((eq0 == 0).all()), "plastic_strain_eq = 0 in the initial state")
         paraview(chk, xmf, len(h5steps))
+        contact_grid(etfe, chk, tmp)
+
+
+def contact_grid(etfe, chk, tmp):
+    """A contact scene: each step is a spatial collection of the film and the contact pairs, the
+    latter a point set (one vertex per pair at its film node) with force, status and slides."""
+    import h5py
+    h5 = os.path.join(tmp, "capstan.h5")
+    T.run(etfe, ["-options_file", T.opts("capstan"), "-load_monitor", 0, "-output_every", 20, "-output_file", h5])
+    root = ET.parse(os.path.splitext(h5)[0] + ".xmf").getroot()
+    steps = root.find("Domain/Grid").findall("Grid")
+    with h5py.File(h5, "r") as f:
+        C = f["steps/%06d/contact/force" % 20].shape[0]
+    ok = bool(steps)
+    for g in steps:
+        sub = {x.get("Name"): x for x in g.findall("Grid")}
+        ok &= g.get("CollectionType") == "Spatial" and set(sub) == {"film", "contact"} and g.find("Time") is not None
+        if ok:
+            topo = sub["contact"].find("Topology")
+            names = {a.get("Name") for a in sub["contact"].findall("Attribute")}
+            ok &= topo.get("TopologyType") == "Polyvertex" and int(topo.get("NumberOfElements")) == C
+            ok &= {"contact_force", "contact_status", "slide_X", "slide_Y", "displacement"} <= names
+    chk.check(ok, "capstan: every step holds the film and the %d contact pairs as a point set with force, "
+              "status and slides" % C)
 
 
 def paraview(chk, xmf, nsteps):
@@ -120,12 +160,14 @@ def paraview(chk, xmf, nsteps):
         "r.UpdatePipeline(ts[-1])\n"
         "d = servermanager.Fetch(r)\n"
         "b = d.GetBlock(0) if d.IsA('vtkMultiBlockDataSet') else d\n"
-        "print('PV', len(ts), b.GetNumberOfCells(), b.GetCellData().HasArray('plastic_strain_eq'))\n" % xmf)
+        "cd = b.GetCellData()\n"
+        "print('PV', len(ts), b.GetNumberOfCells(), cd.HasArray('plastic_strain_eq') and cd.HasArray('PK2_Sxx'))\n"
+        % xmf)
     p = subprocess.run([pv, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=300)
     out = p.stdout.decode("utf-8", "replace")
     line = [l for l in out.splitlines() if l.startswith("PV ")]
     ok = p.returncode == 0 and line and int(line[0].split()[1]) == nsteps and line[0].split()[3] in ("1", "True")
-    chk.check(bool(ok), "ParaView reads %d time steps with plastic_strain_eq: %s" % (nsteps, line[0] if line else T.tail(out, 5)))
+    chk.check(bool(ok), "ParaView reads %d time steps with plastic_strain_eq and the named PK2_Sxx column: %s" % (nsteps, line[0] if line else T.tail(out, 5)))
 
 
 if __name__ == "__main__":
