@@ -145,6 +145,22 @@ def contact_grid(etfe, chk, tmp):
             ok &= {"contact_force", "contact_status", "slide_X", "slide_Y", "displacement"} <= names
     chk.check(ok, "capstan: every step holds the film and the %d contact pairs as a point set with force, "
               "status and slides" % C)
+    pv = shutil.which("pvpython")
+    if not pv:
+        print("  SKIP  ParaView check of the contact point set: pvpython not found on PATH")
+        return
+    script = ("from paraview.simple import *\n"
+              "r = XDMFReader(FileNames=[%r])\n"
+              "r.UpdatePipelineInformation()\n"
+              "r.UpdatePipeline(list(r.TimestepValues)[-1])\n"
+              "d = servermanager.Fetch(r)\n"
+              "c = d.GetBlock(1)\n"
+              "print('PV', d.GetNumberOfBlocks(), c.GetNumberOfCells(), c.GetCellData().HasArray('contact_force'))\n"
+              % (os.path.splitext(h5)[0] + ".xmf"))
+    p = subprocess.run([pv, "-c", script], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=300)
+    line = [l for l in p.stdout.decode("utf-8", "replace").splitlines() if l.startswith("PV ")]
+    ok = p.returncode == 0 and line and line[0].split()[1:] in (["2", str(C), "1"], ["2", str(C), "True"])
+    chk.check(bool(ok), "ParaView reads the film and the %d contact pairs as two blocks: %s" % (C, line[:1]))
 
 
 def paraview(chk, xmf, nsteps):
