@@ -83,6 +83,12 @@ FAMILIES = {
 }
 
 
+# Principal directions are defined up to sign, and not at all where the two principal stresses
+# are equal (the centre of a Hencky membrane, equibiaxial patches): round-off turns them freely
+# there. They are a function of cauchy_stress, which is compared, so they are not compared.
+DIRECTIONS = ("principal_dir1", "principal_dir2")
+
+
 def family_of(name):
     for fam, members in FAMILIES.items():
         if name in members:
@@ -216,6 +222,8 @@ def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, de
                         n, stepname, a_path if n not in da else b_path))
                     rows.append(dict(field=n, step=stepname, shape="missing", max_abs=float("nan"),
                                      max_rel=float("nan"), tol=float("nan"), ok=False))
+                    continue
+                if n in DIRECTIONS and not only:
                     continue
                 check(n, stepname, n, da[n][()], db[n][()],
                       fam_scale.get(family_of(n.split("/")[-1])))

@@ -118,6 +118,9 @@ PetscErrorCode CommitHistory(Problem *problem, Vec U);
 // principal stress, min principal strain, and (plastic laws) plastic strain (3) + equivalent.
 struct CellFields {
   std::vector<double> stress, strain, mises, smin, emin, ep, ep_bar, area_ratio;
+  // True stress (kernels/stress_measures.h): global tensor (6), its Mises, the in-plane principal
+  // values (2: largest first) and their directions (3 each, global, current configuration).
+  std::vector<double> cauchy, cauchy_mises, principal, dir1, dir2;
   std::vector<double> nodal_mises;  // per owned node, average of the elements around it
 };
 PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields);

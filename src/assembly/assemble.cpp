@@ -11,6 +11,7 @@
 
 #include "etfe/kernels/pressure.h"
 #include "etfe/kernels/status.h"
+#include "etfe/kernels/stress_measures.h"
 #include "etfe/problem.h"
 
 namespace etfe {
@@ -399,6 +400,11 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
   c->smin.assign(ne, 0);
   c->emin.assign(ne, 0);
   c->area_ratio.assign(ne, 0);
+  c->cauchy.assign(6 * ne, 0);
+  c->cauchy_mises.assign(ne, 0);
+  c->principal.assign(2 * ne, 0);
+  c->dir1.assign(3 * ne, 0);
+  c->dir2.assign(3 * ne, 0);
   const bool plastic = P->material->HasPlasticStrain();
   c->ep.assign(plastic ? 3 * ne : 0, 0);
   c->ep_bar.assign(plastic ? ne : 0, 0);
@@ -425,6 +431,9 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
     c->smin[e] = MinPrincipalStress(S);
     c->emin[e] = MinPrincipalStrain(E);
     c->area_ratio[e] = MembraneAreaRatio(m.ref[e], x, nullptr);
+    CauchyStress(F, S, &c->cauchy[6 * e]);
+    c->cauchy_mises[e] = MisesStress3(&c->cauchy[6 * e]);
+    PrincipalStresses(F, &c->cauchy[6 * e], &c->principal[2 * e], &c->dir1[3 * e], &c->dir2[3 * e]);
     if (plastic) {
       double ep[3], epb;
       P->material->PlasticStrain(h, ep, &epb);

@@ -119,7 +119,9 @@ PetscErrorCode WriteXdmf(OutputFile *out) {
                                  {"nodal_mises_PK2", "nodal_mises", false, 1}, {"mises_PK2", "mises", true, 1},
                                  {"min_principal_stress_PK2", "min_principal_stress", true, 1},
                                  {"min_principal_strain_GL", "min_principal_strain", true, 1},
-                                 {"area_ratio", "area_ratio", true, 1}};
+                                 {"area_ratio", "area_ratio", true, 1}, {"cauchy_mises", "cauchy_mises", true, 1},
+                                 {"principal_dir1", "principal_dir1", true, 3},
+                                 {"principal_dir2", "principal_dir2", true, 3}};
     if (plastic) fields.push_back({"plastic_strain_eq", "plastic_strain_eq", true, 1});
     for (const Field &fl : fields) {
       std::fprintf(f, " <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", fl.name,
@@ -127,6 +129,11 @@ PetscErrorCode WriteXdmf(OutputFile *out) {
       item(fl.path, fl.cell ? E : N, fl.ncomp, "Float", 8, group);
       std::fprintf(f, " </Attribute>\n");
     }
+    std::fprintf(f, " <Attribute Name=\"cauchy_stress\" AttributeType=\"Tensor6\" Center=\"Cell\">\n");
+    item("cauchy_stress", E, 6, "Float", 8, group);
+    std::fprintf(f, " </Attribute>\n");
+    column("principal_stress_1", "principal_stress", E, 2, 0, "Cell", group);
+    column("principal_stress_2", "principal_stress", E, 2, 1, "Cell", group);
     const char *stress[3] = {"PK2_Sxx", "PK2_Syy", "PK2_Sxy"}, *strain[3] = {"GL_Exx", "GL_Eyy", "GL_Exy"},
                *plast[3] = {"plastic_Exx", "plastic_Eyy", "plastic_Exy"};
     for (int c = 0; c < 3; ++c) {
@@ -397,6 +404,11 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(WriteField(out, g, "min_principal_stress", Layout::Cells, 1, c.smin.data()));
   PetscCall(WriteField(out, g, "min_principal_strain", Layout::Cells, 1, c.emin.data()));
   PetscCall(WriteField(out, g, "area_ratio", Layout::Cells, 1, c.area_ratio.data()));
+  PetscCall(WriteField(out, g, "cauchy_stress", Layout::Cells, 6, c.cauchy.data()));
+  PetscCall(WriteField(out, g, "cauchy_mises", Layout::Cells, 1, c.cauchy_mises.data()));
+  PetscCall(WriteField(out, g, "principal_stress", Layout::Cells, 2, c.principal.data()));
+  PetscCall(WriteField(out, g, "principal_dir1", Layout::Cells, 3, c.dir1.data()));
+  PetscCall(WriteField(out, g, "principal_dir2", Layout::Cells, 3, c.dir2.data()));
   if (P->material->HasPlasticStrain()) {
     PetscCall(WriteField(out, g, "plastic_strain", Layout::Cells, 3, c.ep.data()));
     PetscCall(WriteField(out, g, "plastic_strain_eq", Layout::Cells, 1, c.ep_bar.data()));

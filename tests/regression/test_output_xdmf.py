@@ -103,7 +103,7 @@ def main_test(etfe, chk):
                     d = a.find("DataItem")
                     dims = [int(x) for x in d.get("Dimensions").split()]
                     attrs_ok &= dims[0] == (E if a.get("Center") == "Cell" else N)
-                    attrs_ok &= a.get("AttributeType") == ("Vector" if dims[1:] == [3] else "Scalar")
+                    attrs_ok &= a.get("AttributeType") == {3: "Vector", 6: "Tensor6"}.get((dims[1:] or [1])[0], "Scalar")
                     attrs_ok &= len(dims) <= 2
             chk.check(attrs_ok, "grid times equal the step attributes (step, stage, load_factor) and "
                       "attribute sizes match their centring")
