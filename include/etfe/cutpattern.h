@@ -1,7 +1,7 @@
 // Cutting patterns of a surface (SPEC §7, issue 5): the surface is split into strips (element
 // sets: the saddle's "middle" and "corner" parts, split at the cutting line X = 0 and the weld
 // line over the arch), each strip is flattened by least squares of its link lengths
-// (cutting_pattern.h) and written as DXF, SVG and a Gmsh .msh (the 2D mesh for a stretch
+// (flatten_strip.h) and written as DXF, SVG and a Gmsh .msh (the 2D mesh for a stretch
 // analysis), with a table of its named lines (cut_*, weld_*, and -cutpattern_lines) in 3D and 2D.
 #pragma once
 #include <petscsys.h>
@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "etfe/cutting_pattern.h"
+#include "etfe/flatten_strip.h"
 #include "etfe/mesh/mesh_data.h"
 
 namespace etfe {

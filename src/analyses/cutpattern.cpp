@@ -14,7 +14,7 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
   char strips[512] = "", lines[512] = "";
   PetscBool set_strips = PETSC_FALSE, set_lines = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(comm, nullptr, "Cutting pattern (after form finding, or -analysis cutpattern)", "CutPattern");
+  PetscOptionsBegin(comm, nullptr, "Cutting pattern (after form finding)", "CutPattern");
   PetscCall(PetscOptionsBool("-cutpattern", "Flatten the strips of the surface into cutting patterns", "", o->enabled,
                              &o->enabled, nullptr));
   PetscCall(PetscOptionsString("-cutpattern_strips", "Element sets to flatten, comma separated (default: all sets)",

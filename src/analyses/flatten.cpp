@@ -31,7 +31,7 @@
 #include <utility>
 #include <vector>
 
-#include "etfe/cutting_pattern.h"
+#include "etfe/flatten_strip.h"
 #include "etfe/kernels/flatten_link.h"
 #include "etfe/kernels/status.h"
 

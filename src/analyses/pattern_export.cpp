@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "etfe/cutting_pattern.h"
+#include "etfe/flatten_strip.h"
 
 namespace etfe {
 namespace {

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "check.h"
-#include "etfe/cutting_pattern.h"
+#include "etfe/flatten_strip.h"
 #include "etfe/kernels/flatten_link.h"
 #include "etfe/kernels/status.h"
 #include "etfe/mesh/generators.h"
