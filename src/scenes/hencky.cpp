@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "etfe/kernels/hencky_closed_form.h"
+#include "etfe/verification/hencky_closed_form.h"
 #include "etfe/mesh/generators.h"
 #include "etfe/problem.h"
 #include "etfe/scene.h"

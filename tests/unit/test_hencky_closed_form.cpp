@@ -1,11 +1,11 @@
-// Hencky coefficients (src/kernels/hencky_closed_form.cpp) against an independent solution of the
+// Hencky coefficients (src/verification/hencky_closed_form.cpp) against an independent solution of the
 // same Foppl problem: the stress-function power series of Hencky/Chien. With F = r N_r
 // (E h = p = a = 1) compatibility reads r F'' + F' - F/r = -r^4/(8 F^2); F = sum c_k r^(2k+1)
 // gives a recurrence for c_k from c_0 = N0, and the clamped rim u(1) = 0 is F'(1) - nu F(1) = 0.
 // The centre deflection is w0 = integral_0^1 r^2/(2F) dr = 1/4 integral_0^1 ds/G(s), with
 // G(s) = sum c_k s^k, integrated term by term through the series of 1/G. Shooting + RK4 and this
 // series share no code, so agreement to ~1e-10 checks both.
-#include "etfe/kernels/hencky_closed_form.h"
+#include "etfe/verification/hencky_closed_form.h"
 
 #include "check.h"
 

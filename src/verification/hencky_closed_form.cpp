@@ -21,7 +21,7 @@
 // series N = N0 - r^2/(64 N0^2), v = (1-nu) N0 - (3-nu) r^2/(64 N0^2), shoot on N0 until
 // u(1) = v(1) = 0 (bracket + bisection), and remove the O(dt^4) error by Richardson
 // extrapolation of two step sizes.
-#include "etfe/kernels/hencky_closed_form.h"
+#include "etfe/verification/hencky_closed_form.h"
 
 #include <cmath>
 
