@@ -10,41 +10,16 @@
 
 #include "etfe/contact.h"
 #include "etfe/csv_history.h"
+#include "etfe/kernels/contact_frame.h"
 #include "etfe/problem.h"
 
 namespace etfe {
 
 namespace {
 
-void Normalize(double v[3]) {
-  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (n > 0) v[0] /= n, v[1] /= n, v[2] /= n;
-}
-
-void Cross(const double a[3], const double b[3], double c[3]) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
 // Signed distance of p to the support surface, and the pair's master point and frame.
 double SupportProject(const SupportSpec &s, const double p[3], double M[3], double R[9]) {
-  double a[3] = {s.axis[0], s.axis[1], s.axis[2]}, d[3], n[3], x0[3], y0[3];
-  Normalize(a);
-  for (int i = 0; i < 3; ++i) d[i] = p[i] - s.centre[i];
-  const double along = d[0] * a[0] + d[1] * a[1] + d[2] * a[2];
-  for (int i = 0; i < 3; ++i) n[i] = d[i] - along * a[i];
-  const double r = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-  Normalize(n);
-  for (int i = 0; i < 3; ++i) M[i] = s.centre[i] + along * a[i] + s.radius * n[i];
-  Cross(a, n, x0);
-  Cross(n, x0, y0);
-  for (int i = 0; i < 3; ++i) R[i] = x0[i], R[3 + i] = y0[i], R[6 + i] = n[i];
-  return r - s.radius;
-}
-
-void ToLocal(const double R[9], const double v[3], double out[3]) {
-  for (int i = 0; i < 3; ++i) out[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
+  return ContactSupportFrame(s.centre, s.axis, s.radius, p, M, R);
 }
 
 } // namespace
@@ -202,18 +177,6 @@ PetscErrorCode ContactDestroy(ContactSet **c) {
 
 namespace {
 
-void ToGlobal(const double R[9], const double v[3], double out[3]) {
-  for (int i = 0; i < 3; ++i) out[i] = R[i] * v[0] + R[3 + i] * v[1] + R[6 + i] * v[2];
-}
-
-void RotateTangent(const double R[9], const double K[9], double Kg[9]) {
-  double KR[9];
-  for (int a = 0; a < 3; ++a)
-    for (int j = 0; j < 3; ++j) KR[3 * a + j] = K[3 * a] * R[j] + K[3 * a + 1] * R[3 + j] + K[3 * a + 2] * R[6 + j];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) Kg[3 * i + j] = R[i] * KR[j] + R[3 + i] * KR[3 + j] + R[6 + i] * KR[6 + j];
-}
-
 // Following frame: the master point is the closest point of the support to the node now. The
 // law sees the slide since the last commit in the current tangent plane and the committed
 // force carried into the current frame; the tangent keeps the frame fixed within an iteration
@@ -223,9 +186,9 @@ int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], bool
   double x[3], du[3], g[3], f[3], K[9], fc[3];
   for (int i = 0; i < 3; ++i) x[i] = pr.X[i] + u[i], du[i] = u[i] - pr.committed.g[i];
   const double d = SupportProject(c.supports[pr.support], x, pr.M, pr.R);
-  ToLocal(pr.R, du, g);
+  ContactToLocal(pr.R, du, g);
   g[2] = d - pr.d0;
-  ToLocal(pr.R, pr.committed.f, fc);
+  ContactToLocal(pr.R, pr.committed.f, fc);
   ContactState from{{0, 0, 0}, {fc[0], fc[1], fc[2]}, pr.committed.status};
   ContactParameters p = c.params;
   if (frictionless) p.mu = 0.0;
@@ -237,10 +200,10 @@ int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], bool
   } else {
     status = ContactImplicitForce(p, from, g, f, K);
   }
-  ToGlobal(pr.R, f, fg);
+  ContactToGlobal(pr.R, f, fg);
   for (int i = 0; i < 3; ++i) pr.trial.g[i] = u[i], pr.trial.f[i] = fg[i];
   pr.trial.status = status;
-  if (Kg) RotateTangent(pr.R, K, Kg);
+  if (Kg) ContactRotateTangent(pr.R, K, Kg);
   return std::isfinite(fg[0] + fg[1] + fg[2]) ? 0 : 1;
 }
 
@@ -250,8 +213,8 @@ ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pr) {
   ContactPairReport r;
   double s[3];
   if (c.follow) {
-    ToLocal(pr.R, pr.committed.f, r.force);
-    ToLocal(pr.R, pr.committed.g, s);  // displacement since t0 in the current tangent plane
+    ContactToLocal(pr.R, pr.committed.f, r.force);
+    ContactToLocal(pr.R, pr.committed.g, s);  // displacement since t0 in the current tangent plane
   } else {
     for (int i = 0; i < 3; ++i) r.force[i] = pr.committed.f[i], s[i] = pr.committed.g[i] - pr.g0[i];
   }
@@ -267,7 +230,7 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
   const bool frictionless = time <= c.frictionless_until + 1e-12;
   if (c.follow) return EvaluateFollow(c, pr, u, frictionless, fg, Kg);
   double g[3], f[3], K[9];
-  ToLocal(pr.R, u, g);
+  ContactToLocal(pr.R, u, g);
   for (int i = 0; i < 3; ++i) g[i] += pr.g0[i];
   int status = pr.committed.status;
   if (frictionless && c.law != FrictionLaw::Fixed) {
@@ -287,8 +250,8 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
   pr.trial.g[0] = g[0], pr.trial.g[1] = g[1], pr.trial.g[2] = g[2];
   pr.trial.f[0] = f[0], pr.trial.f[1] = f[1], pr.trial.f[2] = f[2];
   pr.trial.status = status;
-  ToGlobal(pr.R, f, fg);
-  if (Kg) RotateTangent(pr.R, K, Kg);
+  ContactToGlobal(pr.R, f, fg);
+  if (Kg) ContactRotateTangent(pr.R, K, Kg);
   return std::isfinite(fg[0] + fg[1] + fg[2]) ? 0 : 1;
 }
 
