@@ -34,10 +34,13 @@ are node-local, so contact only adds 3x3 blocks on the diagonal of J) and on the
   * capstan, implicit law in stick (-capstan_pull 1e-4) and in gross slip, the lagged law: every
     Newton iterate of every increment agrees to FREE_LIMIT, except where the law has no
     derivative: the first iterate (u = 0, every pair exactly at w = 0, where f_z = kn min(w, 0)
-    kinks) and the stick-to-slip increment of the slip case (pairs cross the cone and the end
-    pairs touch w = 0). There the test asserts what holds: the mismatch lies only in the node
-    blocks on the diagonal (couplings between nodes agree to FREE_LIMIT) and no block exceeds
-    the largest jump of the law, max(kn, kt); at u = 0 the jump is kn (measured: exactly kn).
+    kinks). There the test asserts what holds: the mismatch lies only in the node blocks on the
+    diagonal (couplings between nodes agree to FREE_LIMIT) and is the jump kn (measured: exactly
+    kn). In the stick-to-slip increment of the slip case pairs slip by small amounts, where the
+    slip law f_t = mu |f_z| t/|t| is strongly curved, and PETSc's forward difference (h = 1.5e-8
+    |u|) leaves a truncation error in their node blocks (measured up to 4.9e-5 of ||J||); it
+    shrinks with h (3.5e-6 with -snes_test_err 1e-9), so that increment is asserted with the
+    smaller step, and at the default step only for the couplings between nodes.
   * -contact_normal follow: the tangent uses the frame of the current iterate without its
     derivative (README). For a stuck pair the omitted terms cancel (its force is a fixed global
     vector), so stick agrees to FREE_LIMIT. For a slipping or frictionless pair the omitted term
@@ -45,7 +48,8 @@ are node-local, so contact only adds 3x3 blocks on the diagonal of J) and on the
     tests/unit/test_contact_frame.cpp for dn/dp), of norm |f| / rho. Asserted: couplings between
     nodes agree to FREE_LIMIT; in the frictionless stage the largest node-block mismatch equals
     the closed form T_node * 2 sin(dphi/2) / R of an interior node (within 5 %); everywhere
-    ||D_ff||_F <= sqrt(1 + mu^2) T_max theta / R (the whole radial load over the radius).
+    ||D_ff||_F <= sqrt(1 + mu^2) T_max theta / R (the whole radial load over the radius); and the
+    mismatch in slip does not shrink with the FD step (it is the tangent's, not the FD's).
   * saddle arch (pd10a on a 7-cell quarter, implicit law, plastic film, no tangent shift): runs
     to increment k, checkpoints, restarts and tests the first two iterates of increment k + 1
     (FD step: see contact_saddle_arch).
@@ -255,9 +259,10 @@ def contact_capstan(etfe, chk, report):
     # Steps 1-2 of the follow case are its frictionless stage, checked in capstan_follow_slip below.
     cases = (("capstan_implicit_stick", ["-capstan_pull", "1e-4"], (1, 2, 3, 4), (), (3, 4)),
              ("capstan_implicit_slip", [], (1, 2, 3, 4), (3,), ()),
+             ("capstan_implicit_slip_h1e-9", ["-snes_test_err", "1e-9"], (1, 2, 3, 4), (), ()),
              ("capstan_lagged", ["-contact_friction", "lagged"], (1, 2, 3, 4), (), ()),
              ("capstan_follow_stick", ["-contact_normal", "follow", "-capstan_pull", "1e-4"], (3, 4), (), (3, 4)))
-    for case, extra, checked, kinks, stick_steps in cases:
+    for case, extra, checked, curved, stick_steps in cases:
         steps, _ = capstan_run(etfe, chk, case, extra)
         for step, nopen, nstick, nslip, tests in steps:
             if step not in checked:
@@ -265,7 +270,7 @@ def contact_capstan(etfe, chk, report):
             if step in stick_steps:  # the pairs on end B, held by the grip, carry no force
                 chk.check(nstick > nopen + nslip, "%s step %d: pairs stick (open %d stick %d slip %d)"
                           % (case, step, nopen, nstick, nslip))
-            if case == "capstan_implicit_slip" and step >= 3:
+            if case.startswith("capstan_implicit_slip") and step >= 3:
                 chk.check(nstick == 0, "%s step %d: gross slip (stick %d slip %d)" % (case, step, nstick, nslip))
             for k, (ratio, J, Jfd) in enumerate(tests):
                 b = blocks(J, Jfd)
@@ -276,9 +281,9 @@ def contact_capstan(etfe, chk, report):
                     chk.check(0.5 * kn <= b["max_block"] <= kn * (1 + 1e-6),
                               "%s: u = 0, every pair at w = 0 (the normal law's kink): largest node-block "
                               "mismatch %.6g is the jump kn = %g" % (label, b["max_block"], kn))
-                elif step in kinks:
-                    print("  %s: %.3e free-free (the increment crosses kinks of the law), largest node block %.4g"
-                          % (label, b["free"], b["max_block"]))
+                elif step in curved:
+                    print("  %s: %.3e free-free, largest node block %.4g (small slides on the curved slip "
+                          "law: FD truncation; asserted with -snes_test_err 1e-9)" % (label, b["free"], b["max_block"]))
                     chk.check(b["max_block"] <= jump * (1 + 1e-6), "%s: node-block mismatch %.4g within the "
                               "law's largest jump %g" % (label, b["max_block"], jump))
                 else:
@@ -287,6 +292,13 @@ def contact_capstan(etfe, chk, report):
 
     # Follow frame in slip: the tangent omits the frame derivative; assert its closed form and bound.
     steps, t2 = capstan_run(etfe, chk, "capstan_follow_slip", ["-contact_normal", "follow"])
+    small, _ = capstan_run(etfe, chk, "capstan_follow_slip_h1e-9", ["-contact_normal", "follow", "-snes_test_err", "1e-9"])
+    for (step, _, _, _, tests), (_, _, _, _, tests_small) in zip(steps, small):
+        if step == 4:
+            for k, ((_, J, Jfd), (_, Js, Jfds)) in enumerate(zip(tests, tests_small)):
+                d, ds = blocks(J, Jfd)["d"], blocks(Js, Jfds)["d"]
+                chk.check(abs(ds / d - 1) < 0.1, "capstan_follow_slip step 4 iterate %d: the mismatch %.4g stays "
+                          "%.4g with a 15x smaller FD step (the tangent omits it, not a FD error)" % (k, d, ds))
     ny, nx = int(CAPSTAN[3]), int(CAPSTAN[1])
     dphi = theta / nx
     bound = math.sqrt(1 + mu * mu) * max(t1, t2) * theta / radius
