@@ -1,46 +1,50 @@
-// The distributed problem: the local part of the mesh with its ghosts, the DOF layout (block
-// size 3), the physics the scene named (material, pressure, constraints) and the vectors and
-// matrix assembled from them. Built from a SceneSpec by ProblemCreate (src/mesh/distribute.cpp).
+// The distributed problem (assembly layer): the local part of the mesh with its ghosts, the
+// DOF layout (block size 3), the physics the scene described (material, pressure, constraints,
+// contact), the load time and the vectors and matrix assembled from them. Built from a
+// SceneSpec by ProblemCreate (src/assembly/problem.cpp); what is computed on it is in
+// assembly.h.
 #pragma once
-#include <petscsnes.h>
+#include <petscmat.h>
 
 #include <memory>
-#include <string>
 #include <vector>
 
-#include "etfe/contact.h"
-#include "etfe/kernels/membrane.h"
 #include "etfe/material.h"
+#include "etfe/mesh/local_mesh.h"
 #include "etfe/scene.h"
 
 namespace etfe {
 
-struct LocalMesh {
-  PetscInt num_nodes_global = 0, num_elements_global = 0;
-  PetscInt num_owned = 0, num_ghost = 0;  // local nodes: owned first, then ghosts
-  PetscInt owned_start = 0;               // PETSc (global) id of the first owned node
-  std::vector<PetscInt> global_id;        // per local node: PETSc id
-  std::vector<PetscInt> natural_id;       // per local node: id in the scene's mesh
-  std::vector<double> X;                  // reference coordinates, 3 per local node
-  PetscInt num_elements = 0;              // local elements (this rank's METIS part)
-  PetscInt element_start = 0;             // PETSc-order id of the first local element
-  std::vector<int> tri;                   // local node ids, 3 per local element
-  std::vector<PetscInt> element_natural;  // per local element: id in the scene's mesh
-  std::vector<MembraneReference> ref;     // reference geometry per local element
-  PetscInt NumLocal() const { return num_owned + num_ghost; }
+struct ContactSet;
+struct Problem;
+
+// What the scene that made the problem watches of a run: its report after the last increment,
+// a monitor after every converged increment, and monitor state that a restart must restore
+// (rank-independent). The scene's builder fills it (scenes layer), the app hands it to the
+// problem, which owns ctx; the load stepper, the checkpoint and the app call it (collective).
+struct SceneObserver {
+  PetscErrorCode (*report)(Problem *, void *ctx) = nullptr;
+  PetscErrorCode (*step_monitor)(Problem *, void *ctx, PetscInt step, double time) = nullptr;
+  void (*state_get)(void *ctx, std::vector<double> *state) = nullptr;
+  void (*state_set)(void *ctx, const std::vector<double> &state) = nullptr;
+  void (*destroy)(void *ctx) = nullptr;
+  void *ctx = nullptr;
 };
+// Frees ctx and clears the observer.
+void SceneObserverDestroy(SceneObserver *observer);
 
 struct Problem {
   MPI_Comm comm;
   PetscMPIInt rank = 0, size = 1;
   SceneSpec scene;
+  SceneObserver observer;
   LocalMesh mesh;
   double thickness = 0.25;  // mm
   double min_area_ratio = 1e-4;
-  double tangent_shift = 0.0;
+  double tangent_shift = 0.0;  // N/mm added to the tangent's diagonal (-membrane_tangent_shift x E h)
   PetscBool tangent_shift_adaptive = PETSC_FALSE;  // shift x |F_k|/|F_0| (vanishes at convergence)
   double shift_fnorm0 = 0.0;
-  PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only  // N/mm added to the tangent's diagonal (-membrane_tangent_shift x E h)
+  PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   std::unique_ptr<Material> material;
   std::vector<double> history;        // committed history, HistorySize() per local element
   std::vector<double> history_trial;  // scratch for the commit pass
@@ -67,7 +71,9 @@ struct Problem {
   // Contact with rigid supports (nullptr when the scene has none).
   ContactSet *contact = nullptr;
 
-  double time = 0.0;  // load time at which residual and Jacobian are evaluated
+  // Load time at which residual and Jacobian are evaluated; set with ProblemSetLoadTime only, so
+  // that the prescribed values of the iterate always belong to it.
+  double time = 0.0;
   // Size of the forces in play at the last residual (reactions and external loads) [N]: the
   // scale for the force-balance convergence test (-load_force_rtol).
   double force_scale = 0.0;
@@ -89,43 +95,12 @@ struct Problem {
   PetscInt NumDofsLocal() const { return 3 * mesh.NumLocal(); }
 };
 
-// Distributes the scene's mesh (METIS on rank 0), builds local numbering, vectors, the
-// preallocated matrix and the local constraint/pressure lists.
+// Distributes the scene's mesh (local_mesh.h), builds vectors, the preallocated matrix and the
+// local constraint/pressure/force lists, and puts U at the prescribed values of load time 0.
 PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material,
                              Problem *problem);
+// Hands the contact set (ContactCreate) to the problem, which owns it from then on.
+PetscErrorCode ProblemSetContact(Problem *problem, ContactSet *contact);
 PetscErrorCode ProblemDestroy(Problem *problem);
-
-// Assembly (src/assembly/assemble.cpp): SNES callbacks with a Problem* context.
-PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
-PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
-// Puts the prescribed values at load time t into the constrained owned DOFs of U.
-PetscErrorCode ApplyConstraints(Problem *problem, double t, Vec U);
-// Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
-// collapse. Collective; *ok false names the element in problem->bad_element.
-PetscErrorCode CheckStep(Problem *problem, Vec X, Vec W, PetscBool *ok);
-// Moves the reference configuration to the current one (X += U on owned and ghost nodes),
-// rebuilds the element reference geometry and absorbs U into the constraint offsets. U is not
-// changed; the caller zeroes it. Used by form finding's updated-reference iterations.
-PetscErrorCode UpdateReference(Problem *problem, Vec U);
-// Largest nodal (3-vector) norm of a block-3 vector (collective).
-PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max);
-// Current position X + U of a scene node (collective).
-PetscErrorCode ProblemGetNodePosition(Problem *problem, Vec U, PetscInt node, double x[3]);
-// Commits the material history at the converged U (history is updated only here).
-PetscErrorCode CommitHistory(Problem *problem, Vec U);
-
-// Per-element output fields at U, committed history: stress (3), strain (3), Mises, min
-// principal stress, min principal strain, and (plastic laws) plastic strain (3) + equivalent.
-struct CellFields {
-  std::vector<double> stress, strain, mises, smin, emin, ep, ep_bar, area_ratio;
-  // True stress (kernels/stress_measures.h): global tensor (6), its Mises, the in-plane principal
-  // values (2: largest first) and their directions (3 each, global, current configuration).
-  std::vector<double> cauchy, cauchy_mises, principal, dir1, dir2;
-  std::vector<double> nodal_mises;  // per owned node, average of the elements around it
-};
-PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields);
-
-// Collective look-ups by scene (natural) id, for scene reports and probes.
-PetscErrorCode ProblemGetNodeDisplacement(Problem *problem, Vec U, PetscInt node, double u[3]);
 
 } // namespace etfe

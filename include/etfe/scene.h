@@ -1,8 +1,7 @@
-// A scene is data plus a small builder: mesh, supports, loads, schedule, outputs. Builders are
-// registered by name (-scene <name>, -scene_list) and fill a SceneSpec from their options.
+// The scene description: mesh, supports, loads, schedule. Plain data (no PETSc, no solver
+// types): the scenes layer fills it (scene_registry.h), the layers below read it (the problem's
+// constraints and loads, the contact pairs' supports, the progress lines' schedules).
 #pragma once
-#include <petscsys.h>
-
 #include <string>
 #include <vector>
 
@@ -10,8 +9,6 @@
 #include "etfe/schedule.h"
 
 namespace etfe {
-
-struct Problem;
 
 // Prescribed displacement of one DOF of one node (node id in the scene's mesh numbering).
 struct DofConstraint {
@@ -67,16 +64,6 @@ struct SceneSpec {
   std::vector<double> element_stress_ratio;  // form finding: MD:TD per element (empty: uniform)
   std::vector<double> initial_guess;     // 3 per node or empty (zero displacement)
   std::string initial_guess_note;        // printed in the header when a guess is used
-  // Called once after the last increment (collective): prints the scene's own quantities of
-  // interest (e.g. Hencky's centre deflection against the closed form).
-  PetscErrorCode (*report)(Problem *, void *) = nullptr;
-  // Called after every converged increment (collective), e.g. to track a reaction force.
-  PetscErrorCode (*step_monitor)(Problem *, void *, PetscInt step, double time) = nullptr;
-  void *report_ctx = nullptr;
-  // Monitor state that must survive a restart (e.g. the capstan's slip onset); rank-independent.
-  void (*state_get)(void *ctx, std::vector<double> *state) = nullptr;
-  void (*state_set)(void *ctx, const std::vector<double> &state) = nullptr;
-  void (*report_ctx_destroy)(void *) = nullptr;
 
   int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }
   int AddSchedule(const Schedule &s) {
@@ -84,17 +71,5 @@ struct SceneSpec {
     return (int)schedules.size() - 1;
   }
 };
-
-typedef PetscErrorCode (*SceneBuilder)(MPI_Comm, SceneSpec *);
-
-PetscErrorCode SceneRegisterAll(void);
-// what: one line on what the scene computes; files: its options files (both for -scene_list).
-PetscErrorCode SceneRegister(const char name[], SceneBuilder builder, const char what[], const char files[]);
-// Builds the scene named by -scene (collective). Unknown names list the registered ones.
-PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene);
-
-// Reads the mesh named by -mesh_file on rank 0 and broadcasts it; used by scenes that accept a
-// Gmsh file instead of their generator.
-PetscErrorCode MeshReadAndBroadcast(MPI_Comm comm, const char path[], MeshData *mesh);
 
 } // namespace etfe

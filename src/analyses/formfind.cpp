@@ -2,6 +2,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "etfe/assembly.h"
 #include "etfe/cutpattern.h"
 #include "etfe/formfind.h"
 #include "etfe/kernels/status.h"
@@ -129,7 +130,7 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
   PetscCall(VecDuplicate(P->U, &U_total));
   PetscCall(VecZeroEntries(U_total));
   const double size = ModelSize(P->scene.mesh);
-  P->time = P->scene.NumStages();  // boundaries at their final (prescribed) positions
+  const double t_end = P->scene.NumStages();  // boundaries at their final (prescribed) positions
   res->converged = PETSC_FALSE;
   // A scene may give each element its own stress ratio (the saddle: middle 1:1, corners 3:1).
   // The prescribed-stress material keeps (S_MD, S_TD) as its element history.
@@ -139,7 +140,7 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
       P->history[2 * e] = ratio[P->mesh.element_natural[e]] * P->history[2 * e + 1];
   for (PetscInt it = 1; it <= o.max_iterations; ++it) {
     PetscCall(VecZeroEntries(P->U));
-    PetscCall(ApplyConstraints(P, P->time, P->U));
+    PetscCall(ProblemSetLoadTime(P, t_end, P->U));
     PetscCall(SNESSolve(snes, nullptr, P->U));
     SNESConvergedReason reason;
     PetscCall(SNESGetConvergedReason(snes, &reason));
@@ -186,14 +187,9 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
                    "shrinking because none exists for these boundaries";
   // The found surface: displacement from the scene's mesh, stresses at the last iterate.
   PetscCall(VecZeroEntries(P->U));
-  PetscCall(ApplyConstraints(P, P->time, P->U));
-  {
-    Vec R;
-    PetscCall(VecDuplicate(P->U, &R));
-    PetscCall(FormResidual(nullptr, P->U, R, P));
-    PetscCall(VecDestroy(&R));
-  }
-  if (out) PetscCall(OutputWriteStep(out, P, U_total, 1, P->time, P->U));
+  PetscCall(ProblemSetLoadTime(P, t_end, P->U));
+  PetscCall(ProblemUpdateReactions(P, P->U));
+  if (out) PetscCall(OutputWriteStep(out, P, U_total, 1, t_end, P->U));
   if (res->converged) {
     MeshData shape;
     PetscCall(OutputGatherShape(P, P->U, &shape));

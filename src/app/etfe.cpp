@@ -16,6 +16,7 @@ static const char help[] =
 
 #include "options_check.h"
 #include "options_files.h"
+#include "etfe/assembly.h"
 #include "etfe/checkpoint.h"
 #include "etfe/contact.h"
 #include "etfe/formfind.h"
@@ -24,7 +25,7 @@ static const char help[] =
 #include "etfe/material.h"
 #include "etfe/output.h"
 #include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/scene_registry.h"
 
 using namespace etfe;
 
@@ -222,7 +223,8 @@ PetscErrorCode Run() {
 
   // 2. The scene: mesh, supports, loads, schedule.
   SceneSpec scene;
-  PetscCall(SceneCreateFromOptions(comm, &scene));
+  SceneObserver observer;
+  PetscCall(SceneCreateFromOptions(comm, &scene, &observer));
   if (list) {
     PetscFunctionReturn(0);
   }
@@ -260,7 +262,7 @@ PetscErrorCode Run() {
   }
 
   // 3. Analysis (stretch: load stepping; formfind: shape for a prescribed stress), material and
-  //    membrane options, then the distributed problem.
+  //    membrane options, then the distributed problem, the scene's observer and contact set.
   PetscBool formfind_flag = PETSC_FALSE;
   PetscCall(AnalysisFromOptions(comm, &formfind_flag));
   const bool formfind = formfind_flag;
@@ -276,6 +278,12 @@ PetscErrorCode Run() {
   P->thickness = scene.thickness;
   PetscCall(ReadMembraneOptions(comm, P));
   PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), P));
+  P->observer = observer;
+  if (P->scene.contact.active) {
+    ContactSet *contact;
+    PetscCall(ContactCreate(P, &contact));
+    PetscCall(ProblemSetContact(P, contact));
+  }
   {
     double young, nu;
     P->material->ElasticConstants(&young, &nu);
@@ -343,7 +351,7 @@ PetscErrorCode Run() {
                         res.newton_iterations, res.cutbacks, res.wall));
 
   // 6. The scene's own quantities of interest, then close the results.
-  if (P->scene.report && res.completed && !res.stopped) PetscCall(P->scene.report(P, P->scene.report_ctx));
+  if (P->observer.report && res.completed && !res.stopped) PetscCall(P->observer.report(P, P->observer.ctx));
   if (res.stopped)
     PetscCall(PetscPrintf(comm, "etfe: checkpoint %s; continue with -restart %s\n", cko.file, cko.file));
   if (out) {

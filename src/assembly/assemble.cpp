@@ -3,16 +3,17 @@
 // R(u) = f_int(u) - f_ext(u) on free DOFs; R = u - u_prescribed(t) on constrained DOFs. The
 // Jacobian drops the rows and columns of constrained DOFs element by element and puts 1 on their
 // diagonal, so a symmetric operator stays symmetric; this is exact because every Newton iterate
-// already carries the prescribed values (ApplyConstraints before each increment).
+// already carries the prescribed values (ProblemSetLoadTime before each increment).
 // Values go through ghosted vectors: element contributions to ghost nodes are added to their
 // owners by the reverse scatter; matrix entries of ghost rows travel in PETSc's stash.
 #include <algorithm>
 #include <cmath>
 
+#include "etfe/assembly.h"
+#include "etfe/contact.h"
 #include "etfe/kernels/pressure.h"
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
-#include "etfe/problem.h"
 
 namespace etfe {
 
@@ -121,16 +122,6 @@ PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max) {
     local = PetscMax(local, std::sqrt(a[i] * a[i] + a[i + 1] * a[i + 1] + a[i + 2] * a[i + 2]));
   PetscCall(VecRestoreArrayRead(v, &a));
   PetscCallMPI(MPI_Allreduce(&local, max, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)v)));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ApplyConstraints(Problem *P, double t, Vec U) {
-  PetscScalar *u;
-  PetscFunctionBeginUser;
-  PetscCall(VecGetArray(U, &u));
-  for (size_t k = 0; k < P->con_owned_dof.size(); ++k)
-    u[P->con_owned_dof[k]] = P->con_owned_value[k].At(P->scene.schedules, t) - P->con_owned_offset[k];
-  PetscCall(VecRestoreArray(U, &u));
   PetscFunctionReturn(0);
 }
 

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <vector>
 
+#include "etfe/contact.h"
 #include "etfe/h5io.h"
 
 namespace etfe {
@@ -190,9 +191,9 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
     }
     PetscCall(H5WriteNatural(tmp, order, f, "contact_state", Layout::Pairs, 7, cst.data(), false, &sum));
   }
-  if (P->scene.state_get) {
+  if (P->observer.state_get) {
     std::vector<double> v;
-    P->scene.state_get(P->scene.report_ctx, &v);
+    P->observer.state_get(P->observer.ctx, &v);
     PetscCall(H5WriteRows(tmp, f, "scene_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, P->rank == 0 ? v.size() : 0,
                           v.data()));
     for (size_t i = 0; i < v.size(); ++i) sum += ValueChecksum(("scene_state" + std::to_string(i)).c_str(), v[i]);
@@ -358,12 +359,12 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
       P->contact->pairs[k].trial = c;
     }
   }
-  if (P->scene.state_set) {
+  if (P->observer.state_set) {
     std::vector<double> v;
-    P->scene.state_get(P->scene.report_ctx, &v);  // its size
+    P->observer.state_get(P->observer.ctx, &v);  // its size
     PetscCall(H5ReadRows(path, f, "scene_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, v.size(), v.data()));
     for (size_t i = 0; i < v.size(); ++i) sum += ValueChecksum(("scene_state" + std::to_string(i)).c_str(), v[i]);
-    P->scene.state_set(P->scene.report_ctx, v);
+    P->observer.state_set(P->observer.ctx, v);
   }
   PetscCall(H5ReadAttribute(path, f, "data_checksum", H5T_NATIVE_ULLONG, &stored));
   PetscCheck((uint64_t)stored == sum, P->comm, PETSC_ERR_FILE_UNEXPECTED,
@@ -385,13 +386,13 @@ PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt 
   std::vector<ContactPair> pairs;
   if (P->contact) pairs = P->contact->pairs;
   std::vector<double> scene_state;
-  if (P->scene.state_get) P->scene.state_get(P->scene.report_ctx, &scene_state);
+  if (P->observer.state_get) P->observer.state_get(P->observer.ctx, &scene_state);
   PetscCall(VecDuplicate(P->U, &Uc));
   PetscCall(VecDuplicate(P->U, &Up));
   PetscErrorCode ierr = ReadState(P, path, f, &st, Uc, Up);
   P->history = history;
   if (P->contact) P->contact->pairs = pairs;
-  if (P->scene.state_set) P->scene.state_set(P->scene.report_ctx, scene_state);
+  if (P->observer.state_set) P->observer.state_set(P->observer.ctx, scene_state);
   H5Fclose(f);
   PetscCall(VecDestroy(&Uc));
   PetscCall(VecDestroy(&Up));

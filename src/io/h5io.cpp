@@ -4,6 +4,7 @@
 #include <cstring>
 #include <vector>
 
+#include "etfe/contact.h"
 #include "etfe/problem.h"
 
 namespace etfe {

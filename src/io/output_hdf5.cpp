@@ -12,6 +12,8 @@
 #include <memory>
 #include <utility>
 
+#include "etfe/assembly.h"
+#include "etfe/contact.h"
 #include "etfe/h5io.h"
 #include "etfe/output.h"
 

@@ -8,9 +8,10 @@
 
 #include <cmath>
 
+#include "etfe/assembly.h"
+#include "etfe/contact.h"
 #include "etfe/mesh/generators.h"
-#include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/scene_registry.h"
 
 namespace etfe {
 
@@ -84,7 +85,7 @@ PetscErrorCode CapstanReport(Problem *P, void *vctx) {
 
 } // namespace
 
-PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene) {
+PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal radius = 21.35, angle = 180.0, width = 50.0, t1 = 2.5, pull = 1.0;
   PetscInt nx = 60, ny = 4, refine = 0;
   PetscFunctionBeginUser;
@@ -149,18 +150,18 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene) {
   pipe.radius = radius;
   scene->contact.supports.push_back(pipe);
   PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-load_monitor", &ctx->monitor, nullptr));
-  scene->step_monitor = CapstanStep;
-  scene->state_get = [](void *c, std::vector<double> *v) {
+  observer->step_monitor = CapstanStep;
+  observer->state_get = [](void *c, std::vector<double> *v) {
     auto *x = (CapstanContext *)c;
     *v = {x->t2_onset, (double)x->onset_step, x->t2_last};
   };
-  scene->state_set = [](void *c, const std::vector<double> &v) {
+  observer->state_set = [](void *c, const std::vector<double> &v) {
     auto *x = (CapstanContext *)c;
     x->t2_onset = v.at(0), x->onset_step = (PetscInt)v.at(1), x->t2_last = v.at(2);
   };
-  scene->report = CapstanReport;
-  scene->report_ctx = ctx;
-  scene->report_ctx_destroy = [](void *c) { delete (CapstanContext *)c; };
+  observer->report = CapstanReport;
+  observer->ctx = ctx;
+  observer->destroy = [](void *c) { delete (CapstanContext *)c; };
   PetscFunctionReturn(0);
 }
 

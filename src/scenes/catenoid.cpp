@@ -7,9 +7,9 @@
 
 #include <cmath>
 
+#include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
-#include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/scene_registry.h"
 
 namespace etfe {
 
@@ -52,7 +52,7 @@ PetscErrorCode CatenoidReport(Problem *P, void *vctx) {
 
 } // namespace
 
-PetscErrorCode SceneBuild_Catenoid(MPI_Comm comm, SceneSpec *scene) {
+PetscErrorCode SceneBuild_Catenoid(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal radius = 1000.0, separation = 1000.0;
   PetscInt ntheta = 48, nz = 16, refine = 0;
   PetscFunctionBeginUser;
@@ -80,9 +80,9 @@ PetscErrorCode SceneBuild_Catenoid(MPI_Comm comm, SceneSpec *scene) {
     for (int n : scene->mesh.node_sets.at(set))
       for (int c = 0; c < 3; ++c) scene->constraints.push_back({n, c, {}});
   auto *ctx = new CatenoidContext{radius, separation};
-  scene->report = CatenoidReport;
-  scene->report_ctx = ctx;
-  scene->report_ctx_destroy = [](void *c) { delete (CatenoidContext *)c; };
+  observer->report = CatenoidReport;
+  observer->ctx = ctx;
+  observer->destroy = [](void *c) { delete (CatenoidContext *)c; };
   PetscFunctionReturn(0);
 }
 

@@ -9,10 +9,10 @@
 
 #include <cmath>
 
-#include "etfe/verification/hencky_closed_form.h"
+#include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
-#include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/scene_registry.h"
+#include "etfe/verification/hencky_closed_form.h"
 
 namespace etfe {
 
@@ -61,7 +61,7 @@ PetscErrorCode HenckyReport(Problem *P, void *vctx) {
 
 } // namespace
 
-PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene) {
+PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal radius = 500.0, pressure = 2e-4, bulge = -1.0;
   PetscInt rings = 16, refine = 0;
   PetscFunctionBeginUser;
@@ -105,9 +105,9 @@ PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene) {
                 bulge);
   scene->initial_guess_note = note;
   auto *ctx = new HenckyContext{radius, pressure};
-  scene->report = HenckyReport;
-  scene->report_ctx = ctx;
-  scene->report_ctx_destroy = [](void *c) { delete (HenckyContext *)c; };
+  observer->report = HenckyReport;
+  observer->ctx = ctx;
+  observer->destroy = [](void *c) { delete (HenckyContext *)c; };
   PetscFunctionReturn(0);
 }
 

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <cstdio>
 
+#include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
-#include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/scene_registry.h"
 #include "etfe/verification/patch_closed_form.h"
 
 namespace etfe {
@@ -69,7 +69,7 @@ PetscErrorCode PatchReport(Problem *P, void *vctx) {
 
 } // namespace
 
-PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
+PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal lx = 1000.0, ly = 500.0, ex = 0.02, ey = 0.0, perturb = 0.0;
   PetscReal schedule[32] = {1.0};
   PetscInt nx = 8, ny = 4, refine = 0, nsched = 32;
@@ -180,9 +180,9 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene) {
     for (int n : sets.at("top")) scene->constraints.push_back({n, 1, {{ly, 0.0}, {iy, -1}}});
   }
   auto *ctx = new PatchContext{ex, ey, pmode, schedule[nsched - 1]};
-  scene->report = PatchReport;
-  scene->report_ctx = ctx;
-  scene->report_ctx_destroy = [](void *c) { delete (PatchContext *)c; };
+  observer->report = PatchReport;
+  observer->ctx = ctx;
+  observer->destroy = [](void *c) { delete (PatchContext *)c; };
   PetscFunctionReturn(0);
 }
 

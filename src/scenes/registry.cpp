@@ -5,17 +5,17 @@
 #include <string>
 #include <vector>
 
-#include "etfe/rank0.h"
 #include "etfe/mesh/gmsh_reader.h"
-#include "etfe/scene.h"
+#include "etfe/rank0.h"
+#include "etfe/scene_registry.h"
 
 namespace etfe {
 
-PetscErrorCode SceneBuild_Hencky(MPI_Comm, SceneSpec *);
-PetscErrorCode SceneBuild_Patch(MPI_Comm, SceneSpec *);
-PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *);
-PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *);
-PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *);
+PetscErrorCode SceneBuild_Hencky(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Patch(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *, SceneObserver *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -54,7 +54,7 @@ PetscErrorCode SceneRegisterAll(void) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene) {
+PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   char name[64] = "";
   PetscBool set = PETSC_FALSE, list = PETSC_FALSE;
   SceneBuilder build = nullptr;
@@ -79,8 +79,10 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene) {
     // -help without a scene: show every scene's options (each builder reads its own).
     for (const SceneEntry &e : scene_entries) {
       SceneSpec throwaway;
+      SceneObserver unused;
       PetscCall(PetscFunctionListFind(scene_list, e.name.c_str(), &build));
-      PetscCall(build(comm, &throwaway));
+      PetscCall(build(comm, &throwaway, &unused));
+      SceneObserverDestroy(&unused);
     }
     scene->name.clear();
     PetscFunctionReturn(0);
@@ -92,7 +94,7 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene) {
   PetscCheck(build, comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
              "-scene %s is not a registered scene; -scene_list shows them", name);
   scene->name = name;
-  PetscCall(build(comm, scene));
+  PetscCall(build(comm, scene, observer));
   // Whatever a builder made of its options, the load data must be finite numbers.
   for (const Schedule &sc : scene->schedules) {
     PetscCheck(std::isfinite(sc.initial), comm, PETSC_ERR_ARG_OUTOFRANGE, "scene %s: schedule %s starts at %g",

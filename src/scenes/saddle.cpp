@@ -15,9 +15,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
-#include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/scene_registry.h"
 #include "saddle_geometry.h"
 
 namespace etfe {
@@ -70,7 +70,7 @@ PetscErrorCode SaddleReport(Problem *P, void *vctx) {
 
 } // namespace
 
-PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
+PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal ratio_r = 0.15, ratio_mid = 1.0, ratio_corner = 3.0;
   PetscInt n = 10, refine = 0;
   char mesh_file[PETSC_MAX_PATH_LEN] = "", analysis[32] = "stretch";
@@ -136,7 +136,7 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
   if (std::strcmp(analysis, "formfind") != 0) {
     const SaddleGeometry geometry = g;  // g lives in ctx, which this branch does not need
     delete ctx;
-    PetscCall(SaddleStretchSetup(comm, geometry, scene));
+    PetscCall(SaddleStretchSetup(comm, geometry, scene, observer));
     PetscFunctionReturn(0);
   }
   scene->element_stress_ratio.assign(m.NumElements(), ratio_corner);
@@ -157,9 +157,9 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene) {
   ctx->cut_line = m.node_sets["sym_x"];
   std::sort(ctx->cut_line.begin(), ctx->cut_line.end(),
             [&](int a, int b) { return m.coords[3 * a + 1] < m.coords[3 * b + 1]; });
-  scene->report = SaddleReport;
-  scene->report_ctx = ctx;
-  scene->report_ctx_destroy = [](void *c) { delete (SaddleContext *)c; };
+  observer->report = SaddleReport;
+  observer->ctx = ctx;
+  observer->destroy = [](void *c) { delete (SaddleContext *)c; };
   PetscFunctionReturn(0);
 }
 

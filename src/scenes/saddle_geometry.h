@@ -6,7 +6,7 @@
 
 #include <petscsys.h>
 
-#include "etfe/scene.h"
+#include "etfe/scene_registry.h"
 
 namespace etfe {
 
@@ -32,6 +32,6 @@ int SaddleNearestNode(const MeshData &m, double x, double y);
 // Stretch fabrication (-analysis stretch): drawing of the frame at a, b, c, d, symmetry, arch
 // contact, optional pressure cycle, probes and the report. The mesh (PD initial shape or a
 // form-found DD shape) and its node sets are already in scene.
-PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene);
+PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene, SceneObserver *observer);
 
 } // namespace etfe

@@ -12,8 +12,9 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "etfe/assembly.h"
+#include "etfe/contact.h"
 #include "etfe/csv_history.h"
-#include "etfe/problem.h"
 #include "saddle_geometry.h"
 
 namespace etfe {
@@ -185,7 +186,7 @@ PetscErrorCode ReadArray(PetscOptionItems *PetscOptionsObject, const char *name,
 
 } // namespace
 
-PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene) {
+PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene, SceneObserver *observer) {
   auto *c = new StretchContext();
   c->g = g;
   MeshData &m = scene->mesh;
@@ -308,10 +309,10 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   else if (!write) c->history.clear();
   else if (output[0]) c->history = std::filesystem::path(output).replace_extension("").string() + "_history.csv";
   else c->history = "results/saddle/saddle_history.csv";
-  scene->step_monitor = StretchStep;
-  scene->report = StretchReport;
-  scene->report_ctx = c;
-  scene->report_ctx_destroy = [](void *x) { delete (StretchContext *)x; };
+  observer->step_monitor = StretchStep;
+  observer->report = StretchReport;
+  observer->ctx = c;
+  observer->destroy = [](void *x) { delete (StretchContext *)x; };
   PetscFunctionReturn(0);
 }
 

@@ -15,9 +15,9 @@
 
 #include <cmath>
 
+#include "etfe/assembly.h"
 #include "etfe/kernels/status.h"
 #include "etfe/linesearch.h"
-#include "etfe/problem.h"
 
 namespace etfe {
 

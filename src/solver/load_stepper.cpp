@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <string>
 
+#include "etfe/assembly.h"
+#include "etfe/contact.h"
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
 
@@ -97,7 +99,9 @@ PetscErrorCode DestroyForceTest(void *ctx) {
 
 // U = U_n + dU_c + d with K(U_n) d = -dR/de, where dR/de is the change of the residual when the
 // prescribed values and loads move from t to t_new with the free DOFs held (a one-sided
-// difference with a small fraction e of the increment: K_fc dU_c plus the load change).
+// difference with a small fraction e of the increment: K_fc dU_c plus the load change). The
+// tangent is taken at t before the load time moves on, so the time only goes forward; the
+// caller sets t_new on U.
 PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double t_new, Vec U) {
   const double e = 1e-6;
   Vec R0, R1, d;
@@ -107,11 +111,11 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
   PetscCall(VecDuplicate(Un, &R0));
   PetscCall(VecDuplicate(Un, &R1));
   PetscCall(VecDuplicate(Un, &d));
-  P->time = t;
-  PetscCall(FormResidual(nullptr, Un, R0, P));
   PetscCall(VecCopy(Un, U));
-  PetscCall(ApplyConstraints(P, t + e * (t_new - t), U));
-  P->time = t + e * (t_new - t);
+  PetscCall(ProblemSetLoadTime(P, t, U));
+  PetscCall(FormResidual(nullptr, U, R0, P));
+  PetscCall(FormJacobian(snes, U, P->J, P->J, P));
+  PetscCall(ProblemSetLoadTime(P, t + e * (t_new - t), U));
   PetscCall(FormResidual(nullptr, U, R1, P));
   PetscCall(VecAXPY(R1, -1.0, R0));
   PetscCall(VecScale(R1, 1.0 / e));
@@ -121,16 +125,12 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
     for (PetscInt dof : P->con_owned_dof) r[dof] = 0.0;  // the constrained part is dU_c itself
     PetscCall(VecRestoreArray(R1, &r));
   }
-  P->time = t;
-  PetscCall(FormJacobian(snes, Un, P->J, P->J, P));
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPSetOperators(ksp, P->J, P->J));
   PetscCall(KSPSolve(ksp, R1, d));
   PetscCall(KSPGetConvergedReason(ksp, &kr));
   PetscCall(VecCopy(Un, U));
   if (kr > 0) PetscCall(VecAXPY(U, -1.0, d));  // a failed solve leaves the plain predictor
-  P->time = t_new;
-  PetscCall(ApplyConstraints(P, t_new, U));
   PetscCall(VecDestroy(&R0));
   PetscCall(VecDestroy(&R1));
   PetscCall(VecDestroy(&d));
@@ -238,20 +238,14 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   PetscCall(PetscTime(&t0));
   PetscCall(VecDuplicate(P->U, &U_committed));
   PetscCall(VecDuplicate(P->U, &U_previous));
-  P->time = 0.0;
-  PetscCall(ApplyConstraints(P, 0.0, P->U));
+  PetscCall(ProblemSetLoadTime(P, 0.0, P->U));
   PetscCall(VecCopy(P->U, U_committed));
   PetscCall(VecCopy(P->U, U_previous));
   PetscCall(SNESGetFunction(snes, &F, nullptr, nullptr));
-  {
-    // Reactions of the initial state, then the initial state itself as step 0.
-    Vec R;
-    PetscCall(VecDuplicate(P->U, &R));
-    PetscCall(FormResidual(nullptr, P->U, R, P));
-    PetscCall(VecDestroy(&R));
-    // A scene's initial guess is not an equilibrium state: only a true start state is step 0.
-    if (P->scene.initial_guess.empty() && !ck.restart[0]) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
-  }
+  // Reactions of the initial state, then the initial state itself as step 0. A scene's initial
+  // guess is not an equilibrium state: only a true start state is step 0.
+  PetscCall(ProblemUpdateReactions(P, P->U));
+  if (P->scene.initial_guess.empty() && !ck.restart[0]) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
   if (ck.restart[0]) {
     StepperState st;
     PetscCall(CheckpointRead(P, ck.restart, &st, U_committed, U_previous));
@@ -286,8 +280,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                             U_committed, U_previous));
     else if (o.tangent_predictor && converged_states >= 1)
       PetscCall(TangentPredictor(P, snes, U_committed, t, t_new, P->U));
-    P->time = t_new;
-    PetscCall(ApplyConstraints(P, t_new, P->U));
+    PetscCall(ProblemSetLoadTime(P, t_new, P->U));
     PetscCall(SNESSolve(snes, nullptr, P->U));
     SNESConvergedReason reason;
     PetscInt its;
@@ -315,7 +308,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
         PetscCall(PrintProgress(P, step, per_stage * nstages, t, t_end, its, fnorm, contact_counts, now - t_inc,
                                 now - t0, res->cutbacks));
       }
-      if (P->scene.step_monitor) PetscCall(P->scene.step_monitor(P, P->scene.report_ctx, step, t));
+      if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, step, t));
       if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputStem(out), step, t));
       const bool last = t >= t_end - eps;
       const bool stop = o.stop_after >= 0 && step >= o.stop_after;
@@ -376,14 +369,9 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     }
   }
   // The last converged state is always in the results.
-  P->time = t;
   PetscCall(VecCopy(U_committed, P->U));
-  {
-    Vec R;
-    PetscCall(VecDuplicate(P->U, &R));
-    PetscCall(FormResidual(nullptr, P->U, R, P));
-    PetscCall(VecDestroy(&R));
-  }
+  PetscCall(ProblemSetLoadTime(P, t, P->U));
+  PetscCall(ProblemUpdateReactions(P, P->U));
   if (OutputLastStep(out) != step) PetscCall(OutputWriteStep(out, P, P->U, step, t));
   res->completed = res->failure.empty() ? PETSC_TRUE : PETSC_FALSE;
   res->steps = step;

@@ -1,0 +1,50 @@
+// Assembly (assembly layer, src/assembly/): what is computed on a Problem. The residual and
+// Jacobian are SNES callbacks with a Problem* context; the load time and the reactions are
+// changed only through ProblemSetLoadTime and ProblemUpdateReactions.
+#pragma once
+#include <petscsnes.h>
+
+#include <vector>
+
+#include "etfe/problem.h"
+
+namespace etfe {
+
+// Sets the load time at which residual and Jacobian are evaluated and puts the prescribed
+// values of that time into the constrained owned DOFs of U: the one place where either changes.
+PetscErrorCode ProblemSetLoadTime(Problem *problem, double t, Vec U);
+// Evaluates the residual at U (load time as set) for its side effects only: the reactions at
+// the constrained DOFs (problem->reaction) and the force scale, as output and reports read them.
+PetscErrorCode ProblemUpdateReactions(Problem *problem, Vec U);
+
+PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
+PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
+// Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
+// collapse. Collective; *ok false names the element in problem->bad_element.
+PetscErrorCode CheckStep(Problem *problem, Vec X, Vec W, PetscBool *ok);
+// Moves the reference configuration to the current one (X += U on owned and ghost nodes),
+// rebuilds the element reference geometry and absorbs U into the constraint offsets. U is not
+// changed; the caller zeroes it. Used by form finding's updated-reference iterations.
+PetscErrorCode UpdateReference(Problem *problem, Vec U);
+// Commits the material history at the converged U (history is updated only here).
+PetscErrorCode CommitHistory(Problem *problem, Vec U);
+
+// Per-element output fields at U, committed history: stress (3), strain (3), Mises, min
+// principal stress, min principal strain, and (plastic laws) plastic strain (3) + equivalent.
+struct CellFields {
+  std::vector<double> stress, strain, mises, smin, emin, ep, ep_bar, area_ratio;
+  // True stress (kernels/stress_measures.h): global tensor (6), its Mises, the in-plane principal
+  // values (2: largest first) and their directions (3 each, global, current configuration).
+  std::vector<double> cauchy, cauchy_mises, principal, dir1, dir2;
+  std::vector<double> nodal_mises;  // per owned node, average of the elements around it
+};
+PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields);
+
+// Largest nodal (3-vector) norm of a block-3 vector (collective).
+PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max);
+// Collective look-ups by scene (natural) id, for scene reports and probes: current position
+// X + U, displacement.
+PetscErrorCode ProblemGetNodePosition(Problem *problem, Vec U, PetscInt node, double x[3]);
+PetscErrorCode ProblemGetNodeDisplacement(Problem *problem, Vec U, PetscInt node, double u[3]);
+
+} // namespace etfe
