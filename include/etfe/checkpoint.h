@@ -1,13 +1,17 @@
 // Checkpoint/restart of a load history (options -checkpoint_*, -restart). A checkpoint holds
 // the committed state in the scene's order, so any number of ranks can read it:
-//   attrs: format "etfe-checkpoint-2", scene, nodes, elements, pairs, history_size, stages,
-//          mesh_checksum, options (the command line, for the record) and the stepper state
-//          (t, dt, dt_last, step, converged_states, easy, cutbacks, newton), data_checksum (a
-//          rank-count-independent 64-bit checksum of every value above and below)
+//   attrs: format "etfe-checkpoint-3", scene, run_id, options (one "-name value" per line),
+//          nodes, elements, pairs, history_size, stages, mesh_fingerprint (coordinates,
+//          triangles, node and element sets), physics_fingerprint (what the options resolve
+//          to), the stepper state (t, dt, dt_last, step, converged_states, easy, cutbacks,
+//          newton) and data_checksum (a rank-count-independent 64-bit checksum of every value
+//          above and below)
 //   u_committed (N,3), u_previous (N,3), history (E,h) if the material has one,
-//   contact_state (C,7: g x0 y0 z0, f x0 y0 z0, status) if the scene has contact.
-// It is written to <file>.tmp and renamed, so a killed run leaves the previous checkpoint
-// intact. Restarting on the same number of ranks continues bit for bit.
+//   contact_state (C,7: g x0 y0 z0, f x0 y0 z0, status) if the scene has contact,
+//   scene_state (the scene monitor's values) if the scene has one.
+// It is written in HDF5's newest format (its metadata carry HDF5's own checksums) to
+// <file>.tmp, synced and renamed, so a killed run leaves the previous checkpoint intact; a
+// failed write removes the .tmp. Restarting on the same number of ranks continues bit for bit.
 #pragma once
 #include <petscvec.h>
 
@@ -32,10 +36,11 @@ PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const char *scene
 // run_id: the load history's identity (OutputRunId), checked against the results file on restart.
 PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const StepperState &state,
                                Vec U_committed, Vec U_previous, const std::string &run_id);
-// The increment a checkpoint was written at (collective; refuses unreadable files).
-PetscErrorCode CheckpointPeekStep(MPI_Comm comm, const std::string &path, PetscInt *step);
 // Everything CheckpointRead checks, without changing the problem: call it before anything on disk
-// is touched, so a refused restart changes nothing. Returns the checkpoint's increment.
+// is touched, so a refused restart changes nothing. Rank 0 first reads the whole file against its
+// checksum; then scene, mesh, shape, resolved physics and every option other than those that may
+// change on a restart (solver, output, monitors: checkpoint_compare.cpp) must agree, and a
+// refusal lists each differing option with both values. Returns the increment and run id.
 PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id);
 // Refuses (with the reason) a checkpoint of another scene, mesh, material, contact set or
 // physics options, or one whose data do not match its checksum.

@@ -300,15 +300,6 @@ PetscErrorCode Run() {
   PetscCall(OutputOptionsFromCommandLine(comm, P->scene.name.c_str(), &oo));
   CheckpointOptions cko;
   PetscCall(CheckpointOptionsFromCommandLine(comm, P->scene.name.c_str(), &cko));
-  {
-    // Checkpoints belong to their results: <output stem>.checkpoint.h5 unless named, so two runs
-    // with their own -output_file never share (and overwrite) one checkpoint.
-    PetscBool named = PETSC_FALSE;
-    PetscCall(PetscOptionsHasName(nullptr, nullptr, "-checkpoint_file", &named));
-    if (!named && oo.enabled)
-      std::snprintf(cko.file, sizeof cko.file, "%s.checkpoint.h5",
-                    std::filesystem::path(oo.path).replace_extension("").c_str());
-  }
   PetscCheck(!(formfind && (cko.restart[0] || cko.every > 0)), comm, PETSC_ERR_SUP,
              "checkpoint/restart is for load histories (-analysis stretch); form finding restarts from its "
              "Gmsh output instead");

@@ -1,0 +1,193 @@
+// What a restart must agree on with its checkpoint (see checkpoint_compare.h).
+//
+// The rule: an option may change on a restart when it decides how the increments are solved or
+// what is written, never what is computed. Allowed to change:
+//   solvers      -snes_* -ksp_* -pc_* -mat_* (MUMPS, ...) -sub_* -mg_* -redundant_* -fieldsplit_*
+//                -load_force_rtol -load_max_cutbacks -load_grow_after -load_easy_iterations
+//                -load_extrapolate -load_tangent_predictor (predictors and the cut-back policy)
+//                -membrane_tangent_* (shift, adaptive shift, tension only: the Newton path only)
+//   output       -output* -checkpoint_* -restart -contact_probe_nodes -saddle_history
+//                -load_monitor -load_stop_after -formfind_monitor
+//   diagnostics  PETSc's own (-log*, -info, -malloc*, -options_*, -help, ...), -etfe_traceback
+//   -mesh_file   may name another path: the mesh itself is compared (MeshFingerprint)
+// Everything else (-scene, -analysis, -mesh_*, -material_*, -membrane_thickness and
+// _min_area_ratio, -contact_* incl. the friction law, mu and the penalties, -load_increments,
+// every -<scene>_* option) must be equal, as must the mesh and the resolved physics.
+#include "checkpoint_compare.h"
+
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+
+#include "etfe/contact.h"
+
+namespace etfe {
+
+namespace {
+
+const char *const kMayChange[] = {
+    "snes_", "ksp_", "pc_", "mat_", "sub_", "mg_", "redundant_", "fieldsplit_",
+    "load_force_rtol", "load_max_cutbacks", "load_grow_after", "load_easy_iterations", "load_extrapolate",
+    "load_tangent_predictor", "membrane_tangent_", "formfind_monitor",
+    "output", "checkpoint_", "restart", "contact_probe_nodes", "saddle_history", "load_monitor", "load_stop_after",
+    "log", "info", "malloc", "memory_", "options_", "help", "etfe_traceback", "fp_trap", "on_error", "history",
+    "viewer", "objects_", "check_pointer", "checkstack", "no_signal_handler", "debugger", "start_in_debugger",
+    "stop_for_debugger", "display", "citations", "use_gpu_aware_mpi", "vecscatter_", "sf_", "skip_petscrc",
+    "scene_list", "mesh_file"};
+
+std::string Lower(std::string s) {
+  for (char &c : s) c = (char)std::tolower((unsigned char)c);
+  return s;
+}
+
+// Options as {name (lower case, no dash): value}; `text` holds "-name value" lines or PETSc's
+// one-line "-a 1 -b 2" listing (a name is a dash followed by a letter).
+std::map<std::string, std::string> ParseOptions(const std::string &text) {
+  std::map<std::string, std::string> res;
+  std::istringstream in(text);
+  std::string tok, name;
+  while (in >> tok) {
+    if (tok.size() > 1 && tok[0] == '-' && std::isalpha((unsigned char)tok[1])) {
+      name = Lower(tok.substr(1));
+      res[name];
+    } else if (!name.empty()) {
+      std::string &v = res[name];
+      v += (v.empty() ? "" : " ") + tok;
+    }
+  }
+  return res;
+}
+
+bool ParseNumbers(const std::string &v, std::vector<double> *x) {
+  std::stringstream in(v);
+  std::string item;
+  x->clear();
+  while (std::getline(in, item, ',')) {
+    char *end = nullptr;
+    const double d = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0') return false;
+    x->push_back(d);
+  }
+  return !x->empty();
+}
+
+int ParseBool(const std::string &v) {
+  const std::string l = Lower(v);
+  if (l.empty() || l == "1" || l == "true" || l == "yes" || l == "on") return 1;
+  if (l == "0" || l == "false" || l == "no" || l == "off") return 0;
+  return -1;
+}
+
+// Equal as the option readers see them: 2e3 == 2000, "1" == "true" == a bare flag.
+bool SameValue(const std::string &a, const std::string &b) {
+  if (a == b) return true;
+  std::vector<double> x, y;
+  if (ParseNumbers(a, &x) && ParseNumbers(b, &y)) return x == y;
+  const int ba = ParseBool(a), bb = ParseBool(b);
+  return ba >= 0 && ba == bb;
+}
+
+std::string Shown(const std::map<std::string, std::string> &m, const std::string &name) {
+  auto it = m.find(name);
+  if (it == m.end()) return "(not set)";
+  return it->second.empty() ? "(set, no value)" : it->second;
+}
+
+} // namespace
+
+bool CheckpointOptionMayChange(const std::string &option) {
+  const std::string name = Lower(option[0] == '-' ? option.substr(1) : option);
+  for (const char *p : kMayChange) {
+    const std::string pre = p;
+    if (name.compare(0, pre.size(), pre) != 0) continue;
+    if (name.size() == pre.size() || pre.back() == '_' || name[pre.size()] == '_') return true;
+  }
+  return false;
+}
+
+std::uint64_t MeshFingerprint(const MeshData &m) {
+  Fnv64 h;
+  h.Add(m.coords);
+  h.Add(m.triangles);
+  for (const auto *sets : {&m.node_sets, &m.element_sets}) {
+    h.Add(sets->size());
+    for (const auto &kv : *sets) h.Add(kv.first), h.Add(kv.second);
+  }
+  return h.Value();
+}
+
+std::uint64_t PhysicsFingerprint(const Problem *P) {
+  const SceneSpec &s = P->scene;
+  Fnv64 h;
+  auto value = [&h](const ScheduledValue &v) { h.Add(v.coef), h.Add(v.schedule); };
+  h.Add(s.name);
+  h.Add(s.md_axis);
+  h.Add(P->thickness);
+  h.Add(P->min_area_ratio);
+  h.Add(s.schedules.size());
+  for (const Schedule &sc : s.schedules) h.Add(sc.name), h.Add(sc.initial), h.Add(sc.values);
+  h.Add(s.constraints.size());
+  for (const DofConstraint &c : s.constraints) h.Add(c.node), h.Add(c.comp), value(c.value);
+  h.Add(s.pressure.active), h.Add(s.pressure.elements), value(s.pressure.value);
+  h.Add(s.nodal_forces.size());
+  for (const NodalForce &f : s.nodal_forces) h.Add(f.node), h.Add(f.comp), value(f.value);
+  h.Add(s.contact.active), h.Add(s.contact.node_set), h.Add(s.contact.search_tol);
+  h.Add(s.contact.supports.size());
+  for (const SupportSpec &sp : s.contact.supports)
+    h.Add(sp.name), h.Add(sp.type), h.Add(sp.centre), h.Add(sp.axis), h.Add(sp.radius);
+  h.Add(s.element_stress_ratio);
+  h.Add(s.initial_guess);
+  if (P->contact) {
+    const ContactSet &c = *P->contact;
+    h.Add(c.params.kn), h.Add(c.params.kt), h.Add(c.params.mu), h.Add(c.law), h.Add(c.follow);
+    h.Add(c.frictionless_until), h.Add(c.num_global);
+  }
+  double young = 0.0, nu = 0.0;
+  P->material->ElasticConstants(&young, &nu);
+  h.Add(std::string(P->material->Name())), h.Add(young), h.Add(nu), h.Add(P->material->HistorySize());
+  return h.Value();
+}
+
+PetscErrorCode OptionsAsLines(std::string *lines) {
+  char *all = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  const auto opts = ParseOptions(all ? all : "");
+  PetscCall(PetscFree(all));
+  lines->clear();
+  for (const auto &kv : opts) *lines += "-" + kv.first + (kv.second.empty() ? "" : " " + kv.second) + "\n";
+  PetscFunctionReturn(0);
+}
+
+std::string OptionDifferences(const std::string &checkpoint_lines, const std::string &current_lines) {
+  const auto a = ParseOptions(checkpoint_lines), b = ParseOptions(current_lines);
+  std::vector<std::string> names;
+  for (const auto *m : {&a, &b})
+    for (const auto &kv : *m)
+      if (!CheckpointOptionMayChange(kv.first)) names.push_back(kv.first);
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  std::string table;
+  int shown = 0, hidden = 0;
+  for (const std::string &n : names) {
+    auto ia = a.find(n), ib = b.find(n);
+    if (ia != a.end() && ib != b.end() && SameValue(ia->second, ib->second)) continue;
+    if (shown == 12) {  // a PETSc message holds about 2 kB
+      ++hidden;
+      continue;
+    }
+    char line[256];
+    std::snprintf(line, sizeof line, "\n    -%-28s checkpoint: %-18s this run: %s", n.c_str(), Shown(a, n).c_str(),
+                  Shown(b, n).c_str());
+    table += line;
+    ++shown;
+  }
+  if (hidden) table += "\n    ... and " + std::to_string(hidden) + " more";
+  return table;
+}
+
+} // namespace etfe

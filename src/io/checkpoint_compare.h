@@ -1,0 +1,50 @@
+// What a checkpoint must agree on with the run that restarts from it (private to src/io):
+// fingerprints of the mesh and of the resolved physics, and the options as "-name value" lines.
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "etfe/problem.h"
+
+namespace etfe {
+
+// FNV-1a, 64 bit: fast, and any changed byte changes it (not a cryptographic hash; a checkpoint
+// guards against accidents, not adversaries).
+class Fnv64 {
+public:
+  void Add(const void *data, size_t n) {
+    const unsigned char *p = static_cast<const unsigned char *>(data);
+    for (size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 1099511628211ull;
+  }
+  void Add(const std::string &s) {
+    Add(s.size());
+    Add(s.data(), s.size());
+  }
+  template <class T> void Add(const T &value) { Add(&value, sizeof value); }
+  template <class T> void Add(const std::vector<T> &v) {
+    Add(v.size());
+    if (!v.empty()) Add(v.data(), v.size() * sizeof(T));
+  }
+  std::uint64_t Value() const { return h_; }
+
+private:
+  std::uint64_t h_ = 14695981039346656037ull;
+};
+
+// Options that may differ between a checkpoint's run and its restart: how the increments are
+// solved and what is written, never what is computed (the list: checkpoint_compare.cpp).
+bool CheckpointOptionMayChange(const std::string &option);
+// Coordinates, triangles, node and element sets of the scene's mesh (the same on every rank).
+std::uint64_t MeshFingerprint(const MeshData &mesh);
+// What the options resolve to: schedules, constraints, loads, supports, contact parameters,
+// thickness, material constants. Catches what the option lists cannot (changed defaults).
+std::uint64_t PhysicsFingerprint(const Problem *problem);
+// The options in force, one "-name value" per line, sorted by name.
+PetscErrorCode OptionsAsLines(std::string *lines);
+// The options that differ (other than those that may change), as a table for a message;
+// empty when they agree.
+std::string OptionDifferences(const std::string &checkpoint_lines, const std::string &current_lines);
+
+} // namespace etfe
