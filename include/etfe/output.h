@@ -44,8 +44,11 @@ PetscErrorCode OutputOpen(Problem *problem, const OutputOptions &o, OutputFile *
 // The load history's identity, stored in the results file and in its checkpoints.
 const std::string &OutputRunId(const OutputFile *out);
 PetscErrorCode NewRunId(MPI_Comm comm, std::string *id);
-// Error exits: marks the open results file (if any) "failed: why" and closes it (collective).
+// Error exits: marks the open results file (if any) "failed: why" (with "the disk is full" when
+// it is) and closes it (collective).
 PetscErrorCode OutputAbandon(const std::string &why);
+// Whether a results file is open (an error exit then has one to mark).
+bool OutputIsOpen();
 // U is the displacement from the scene's mesh; fields (stress, strain, ...) are evaluated at
 // U_fields on the problem's current reference (nullptr: U itself — they differ only in form
 // finding, where the reference moves).
@@ -53,7 +56,8 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *problem, Vec U, PetscIn
                                double time, Vec U_fields = nullptr);
 // Gathers the current shape (reference + U) to rank 0 as a copy of the scene's mesh.
 PetscErrorCode OutputGatherShape(Problem *problem, Vec U, MeshData *shape);
-// status: "complete" or "failed: ..."; closes the file.
+// status: "complete", "stopped ..." or "failed: ..." (a fixed 1 kB attribute rewritten in place,
+// so it can be written on a full disk); closes the file, also when the status write fails.
 PetscErrorCode OutputClose(OutputFile **out, const std::string &status);
 PetscInt OutputLastStep(const OutputFile *out);
 PetscInt OutputEvery(const OutputFile *out);

@@ -7,6 +7,9 @@ static const char help[] =
 
 #include <petscsnes.h>
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -128,24 +131,37 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
 
 // PETSc's default report repeats the whole option table and configure line; a user needs the
 // message and where it came from. -etfe_traceback restores PETSc's full report.
-// The first error of the run, for the results file's status; collective when raised on a
-// communicator of every rank (then every rank can mark the file together).
+// The first error of the run, for the results file's status, with the system's error number at
+// that moment (HDF5's messages do not say that the disk is full; errno does).
 struct FirstError {
   std::string message;
-  bool collective = false;
+  int sys_errno = 0;
   bool set = false;
 } g_first_error;
 
-void RecordError(MPI_Comm comm, const char *mess) {
+void RecordError(MPI_Comm, const char *mess) {
   if (g_first_error.set) return;
+  g_first_error.sys_errno = errno;
   g_first_error.set = true;
   g_first_error.message = mess ? mess : "error";
   for (char &c : g_first_error.message)
     if (c == '\n') c = ' ';
-  int size = 1, world = 1;
-  if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &size);
-  MPI_Comm_size(PETSC_COMM_WORLD, &world);
-  g_first_error.collective = size == world;
+}
+
+// Whether every rank is on its error path: they meet on a communicator of their own (never one a
+// stuck collective call could be using). Ranks waiting for a partner that failed alone never
+// arrive; then the failed rank gives up after a while and the run is aborted as before.
+bool AllRanksFailed(MPI_Comm agree) {
+  int size = 1, done = 0;
+  MPI_Request req;
+  MPI_Comm_size(agree, &size);
+  if (size == 1) return true;
+  MPI_Ibarrier(agree, &req);
+  for (const double t0 = MPI_Wtime(); !done && MPI_Wtime() - t0 < 10.0;) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (!done) usleep(1000);
+  }
+  return done;
 }
 
 PetscErrorCode TracebackErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n,
@@ -392,16 +408,28 @@ int main(int argc, char **argv) {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-etfe_traceback", &traceback, nullptr));
   PetscCall(PetscPushErrorHandler(traceback ? TracebackErrorHandler : ConciseErrorHandler, nullptr));
+  MPI_Comm agree;
+  PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &agree));
   PetscErrorCode ierr = Run();
   if (ierr) {
     PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
     // Every error exit after the results file exists marks it failed (a reader must tell a dead
-    // run from a live one). Only when all ranks raised the error together: a collective write
-    // from one rank alone would hang.
-    if (g_first_error.collective || size == 1) {
+    // run from a live one). Only when all ranks are here: a collective write from one rank alone
+    // would hang.
+    if (OutputIsOpen() && AllRanksFailed(agree)) {
+      // The status is rank 0's message (ranks may word one failure differently).
+      std::string why = g_first_error.message;
+      const int e = g_first_error.sys_errno;
+      if (e == ENOSPC || e == EDQUOT || e == EFBIG || e == EIO) why += std::string(" (") + std::strerror(e) + ")";
+      unsigned long long n = why.size();
+      MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, agree);
+      why.resize(n);
+      MPI_Bcast(why.data(), (int)n, MPI_CHAR, 0, agree);
       PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-      OutputAbandon(g_first_error.message);
+      if (OutputAbandon(why)) (*PetscErrorPrintf)("etfe: the failure could not be recorded in the results status\n");
       PetscPopErrorHandler();
+    } else if (OutputIsOpen()) {
+      (*PetscErrorPrintf)("etfe: the other ranks did not stop with this error; the results status is not updated\n");
     }
     // An error raised on one rank only would leave the others waiting in PetscFinalize.
     if (size > 1) MPI_Abort(PETSC_COMM_WORLD, (int)ierr);

@@ -20,6 +20,7 @@ bool DropRowsFrom(const std::string &path, long long step) {
   std::string line;
   bool header = true;
   while (std::getline(in, line)) {
+    if (in.eof()) break;  // no newline after it: a row torn by a kill or a full disk
     if (header) {
       keep.push_back(line);
       header = false;

@@ -141,6 +141,28 @@ PetscErrorCode SelectRows(const std::string &file, hid_t fspace, hid_t mspace, h
   PetscFunctionReturn(0);
 }
 
+// A collective write can fail on some ranks only (a full disk): every rank of the file learns it,
+// so that all stop together (and can mark the results failed) instead of waiting for each other.
+PetscErrorCode AgreeOnWrite(const std::string &file, hid_t obj, const char *name, bool written) {
+  int ok = written, all = ok;
+  PetscFunctionBeginUser;
+  hid_t fid = H5Iget_file_id(obj), fapl = fid >= 0 ? H5Fget_access_plist(fid) : -1;
+  if (fapl >= 0 && H5Pget_driver(fapl) == H5FD_MPIO) {
+    MPI_Comm comm;
+    MPI_Info info;
+    if (H5Pget_fapl_mpio(fapl, &comm, &info) >= 0) {
+      PetscCallMPI(MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm));
+      PetscCallMPI(MPI_Comm_free(&comm));
+      if (info != MPI_INFO_NULL) PetscCallMPI(MPI_Info_free(&info));
+    }
+  }
+  if (fapl >= 0) H5Pclose(fapl);
+  if (fid >= 0) H5Fclose(fid);
+  PetscCheck(all, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: writing %s failed in %s%s", name, file.c_str(),
+             ok ? " (on another rank)" : "");
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,
@@ -155,11 +177,12 @@ PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *nam
   PetscCall(SelectRows(file, fspace, mspace, row0, nrows, cols));
   hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
-  ETFE_H5CHECK(H5Dwrite(dset, type, mspace, fspace, dxpl, data), name);
+  const herr_t written = H5Dwrite(dset, type, mspace, fspace, dxpl, data);
   H5Pclose(dxpl);
   H5Sclose(mspace);
   H5Sclose(fspace);
   H5Dclose(dset);
+  PetscCall(AgreeOnWrite(file, group, name, written >= 0));
   PetscFunctionReturn(0);
 }
 

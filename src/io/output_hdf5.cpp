@@ -3,7 +3,9 @@
 // contiguous row blocks, which every rank writes as a hyperslab of one collective dataset.
 #include <hdf5.h>
 #include <petscvec.h>
+#include <sys/statvfs.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -204,9 +206,12 @@ struct StepInfo {
 
 herr_t CollectStep(hid_t g, const char *name, const H5L_info_t *, void *data) {
   auto *v = (std::vector<StepInfo> *)data;
-  hid_t s = H5Gopen2(g, name, H5P_DEFAULT);
-  if (s < 0) return 0;
   StepInfo info{name, -1, 0.0};
+  hid_t s = H5Gopen2(g, name, H5P_DEFAULT);
+  if (s < 0) {  // left half-written by a kill: listed, so that it is dropped
+    v->push_back(info);
+    return 0;
+  }
   if (H5Aexists(s, "step") > 0 && H5Aexists(s, "time") > 0) {
     hid_t a = H5Aopen(s, "step", H5P_DEFAULT);
     H5Aread(a, H5T_NATIVE_LLONG, &info.step);
@@ -218,6 +223,119 @@ herr_t CollectStep(hid_t g, const char *name, const H5L_info_t *, void *data) {
   H5Gclose(s);
   v->push_back(info);
   return 0;
+}
+
+// Status is a fixed 1 kB string rewritten in place, so recording a failure needs no new space in
+// the file (a full disk is one of the failures it records).
+const size_t kStatusSize = 1024;
+
+PetscErrorCode WriteStatus(const std::string &path, hid_t file, std::string text) {
+  PetscFunctionBeginUser;
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  if (H5Aexists(file, "status") > 0) {
+    hid_t a = H5Aopen(file, "status", H5P_DEFAULT);
+    hid_t type = a >= 0 ? H5Aget_type(a) : -1;
+    const size_t size = type >= 0 ? H5Tget_size(type) : 0;
+    herr_t w = -1;
+    if (size >= text.size() + 1) {
+      std::vector<char> buf(size, 0);
+      std::copy(text.begin(), text.end(), buf.begin());
+      w = H5Awrite(a, type, buf.data());
+    }
+    if (type >= 0) H5Tclose(type);
+    if (a >= 0) H5Aclose(a);
+    if (size >= text.size() + 1) {
+      PetscCheck(w >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot write the status of %s", path.c_str());
+      PetscFunctionReturn(0);
+    }
+  }
+  std::vector<char> buf(std::max(kStatusSize, text.size() + 1), 0);
+  std::copy(text.begin(), text.end(), buf.begin());
+  hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, buf.size());
+  PetscCall(H5WriteAttribute(path, file, "status", type, buf.data()));
+  H5Tclose(type);
+  PetscFunctionReturn(0);
+}
+
+hid_t ResultsAccess(MPI_Comm comm) {
+  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+  H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL);
+  // Closing the file after an error must also close what the error left open, so the status lands.
+  H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG);
+  return fapl;
+}
+
+// Rank 0 writes the index; a failure there (disk full) must stop every rank together, not leave
+// the others waiting in the next collective call.
+PetscErrorCode WriteXdmfEverywhere(OutputFile *out) {
+  int ok;
+  PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
+  ok = WriteXdmf(out) == 0;
+  PetscCall(PetscPopErrorHandler());
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, out->problem->comm));
+  PetscCheck(ok, out->problem->comm, PETSC_ERR_FILE_WRITE, "cannot write the XDMF index %s (disk full or not writable?)",
+             out->xdmf_path.c_str());
+  PetscFunctionReturn(0);
+}
+
+// base, or base.1, base.2, ...: the first name not taken (a kept file is never overwritten).
+std::string FreeName(const std::string &base) {
+  std::error_code ec;
+  std::string name = base;
+  for (int k = 1; std::filesystem::exists(name, ec) && k < 1000; ++k) name = base + "." + std::to_string(k);
+  return name;
+}
+
+herr_t CopyAttribute(hid_t from, const char *name, const H5A_info_t *, void *to) {
+  hid_t a = H5Aopen(from, name, H5P_DEFAULT);
+  hid_t type = H5Aget_type(a), space = H5Aget_space(a);
+  std::vector<char> buf(H5Tget_size(type) * std::max<hssize_t>(1, H5Sget_simple_extent_npoints(space)));
+  herr_t r = H5Aread(a, type, buf.data());
+  hid_t b = r >= 0 ? H5Acreate2(*(hid_t *)to, name, type, space, H5P_DEFAULT, H5P_DEFAULT) : -1;
+  if (b >= 0) r = H5Awrite(b, type, buf.data()), H5Aclose(b);
+  H5Sclose(space);
+  H5Tclose(type);
+  H5Aclose(a);
+  return r < 0 || b < 0 ? -1 : 0;
+}
+
+// Rank 0: the results file without the steps after the checkpoint (and without step groups a kill
+// left half-written), copied to a new file that then replaces it. HDF5 cannot always delete such
+// groups in place (their headers may be incomplete), and a leftover name would stop the restarted
+// run when it writes that step again. Returns the steps kept that could not be copied (they stay
+// in the file kept under another name); -1 when nothing could be rebuilt.
+int RebuildWithout(const std::string &path, const std::vector<std::string> &keep, std::string *kept_aside) {
+  const std::string tmp = path + ".restart.tmp";
+  int lost = -1;
+  H5E_BEGIN_TRY {
+    hid_t src = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t dst = src >= 0 ? H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    bool good = dst >= 0 && H5Aiterate2(src, H5_INDEX_NAME, H5_ITER_INC, nullptr, CopyAttribute, &dst) >= 0 &&
+                H5Ocopy(src, "mesh", dst, "mesh", H5P_DEFAULT, H5P_DEFAULT) >= 0;
+    hid_t steps = good ? H5Gcreate2(dst, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
+    if (steps >= 0) {
+      lost = 0;
+      for (const std::string &name : keep)
+        if (H5Ocopy(src, ("steps/" + name).c_str(), steps, name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0) ++lost;
+      H5Gclose(steps);
+    }
+    if (dst >= 0 && H5Fclose(dst) < 0) lost = -1;
+    if (src >= 0) H5Fclose(src);
+  }
+  H5E_END_TRY;
+  std::error_code ec;
+  if (lost < 0) {
+    std::filesystem::remove(tmp, ec);
+    return -1;
+  }
+  if (lost > 0) {
+    *kept_aside = FreeName(path + ".before-restart");
+    std::filesystem::rename(path, *kept_aside, ec);
+  }
+  if (!ec) std::filesystem::rename(tmp, path, ec);
+  return ec ? -1 : lost;
 }
 
 // Reopens a results file to continue it after a restart. Returns false (nothing changed) when
@@ -232,7 +350,9 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   if (!exists) PetscFunctionReturn(0);
   // Probe serially first: a file cut short by a kill may not open.
   int state = 0;  // 0 unreadable, 1 this run's, 2 another scene, 3 another run
-  char other[256] = "";
+  char other[256] = "", note[512] = "";
+  std::vector<std::string> keep;
+  size_t drop = 0;
   if (P->rank == 0) {
     H5E_BEGIN_TRY {
       hid_t f = H5Fopen(out->path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -243,11 +363,30 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
           if (H5Aexists(f, "run_id") > 0) H5ReadString(out->path, f, "run_id", &id);
           state = scene != P->scene.name ? 2 : id != out->run_id ? 3 : 1;
           std::snprintf(other, sizeof other, "%s", state == 2 ? scene.c_str() : id.empty() ? "(none)" : id.c_str());
+          std::vector<StepInfo> steps;
+          hid_t g = H5Gopen2(f, "steps", H5P_DEFAULT);
+          if (g < 0 || H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectStep, &steps) < 0) state = 0;
+          if (g >= 0) H5Gclose(g);
+          for (const StepInfo &st : steps) {
+            if (st.step >= 0 && st.step <= restart_step) keep.push_back(st.group);
+            else ++drop;
+          }
         }
         H5Fclose(f);
       }
     }
     H5E_END_TRY;
+    if (state == 1 && drop > 0) {
+      // Steps written after the checkpoint: a new file without them replaces this one.
+      std::string aside;
+      const int lost = RebuildWithout(out->path, keep, &aside);
+      if (lost < 0) state = 0;
+      else if (lost == 0)
+        std::snprintf(note, sizeof note, "%zu step(s) written after the checkpoint dropped", drop);
+      else
+        std::snprintf(note, sizeof note, "%d of the %zu earlier steps could not be read; the old file is kept as %s",
+                      lost, keep.size(), aside.c_str());
+    }
   }
   PetscCallMPI(MPI_Bcast(&state, 1, MPI_INT, 0, P->comm));
   PetscCallMPI(MPI_Bcast(other, sizeof other, MPI_CHAR, 0, P->comm));
@@ -263,6 +402,11 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   if (state == 0) {
     int moved = 0;
     std::string aside = out->path + ".unreadable";
+    if (P->rank == 0) aside = FreeName(aside);
+    unsigned long long n = aside.size();
+    PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, P->comm));
+    aside.resize(n);
+    PetscCallMPI(MPI_Bcast(aside.data(), (int)n, MPI_CHAR, 0, P->comm));
     if (P->rank == 0) {
       std::error_code ec;
       std::filesystem::rename(out->path, aside, ec);
@@ -276,8 +420,9 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
                           "starts the results anew\n", out->path.c_str(), aside.c_str()));
     PetscFunctionReturn(0);
   }
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  H5Pset_fapl_mpio(fapl, P->comm, MPI_INFO_NULL);
+  PetscCallMPI(MPI_Bcast(note, sizeof note, MPI_CHAR, 0, P->comm));
+  if (note[0]) PetscCall(PetscPrintf(P->comm, "  output: %s: %s\n", out->path.c_str(), note));
+  hid_t fapl = ResultsAccess(P->comm);
   out->file = H5Fopen(out->path.c_str(), H5F_ACC_RDWR, fapl);
   H5Pclose(fapl);
   if (out->file < 0) PetscFunctionReturn(0);
@@ -289,7 +434,7 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
     else H5Ldelete(g, s.group.c_str(), H5P_DEFAULT);  // written after the checkpoint
   }
   H5Gclose(g);
-  PetscCall(H5WriteString(out->path, out->file, "status", "running"));
+  PetscCall(WriteStatus(out->path, out->file, "running"));
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
   *ok = true;
@@ -314,7 +459,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
     bool ok = false;
     PetscCall(ReopenForRestart(out, restart_step, &ok));
     if (ok) {
-      PetscCall(WriteXdmf(out));
+      PetscCall(WriteXdmfEverywhere(out));
       *result = g_open_output = out;
       PetscFunctionReturn(0);
     }
@@ -329,8 +474,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
     std::filesystem::remove(out->xdmf_path, ec);
   }
   PetscCallMPI(MPI_Barrier(P->comm));
-  hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-  H5Pset_fapl_mpio(fapl, P->comm, MPI_INFO_NULL);
+  hid_t fapl = ResultsAccess(P->comm);
   out->file = H5Fcreate(out->path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
   H5Pclose(fapl);
   PetscCheck(out->file >= 0, P->comm, PETSC_ERR_FILE_OPEN,
@@ -349,7 +493,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
     PetscCall(PetscFree(all));
     PetscCall(H5WriteString(out->path, out->file, "version", ETFE_VERSION));
   }
-  PetscCall(H5WriteString(out->path, out->file, "status", "running"));
+  PetscCall(WriteStatus(out->path, out->file, "running"));
   long long zero = 0;
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
   hid_t mesh = H5Gcreate2(out->file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -420,8 +564,13 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   out->steps.push_back({step, time});
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
-  PetscCheck(H5Fflush(out->file, H5F_SCOPE_GLOBAL) >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: flush of %s failed", out->path.c_str());
-  PetscCall(WriteXdmf(out));
+  {
+    // The flush writes on some ranks only: all of them learn whether it worked.
+    int flushed = H5Fflush(out->file, H5F_SCOPE_GLOBAL) >= 0, all;
+    PetscCallMPI(MPI_Allreduce(&flushed, &all, 1, MPI_INT, MPI_MIN, P->comm));
+    PetscCheck(all, P->comm, PETSC_ERR_FILE_WRITE, "HDF5: flush of %s failed (disk full?)", out->path.c_str());
+  }
+  PetscCall(WriteXdmfEverywhere(out));
   PetscFunctionReturn(0);
 }
 
@@ -487,9 +636,18 @@ PetscErrorCode NewRunId(MPI_Comm comm, std::string *id) {
 
 PetscErrorCode OutputAbandon(const std::string &why) {
   PetscFunctionBeginUser;
-  if (g_open_output) PetscCall(OutputClose(&g_open_output, "failed: " + why));
+  if (!g_open_output) PetscFunctionReturn(0);
+  std::string cause;
+  struct statvfs fs;
+  const std::string dir = OutputDirectory(g_open_output);
+  if (why.find("No space left") == std::string::npos && statvfs(dir.c_str(), &fs) == 0 &&
+      (double)fs.f_bavail * fs.f_frsize < 65536.0)
+    cause = " (the disk of " + dir + " is full)";
+  PetscCall(OutputClose(&g_open_output, "failed: " + why + cause));
   PetscFunctionReturn(0);
 }
+
+bool OutputIsOpen() { return g_open_output != nullptr; }
 
 PetscInt OutputLastStep(const OutputFile *out) {
   return (!out || out->steps.empty()) ? -1 : out->steps.back().first;
@@ -511,10 +669,15 @@ PetscErrorCode OutputClose(OutputFile **pout, const std::string &status) {
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
   if (out == g_open_output) g_open_output = nullptr;
-  PetscCall(H5WriteString(out->path, out->file, "status", status));
-  H5Fclose(out->file);
+  // Closed and freed whatever the status write gives: the caller may be on its error path.
+  const PetscErrorCode ierr = WriteStatus(out->path, out->file, status);
+  const herr_t closed = H5Fclose(out->file);
+  const std::string path = out->path;
   delete out;
   *pout = nullptr;
+  PetscCall(ierr);
+  PetscCheck(closed >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot close the results file %s (disk full?)",
+             path.c_str());
   PetscFunctionReturn(0);
 }
 
