@@ -7,6 +7,7 @@
 #include <petscsys.h>
 
 #include <cmath>
+#include <string>
 
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
@@ -59,9 +60,11 @@ PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t) {
     c->onset_step = step;
     c->t2_onset = t2;
   }
-  if (c->monitor)
-    PetscCall(PetscPrintf(P->comm, "             capstan: T2 = %.6e N, T2/T1 = %.6f, slipping pairs %" PetscInt_FMT "/%" PetscInt_FMT "%s\n",
-                        t2, t2 / c->t1, global[1], global[0], gross ? " (gross slip)" : ""));
+  // Thinned like the progress line (-load_monitor n); the slip onset is always shown.
+  if (c->monitor > 0 && (step % c->monitor == 0 || c->onset_step == step))
+    PetscCall(PetscPrintf(P->comm, "             capstan: T2 = %.6e N, T2/T1 = %.6f, slipping pairs %" PetscInt_FMT "/%" PetscInt_FMT "%s%s\n",
+                        t2, t2 / c->t1, global[1], global[0], gross ? " (gross slip)" : "",
+                        c->onset_step == step ? (" <- slip onset at step " + std::to_string(step)).c_str() : ""));
   PetscFunctionReturn(0);
 }
 

@@ -197,9 +197,10 @@ PetscErrorCode PrintProgress(Problem *P, PetscInt step, PetscInt nominal, double
   const double done = t / t_end;
   std::string contact;
   if (P->contact) {
-    char buf[96];
+    char buf[128], lifted[64] = "";
+    if (counts[3]) std::snprintf(lifted, sizeof lifted, " (%lld lift-offs since the last line)", (long long)counts[3]);
     std::snprintf(buf, sizeof buf, "  contact open %lld stick %lld slip %lld%s", (long long)counts[0],
-                  (long long)counts[1], (long long)counts[2], counts[3] ? " (lift-off)" : "");
+                  (long long)counts[1], (long long)counts[2], lifted);
     contact = buf;
   }
   char cut[48] = "";
@@ -231,7 +232,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   double t = 0.0, dt = dt_nominal, dt_last = 0.0;
   // Extrapolate only from converged states: a scene's initial guess is not one.
   PetscInt converged_states = P->scene.initial_guess.empty() ? 1 : 0;
-  PetscInt step = 0, easy = 0, cutbacks_printed = 0;
+  PetscInt step = 0, easy = 0, cutbacks_printed = 0, lifted_since_print = 0;
   Vec U_committed, U_previous, F;
   PetscLogDouble t0, t_inc;
   PetscFunctionBeginUser;
@@ -293,6 +294,9 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
       PetscCall(CommitHistory(P, P->U));
       PetscInt contact_counts[4] = {0, 0, 0, 0};
       if (P->contact) PetscCall(ContactCommit(P, contact_counts));
+      // Pairs that lift off between two printed lines are counted, not each printed.
+      lifted_since_print += contact_counts[3];
+      contact_counts[3] = lifted_since_print;
       PetscCall(VecCopy(U_committed, U_previous));
       PetscCall(VecCopy(P->U, U_committed));
       dt_last = t_new - t;
@@ -303,10 +307,11 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
       PetscCall(PetscTime(&now));
       const bool stage_end_reached = std::fabs(t - std::round(t)) < eps;
       if (o.monitor > 0 && (step % o.monitor == 0 || step == 1 || stage_end_reached || t >= t_end - eps ||
-                            res->cutbacks != cutbacks_printed || contact_counts[3] > 0)) {
+                            res->cutbacks != cutbacks_printed)) {
         cutbacks_printed = res->cutbacks;
         PetscCall(PrintProgress(P, step, per_stage * nstages, t, t_end, its, fnorm, contact_counts, now - t_inc,
                                 now - t0, res->cutbacks));
+        lifted_since_print = 0;
       }
       if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, step, t));
       if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputStem(out), step, t));
