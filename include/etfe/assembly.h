@@ -38,7 +38,8 @@ struct CellFields {
   std::vector<double> cauchy, cauchy_mises, principal, dir1, dir2;
   std::vector<double> nodal_mises;  // per owned node, average of the elements around it
 };
-PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields);
+// with_true_stress: also the Cauchy fields (output and reports; per-increment probes skip them).
+PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields, bool with_true_stress = true);
 
 // Largest nodal (3-vector) norm of a block-3 vector (collective).
 PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max);

@@ -3,6 +3,8 @@
 // Each pair lives on the rank that owns its film node; its frame is fixed at t0 (the thesis's
 // Assumption 1, -contact_normal frozen).
 #pragma once
+#include <cmath>
+
 #include <petscsys.h>
 
 #include <string>
@@ -20,6 +22,10 @@ enum class FrictionLaw { Lagged, Implicit, None, Fixed };
 // The largest round-off floor of the penalty forces (1e2 eps k |u| sqrt(pairs)) the force-balance
 // test may accept, as a fraction of the forces it balances: above it a penalty is refused.
 constexpr double kPenaltyFloorMax = 0.05;
+// That round-off floor [N] for penalties k [N/mm], displacements of size u [mm] and `pairs` pairs.
+inline double PenaltyRoundoffFloor(double k, double u, PetscInt pairs) {
+  return 1e2 * PETSC_MACHINE_EPSILON * k * u * std::sqrt((double)pairs);
+}
 
 struct ContactPair {
   PetscInt local_node;    // owned local node of the film

@@ -22,7 +22,6 @@ public:
   explicit NaturalOrder(Problem *p) : problem_(p) {}
   ~NaturalOrder();
   PetscInt GlobalRows(Layout layout) const;
-  MPI_Comm Comm() const;
   // owned (PETSc order, ncomp per row) -> this rank's block of natural rows.
   PetscErrorCode ToNatural(Layout layout, int ncomp, const double *owned, Vec *natural, PetscInt *row0,
                            PetscInt *nrows);
@@ -46,10 +45,9 @@ private:
 PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
                               Layout layout, int ncomp, const double *owned, bool as_int = false,
                               uint64_t *checksum = nullptr);
-// Collective: the dataset `name` (scene order) read back into owned rows (PETSc order). With
-// `checksum`, adds the DataChecksum of what was read to it.
+// Collective: the dataset `name` (scene order) read back into owned rows (PETSc order).
 PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
-                             Layout layout, int ncomp, double *owned, uint64_t *checksum = nullptr);
+                             Layout layout, int ncomp, double *owned);
 
 // A checksum of a dataset that does not depend on how its rows are split over ranks: the sum
 // (mod 2^64, collective) of a 64-bit mix of (dataset name, position, bit pattern) over this

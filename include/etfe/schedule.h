@@ -5,11 +5,18 @@
 // 40 mm in four experimental steps" or "pressure 0.5, 0, 1, 0 kPa" are one schedule each.
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace etfe {
 
 struct Schedule {
+  Schedule() = default;
+  Schedule(std::string name_, double initial_, std::vector<double> values_, std::string unit_ = "",
+           double display_scale_ = 1.0)
+      : name(std::move(name_)), initial(initial_), values(std::move(values_)), unit(std::move(unit_)),
+        display_scale(display_scale_) {}
+
   std::string name;
   double initial = 0.0;
   std::vector<double> values;  // value at the end of each stage

@@ -127,10 +127,6 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
   PetscFunctionReturn(0);
 }
 
-
-
-// PETSc's default report repeats the whole option table and configure line; a user needs the
-// message and where it came from. -etfe_traceback restores PETSc's full report.
 // The first error of the run, for the results file's status, with the system's error number at
 // that moment (HDF5's messages do not say that the disk is full; errno does).
 struct FirstError {
@@ -139,7 +135,7 @@ struct FirstError {
   bool set = false;
 } g_first_error;
 
-void RecordError(MPI_Comm, const char *mess) {
+void RecordError(const char *mess) {
   if (g_first_error.set) return;
   g_first_error.sys_errno = errno;
   g_first_error.set = true;
@@ -166,14 +162,16 @@ bool AllRanksFailed(MPI_Comm agree) {
 
 PetscErrorCode TracebackErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n,
                                      PetscErrorType p, const char *mess, void *ctx) {
-  if (p == PETSC_ERROR_INITIAL) RecordError(comm, mess);
+  if (p == PETSC_ERROR_INITIAL) RecordError(mess);
   return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
 }
 
+// PETSc's default report repeats the whole option table and configure line; a user needs the
+// message and where it came from. -etfe_traceback restores PETSc's full report.
 PetscErrorCode ConciseErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file,
                                    PetscErrorCode n, PetscErrorType p, const char *mess, void *) {
   if (p == PETSC_ERROR_INITIAL) {
-    RecordError(comm, mess);
+    RecordError(mess);
     (*PetscErrorPrintf)("%s\n", mess ? mess : "(no message)");
     // PETSc's conversion errors ("Input string abc has no integer value") do not say which option
     // held the string: find it in the database.

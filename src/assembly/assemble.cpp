@@ -377,7 +377,7 @@ PetscErrorCode CommitHistory(Problem *P, Vec U) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
+PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_true_stress) {
   const LocalMesh &m = P->mesh;
   const PetscInt ne = m.num_elements;
   const int nh = P->material->HistorySize();
@@ -391,11 +391,12 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
   c->smin.assign(ne, 0);
   c->emin.assign(ne, 0);
   c->area_ratio.assign(ne, 0);
-  c->cauchy.assign(6 * ne, 0);
-  c->cauchy_mises.assign(ne, 0);
-  c->principal.assign(2 * ne, 0);
-  c->dir1.assign(3 * ne, 0);
-  c->dir2.assign(3 * ne, 0);
+  const PetscInt nt = with_true_stress ? ne : 0;
+  c->cauchy.assign(6 * nt, 0);
+  c->cauchy_mises.assign(nt, 0);
+  c->principal.assign(2 * nt, 0);
+  c->dir1.assign(3 * nt, 0);
+  c->dir2.assign(3 * nt, 0);
   const bool plastic = P->material->HasPlasticStrain();
   c->ep.assign(plastic ? 3 * ne : 0, 0);
   c->ep_bar.assign(plastic ? ne : 0, 0);
@@ -422,9 +423,11 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c) {
     c->smin[e] = MinPrincipalStress(S);
     c->emin[e] = MinPrincipalStrain(E);
     c->area_ratio[e] = MembraneAreaRatio(m.ref[e], x, nullptr);
-    CauchyStress(F, S, &c->cauchy[6 * e]);
-    c->cauchy_mises[e] = MisesStress3(&c->cauchy[6 * e]);
-    PrincipalStresses(F, &c->cauchy[6 * e], &c->principal[2 * e], &c->dir1[3 * e], &c->dir2[3 * e]);
+    if (with_true_stress) {
+      CauchyStress(F, S, &c->cauchy[6 * e]);
+      c->cauchy_mises[e] = MisesStress3(&c->cauchy[6 * e]);
+      PrincipalStresses(F, &c->cauchy[6 * e], &c->principal[2 * e], &c->dir1[3 * e], &c->dir2[3 * e]);
+    }
     if (plastic) {
       double ep[3], epb;
       P->material->PlasticStrain(h, ep, &epb);

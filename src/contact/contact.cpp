@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 
 #include "etfe/contact.h"
 #include "etfe/csv_history.h"
@@ -155,7 +154,7 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
     // below of the forces to balance; past kPenaltyFloorMax the test would accept visibly wrong
     // answers (kn 1e15 on the saddle: displacements 20 % off), so refuse before solving.
     const double k = std::max(c->params.kn, c->params.kt);
-    const double per_k = 10 * 1e2 * PETSC_MACHINE_EPSILON * std::sqrt((double)c->num_global) / (young * P->thickness);
+    const double per_k = PenaltyRoundoffFloor(1.0, 10.0 / (young * P->thickness), c->num_global);
     PetscCheck(per_k * k <= kPenaltyFloorMax, P->comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-contact_kn %g / -contact_kt %g: the round-off of forces this stiff (~%.2g of the film forces, with "
                "%" PetscInt_FMT " pairs and E h = %g N/mm) would exceed the force tolerance, so a wrong answer could pass "

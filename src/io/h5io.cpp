@@ -35,8 +35,6 @@ PetscInt NaturalOrder::GlobalRows(Layout layout) const {
   return 0;
 }
 
-MPI_Comm NaturalOrder::Comm() const { return problem_->comm; }
-
 PetscErrorCode NaturalOrder::Get(Layout layout, int ncomp, Entry **result) {
   Problem *P = problem_;
   const LocalMesh &m = P->mesh;
@@ -324,14 +322,13 @@ PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_
 }
 
 PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
-                             Layout layout, int ncomp, double *owned, uint64_t *checksum) {
+                             Layout layout, int ncomp, double *owned) {
   PetscInt row0, nrows;
   PetscFunctionBeginUser;
   PetscCall(order.RowBlock(layout, ncomp, &row0, &nrows));
   std::vector<double> rows((size_t)nrows * ncomp);
   PetscCall(H5ReadRows(file, group, name, H5T_NATIVE_DOUBLE, order.GlobalRows(layout), ncomp, row0, nrows,
                        rows.data()));
-  if (checksum) PetscCall(DataChecksum(order.Comm(), name, row0, nrows, ncomp, rows.data(), checksum));
   PetscCall(order.FromNatural(layout, ncomp, rows.data(), owned));
   PetscFunctionReturn(0);
 }

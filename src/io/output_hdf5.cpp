@@ -426,14 +426,13 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   out->file = H5Fopen(out->path.c_str(), H5F_ACC_RDWR, fapl);
   H5Pclose(fapl);
   if (out->file < 0) PetscFunctionReturn(0);
+  // Rank 0 rebuilt the file without the steps after the checkpoint: what is left is kept.
   std::vector<StepInfo> steps;
   hid_t g = H5Gopen2(out->file, "steps", H5P_DEFAULT);
   H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectStep, &steps);
-  for (const StepInfo &s : steps) {
-    if (s.step >= 0 && s.step <= restart_step) out->steps.push_back({(PetscInt)s.step, s.time});
-    else H5Ldelete(g, s.group.c_str(), H5P_DEFAULT);  // written after the checkpoint
-  }
   H5Gclose(g);
+  for (const StepInfo &s : steps)
+    if (s.step >= 0 && s.step <= restart_step) out->steps.push_back({(PetscInt)s.step, s.time});
   PetscCall(WriteStatus(out->path, out->file, "running"));
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));

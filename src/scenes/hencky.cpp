@@ -36,7 +36,7 @@ PetscErrorCode HenckyReport(Problem *P, void *vctx) {
   const double s_ref = c.centre_stress * std::cbrt(young * p * p * a * a / (h * h));
   PetscCall(ProblemGetNodeDisplacement(P, P->U, P->scene.mesh.node_sets.at("centre")[0], u));
   // Centre stress: mean of (Sxx + Syy)/2 over the elements touching the centre node.
-  PetscCall(ComputeCellFields(P, P->U, &cells));
+  PetscCall(ComputeCellFields(P, P->U, &cells, false));
   double sum[2] = {0, 0}, tot[2];
   for (PetscInt e = 0; e < P->mesh.num_elements; ++e) {
     const int *t = &P->mesh.tri[3 * e];

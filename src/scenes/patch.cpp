@@ -32,7 +32,7 @@ PetscErrorCode PatchReport(Problem *P, void *vctx) {
   auto *ctx = (PatchContext *)vctx;
   CellFields c;
   PetscFunctionBeginUser;
-  PetscCall(ComputeCellFields(P, P->U, &c));
+  PetscCall(ComputeCellFields(P, P->U, &c, false));
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, glo[3], ghi[3];
   for (PetscInt e = 0; e < P->mesh.num_elements; ++e)
     for (int i = 0; i < 3; ++i) {

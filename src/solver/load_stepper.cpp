@@ -76,7 +76,7 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
     PetscCall(SNESGetSolution(snes, &X));
     PetscCall(VecNorm(X, NORM_INFINITY, &umax));
     const double k = std::max(P->contact->params.kn, P->contact->params.kt);
-    const double floor = 1e2 * PETSC_MACHINE_EPSILON * k * umax * std::sqrt((double)P->contact->num_global);
+    const double floor = PenaltyRoundoffFloor(k, umax, P->contact->num_global);
     // Accepting on a floor that is a visible part of the forces would report a wrong answer as
     // converged; ContactCreate refuses most such penalties up front, this catches the rest.
     PetscCheck(!(fnorm > tol && fnorm <= floor && floor > kPenaltyFloorMax * P->force_scale), P->comm,
