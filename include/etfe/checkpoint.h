@@ -32,7 +32,8 @@ struct CheckpointOptions {
   char restart[PETSC_MAX_PATH_LEN] = "";
 };
 
-PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const char *scene, CheckpointOptions *o);
+// results_stem: the results file without its extension; the default checkpoint goes beside it.
+PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const std::string &results_stem, CheckpointOptions *o);
 // run_id: the load history's identity (OutputRunId), checked against the results file on restart.
 PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const StepperState &state,
                                Vec U_committed, Vec U_previous, const std::string &run_id);

@@ -24,11 +24,15 @@ struct Problem;
 // problem, which owns ctx; the load stepper, the checkpoint and the app call it (collective).
 struct SceneObserver {
   PetscErrorCode (*report)(Problem *, void *ctx) = nullptr;
-  PetscErrorCode (*step_monitor)(Problem *, void *ctx, PetscInt step, double time) = nullptr;
+  // print_every: the load stepper's -load_monitor (0: quiet), so a monitor's lines thin alike.
+  PetscErrorCode (*step_monitor)(Problem *, void *ctx, PetscInt step, double time, PetscInt print_every) = nullptr;
   void (*state_get)(void *ctx, std::vector<double> *state) = nullptr;
   void (*state_set)(void *ctx, const std::vector<double> &state) = nullptr;
   void (*destroy)(void *ctx) = nullptr;
   void *ctx = nullptr;
+  // The results file without its extension, set by the app once it is open ("" without results):
+  // a scene's own CSV histories go beside it.
+  std::string results_stem;
 };
 // Frees ctx and clears the observer.
 void SceneObserverDestroy(SceneObserver *observer);

@@ -53,6 +53,9 @@ struct ContactSpec {
 
 struct SceneSpec {
   std::string name;
+  // Set by the app before the builder runs (-analysis formfind): a scene that offers both
+  // analyses builds the form-finding problem instead of the load history.
+  bool form_finding = false;
   MeshData mesh;
   double md_axis[3] = {1.0, 0.0, 0.0};   // MD direction for the element frames
   double thickness = 0.25;               // film thickness [mm] (-membrane_thickness overrides)

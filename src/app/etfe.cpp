@@ -236,7 +236,12 @@ PetscErrorCode Run() {
   PetscCall(SNESLineSearchRegisterEtfe());
 
   // 2. The scene: mesh, supports, loads, schedule.
+  // The analysis first: a scene that offers both builds the one asked for.
+  PetscBool formfind_flag = PETSC_FALSE;
+  PetscCall(AnalysisFromOptions(comm, &formfind_flag));
+  const bool formfind = formfind_flag;
   SceneSpec scene;
+  scene.form_finding = formfind;
   SceneObserver observer;
   PetscCall(SceneCreateFromOptions(comm, &scene, &observer));
   if (list) {
@@ -258,9 +263,7 @@ PetscErrorCode Run() {
     OutputOptions oo;
     PetscCall(OutputOptionsFromCommandLine(comm, "scene", &oo));
     CheckpointOptions cko;
-    PetscCall(CheckpointOptionsFromCommandLine(comm, "scene", &cko));
-    PetscBool ff;
-    PetscCall(AnalysisFromOptions(comm, &ff));
+    PetscCall(CheckpointOptionsFromCommandLine(comm, "results/scene/scene", &cko));
     {
       double young, nu;
       m->ElasticConstants(&young, &nu);
@@ -275,11 +278,8 @@ PetscErrorCode Run() {
     PetscFunctionReturn(0);
   }
 
-  // 3. Analysis (stretch: load stepping; formfind: shape for a prescribed stress), material and
+  // 3. The analysis's material (stretch: from -material_*; formfind: the prescribed stress) and the
   //    membrane options, then the distributed problem, the scene's observer and contact set.
-  PetscBool formfind_flag = PETSC_FALSE;
-  PetscCall(AnalysisFromOptions(comm, &formfind_flag));
-  const bool formfind = formfind_flag;
   FormFindOptions ffo;
   std::unique_ptr<Material> material;
   if (formfind) {
@@ -313,7 +313,7 @@ PetscErrorCode Run() {
   OutputOptions oo;
   PetscCall(OutputOptionsFromCommandLine(comm, P->scene.name.c_str(), &oo));
   CheckpointOptions cko;
-  PetscCall(CheckpointOptionsFromCommandLine(comm, P->scene.name.c_str(), &cko));
+  PetscCall(CheckpointOptionsFromCommandLine(comm, std::filesystem::path(oo.path).replace_extension("").string(), &cko));
   PetscCheck(!(formfind && (cko.restart[0] || cko.every > 0)), comm, PETSC_ERR_SUP,
              "checkpoint/restart is for load histories (-analysis stretch); form finding restarts from its "
              "Gmsh output instead");
@@ -334,6 +334,7 @@ PetscErrorCode Run() {
   std::string run_id;
   if (cko.restart[0]) PetscCall(CheckpointValidate(P, cko.restart, &restart_step, &run_id));
   if (oo.enabled) PetscCall(OutputOpen(P, oo, &out, restart_step, run_id));
+  if (out) P->observer.results_stem = OutputStem(out);
   LoadStepperResult res;
   if (formfind) {
     FormFindResult ffr;

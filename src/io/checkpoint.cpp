@@ -230,16 +230,11 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
 
 } // namespace
 
-PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const char *scene, CheckpointOptions *o) {
-  char output[PETSC_MAX_PATH_LEN];
-  PetscBool set = PETSC_FALSE;
+PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const std::string &results_stem, CheckpointOptions *o) {
   PetscFunctionBeginUser;
   // Beside the results and named after them, so runs with their own -output_file never share
   // (and overwrite) one checkpoint.
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-output_file", output, sizeof output, &set));
-  if (!set || !output[0]) std::snprintf(output, sizeof output, "results/%s/%s.h5", scene, scene);
-  std::snprintf(o->file, sizeof o->file, "%s.checkpoint.h5",
-                std::filesystem::path(output).replace_extension("").c_str());
+  std::snprintf(o->file, sizeof o->file, "%s.checkpoint.h5", results_stem.c_str());
   PetscOptionsBegin(comm, nullptr, "Checkpoint and restart", "Checkpoint");
   PetscCall(PetscOptionsInt("-checkpoint_every", "Write a checkpoint every n increments (0: only at -load_stop_after)",
                             "", o->every, &o->every, nullptr));

@@ -23,7 +23,6 @@ struct CapstanContext {
   std::vector<int> end_b;    // scene node ids of end B
   std::vector<char> is_b;    // per scene node: on end B
   double t2_onset = -1.0, t2_last = 0.0;
-  PetscInt monitor = 1;
   PetscInt onset_step = -1;
 };
 
@@ -41,7 +40,7 @@ PetscErrorCode EndBTension(Problem *P, CapstanContext *c, double *t2) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t) {
+PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t, PetscInt print_every) {
   auto *c = (CapstanContext *)vctx;
   double t2;
   PetscInt local[2] = {0, 0}, global[2];
@@ -61,7 +60,7 @@ PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t) {
     c->t2_onset = t2;
   }
   // Thinned like the progress line (-load_monitor n); the slip onset is always shown.
-  if (c->monitor > 0 && (step % c->monitor == 0 || c->onset_step == step))
+  if (print_every > 0 && (step % print_every == 0 || c->onset_step == step))
     PetscCall(PetscPrintf(P->comm, "             capstan: T2 = %.6e N, T2/T1 = %.6f, slipping pairs %" PetscInt_FMT "/%" PetscInt_FMT "%s%s\n",
                         t2, t2 / c->t1, global[1], global[0], gross ? " (gross slip)" : "",
                         c->onset_step == step ? (" <- slip onset at step " + std::to_string(step)).c_str() : ""));
@@ -152,7 +151,6 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene, SceneObserver
   pipe.type = "cylinder";
   pipe.radius = radius;
   scene->contact.supports.push_back(pipe);
-  PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-load_monitor", &ctx->monitor, nullptr));
   observer->step_monitor = CapstanStep;
   observer->state_get = [](void *c, std::vector<double> *v) {
     auto *x = (CapstanContext *)c;

@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 
 #include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
@@ -73,7 +72,7 @@ PetscErrorCode SaddleReport(Problem *P, void *vctx) {
 PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal ratio_r = 0.15, ratio_mid = 1.0, ratio_corner = 3.0;
   PetscInt n = 10, refine = 0;
-  char mesh_file[PETSC_MAX_PATH_LEN] = "", analysis[32] = "stretch";
+  char mesh_file[PETSC_MAX_PATH_LEN] = "";
   PetscBool from_file = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Saddle scene (quarter model of the thesis's saddle)", "Scene");
@@ -88,7 +87,6 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
                                "Start from this surface (e.g. a form-found .msh: the DD specimens) instead of the "
                                "PD initial shape", "", mesh_file, mesh_file, sizeof mesh_file, &from_file));
   PetscOptionsEnd();
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-analysis", analysis, sizeof analysis, nullptr));
   PetscCheck(ratio_r > 0 && ratio_r <= 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-saddle_rise_ratio %g: the arch rise ratio must lie in (0, 0.5]", ratio_r);
   PetscCheck(ratio_mid > 0 && ratio_corner > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: stress ratios must be positive");
@@ -133,7 +131,7 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
     for (int a = 0; a < 3; ++a) xc += m.coords[3 * m.triangles[3 * e + a]] / 3.0;
     m.element_sets[xc < g.arch_x ? "middle" : "corner"].push_back(e);
   }
-  if (std::strcmp(analysis, "formfind") != 0) {
+  if (!scene->form_finding) {
     const SaddleGeometry geometry = g;  // g lives in ctx, which this branch does not need
     delete ctx;
     PetscCall(SaddleStretchSetup(comm, geometry, scene, observer));

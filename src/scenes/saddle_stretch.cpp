@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
@@ -32,7 +31,7 @@ struct StretchContext {
   PetscInt elem_i = -1, elem_ii = -1;  // scene element ids
   std::vector<int> slide_nodes;        // arch nodes I..V
   std::vector<char> in_a, in_b;        // per scene element
-  std::string history;                 // CSV path
+  std::string history;                 // -saddle_history ("": beside the results)
   PetscInt drawing_stages = 0;
 };
 
@@ -90,20 +89,25 @@ PetscErrorCode Measure(Problem *P, StretchContext *c, const CellFields &f, Probe
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t) {
+PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   auto *c = (StretchContext *)vctx;
   CellFields f;
   ProbeValues v;
   PetscFunctionBeginUser;
-  if (c->history.empty()) PetscFunctionReturn(0);
+  // -saddle_history, else beside the results; without results there is none (it would
+  // overwrite another run's beside them).
+  const std::string path = !c->history.empty()            ? c->history
+                           : !P->observer.results_stem.empty() ? P->observer.results_stem + "_history.csv"
+                                                               : std::string();
+  if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f, false));
   PetscCall(Measure(P, c, f, &v));
   if (P->rank == 0) {
     std::string header = "step,time,A_Exx,A_Eyy,A_Exy,A_mises,B_Exx,B_Eyy,B_Exy,B_mises,I_smin,I_emin,II_smin,II_emin";
     for (size_t k = 0; k < c->slide_nodes.size(); ++k)
       header += ",slide" + std::to_string(k + 1) + "_X,slide" + std::to_string(k + 1) + "_Y";
-    FILE *out = CsvHistoryOpen(c->history, step, header.c_str());
-    PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", c->history.c_str());
+    FILE *out = CsvHistoryOpen(path, step, header.c_str());
+    PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
     std::fprintf(out, "%lld,%.10g", (long long)step, t);
     for (double x : v.a) std::fprintf(out, ",%.8e", x);
     for (double x : v.b) std::fprintf(out, ",%.8e", x);
@@ -192,7 +196,7 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   std::vector<double> da = {10, 20, 30, 40}, db = {10, 15, 20, 30}, dc = {10, 20, 30, 40}, dd = {10, 20, 30, 40};
   std::vector<double> gain = {1, 1, 1, 1}, pressure, part_a = {0, 0, 400, 400}, part_b = {1300, 0, 1700, 400};
   std::vector<double> elem_i = {200, 200}, elem_ii = {500, 700}, slides = {0, 250, 500, 750, 950};
-  char history[PETSC_MAX_PATH_LEN] = "", output[PETSC_MAX_PATH_LEN] = "";
+  char history[PETSC_MAX_PATH_LEN] = "";
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Saddle stretch fabrication", "Scene");
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_a", "Drawing at a (X = 2000, Y = 0; in X) per stage [mm]", &da));
@@ -299,14 +303,7 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   c->elem_i = NearestElement(m, elem_i[0], elem_i[1]);
   c->elem_ii = NearestElement(m, elem_ii[0], elem_ii[1]);
   for (double y : slides) c->slide_nodes.push_back(SaddleNearestNode(m, A, y));
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-output_file", output, sizeof output, nullptr));
-  PetscBool write = PETSC_TRUE;
-  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-output", &write, nullptr));
-  // Without results there is no history either (it would overwrite another run's beside them).
-  if (history[0]) c->history = history;
-  else if (!write) c->history.clear();
-  else if (output[0]) c->history = std::filesystem::path(output).replace_extension("").string() + "_history.csv";
-  else c->history = "results/saddle/saddle_history.csv";
+  c->history = history;
   observer->step_monitor = StretchStep;
   observer->report = StretchReport;
   observer->ctx = c;

@@ -313,7 +313,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                                 now - t0, res->cutbacks));
         lifted_since_print = 0;
       }
-      if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, step, t));
+      if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, step, t, o.monitor));
       if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputStem(out), step, t));
       const bool last = t >= t_end - eps;
       const bool stop = o.stop_after >= 0 && step >= o.stop_after;
