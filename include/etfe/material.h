@@ -8,6 +8,8 @@
 
 namespace etfe {
 
+struct WrinkleInfo;  // etfe/kernels/wrinkling.h
+
 class Material {
 public:
   virtual ~Material() = default;
@@ -25,6 +27,11 @@ public:
   virtual bool PlasticStrain(const double *hist, double ep[3], double *ep_bar) const {
     return false;
   }
+  // Tension-field state at E from the committed history (-membrane_wrinkling tension_field):
+  // false when the law does not relax compression.
+  virtual bool Wrinkling(const double E[3], const double *hist, WrinkleInfo *info) const {
+    return false;
+  }
   // Young's modulus and Poisson's ratio (every law here has an elastic part).
   virtual void ElasticConstants(double *young, double *nu) const = 0;
   virtual PetscErrorCode View(MPI_Comm comm) const = 0;
@@ -35,6 +42,10 @@ typedef PetscErrorCode (*MaterialCreator)(std::unique_ptr<Material> *);
 // Form finding: a constant PK2 stress (s_md, s_td, 0) in the element's MD/TD frame and no
 // material stiffness, so the tangent is the geometric stiffness alone (thesis eqs. 2.14-2.20).
 std::unique_ptr<Material> MaterialCreatePrescribedStress(double s_md, double s_td);
+
+// The law wrapped in the tension-field membrane (-membrane_wrinkling tension_field,
+// src/material/tension_field.cpp): compression relaxed, plastic flow frozen while wrinkled.
+std::unique_ptr<Material> MaterialWrapTensionField(std::unique_ptr<Material> inner);
 
 PetscErrorCode MaterialRegisterAll(void);
 PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material);

@@ -49,6 +49,7 @@ struct Problem {
   PetscBool tangent_shift_adaptive = PETSC_FALSE;  // shift x |F_k|/|F_0| (vanishes at convergence)
   double shift_fnorm0 = 0.0;
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
+  PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
   std::unique_ptr<Material> material;
   std::vector<double> history;        // committed history, HistorySize() per local element
   std::vector<double> history_trial;  // scratch for the commit pass

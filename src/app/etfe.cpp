@@ -52,6 +52,13 @@ PetscErrorCode ReadMembraneOptions(MPI_Comm comm, Problem *P) {
                              "Geometric stiffness from the tensile part of the stress only (wrinkling films; "
                              "the answer is unchanged)", "", P->tangent_tension_only, &P->tangent_tension_only,
                              nullptr));
+  const char *wrinkling_models[] = {"none", "tension_field"};
+  PetscInt wrinkling = P->wrinkling ? 1 : 0;
+  PetscCall(PetscOptionsEList("-membrane_wrinkling",
+                              "none: the film carries compression (thesis); tension_field: no compression, "
+                              "each element taut, wrinkled (uniaxial tension) or slack (issue 15)",
+                              "", wrinkling_models, 2, wrinkling_models[wrinkling], &wrinkling, nullptr));
+  P->wrinkling = wrinkling == 1 ? PETSC_TRUE : PETSC_FALSE;
   PetscOptionsEnd();
   PetscCheck(P->tangent_shift >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-membrane_tangent_shift must be >= 0");
   PetscCheck(P->thickness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
@@ -291,6 +298,10 @@ PetscErrorCode Run() {
   auto *P = new Problem();
   P->thickness = scene.thickness;
   PetscCall(ReadMembraneOptions(comm, P));
+  PetscCheck(!(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
+             "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
+             "prescribes the stress: drop the option for -analysis formfind");
+  if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
   PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), P));
   P->observer = observer;
   if (P->scene.contact.active) {
