@@ -194,7 +194,8 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   MeshData &m = scene->mesh;
   // Thesis Table 5.5, DD1511 (the PD schedules were only in lost figures: the same by default).
   std::vector<double> da = {10, 20, 30, 40}, db = {10, 15, 20, 30}, dc = {10, 20, 30, 40}, dd = {10, 20, 30, 40};
-  std::vector<double> gain = {1, 1, 1, 1}, pressure, part_a = {0, 0, 400, 400}, part_b = {1300, 0, 1700, 400};
+  std::vector<double> gain = {1, 1, 1, 1}, intercept = {0, 0, 0, 0}, pressure;
+  std::vector<double> part_a = {0, 0, 400, 400}, part_b = {1300, 0, 1700, 400};
   std::vector<double> elem_i = {200, 200}, elem_ii = {500, 700}, slides = {0, 250, 500, 750, 950};
   char history[PETSC_MAX_PATH_LEN] = "";
   PetscFunctionBeginUser;
@@ -203,7 +204,11 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_b", "Drawing at b (the frame corner; in X and Y) per stage [mm]", &db));
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_c", "Drawing at c (Y = 1000, X = 1000; in Y) per stage [mm]", &dc));
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_d", "Drawing at d (Y = 1000, X = 0; in Y) per stage [mm]", &dd));
-  PetscCall(ReadArray(PetscOptionsObject, "-saddle_gain", "Offset-point motion per unit drawing at a,b,c,d", &gain));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_gain",
+                      "Drawing map slope at a,b,c,d: boundary motion = max(0, gain*draw + intercept)", &gain));
+  PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_intercept",
+                      "Drawing map intercept at a,b,c,d [mm] (thesis Fig. 3.17's regression lines; 0: motion = gain*draw)",
+                      &intercept));
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_pressure_cycle", "Internal pressure after drawing, per stage [kPa]", &pressure));
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_part_A", "Part A box x0,y0,x1,y1 [mm]", &part_a));
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_part_B", "Part B box x0,y0,x1,y1 [mm]", &part_b));
@@ -217,10 +222,12 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   PetscCheck(ns >= 1 && db.size() == ns && dc.size() == ns && dd.size() == ns, comm, PETSC_ERR_ARG_SIZ,
              "-saddle_draw_a/b/c/d must have the same number of stages (now %zu, %zu, %zu, %zu)", da.size(),
              db.size(), dc.size(), dd.size());
-  PetscCheck(gain.size() == 4 && part_a.size() == 4 && part_b.size() == 4 && elem_i.size() == 2 && elem_ii.size() == 2,
+  PetscCheck(gain.size() == 4 && intercept.size() == 4 && part_a.size() == 4 && part_b.size() == 4 &&
+                 elem_i.size() == 2 && elem_ii.size() == 2,
              comm, PETSC_ERR_ARG_SIZ,
-             "-saddle_gain needs 4 values, -saddle_part_A/B 4 (x0,y0,x1,y1), -saddle_element_I/II 2 (x,y)");
-  for (const auto *arr : {&da, &db, &dc, &dd, &gain, &pressure})
+             "-saddle_gain and -saddle_draw_intercept need 4 values (a,b,c,d), -saddle_part_A/B 4 "
+             "(x0,y0,x1,y1), -saddle_element_I/II 2 (x,y)");
+  for (const auto *arr : {&da, &db, &dc, &dd, &gain, &intercept, &pressure})
     for (double x : *arr)
       PetscCheck(std::isfinite(x), comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: drawing, gain and pressure values must be finite");
   c->part_a = {part_a[0], part_a[1], part_a[2], part_a[3]};
@@ -229,15 +236,24 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
 
   // Schedules: drawing stages, then the pressure cycle with the drawing held.
   const size_t np = pressure.size(), stages = ns + np;
-  auto extend = [&](const std::vector<double> &v, double gain_k) {
+  // The drawing value is what the frame's screws are turned by; the model's boundary is the line
+  // of offset points, which the thesis maps from the drawing value through regression lines
+  // (L914, Fig. 3.17; used for the predictions, L1689-1691). The lines themselves are lost with the
+  // figures, so slope and intercept are options; the clamp keeps a line with a negative intercept
+  // (slack taken up before the film moves) from pushing the boundary inward at small drawings.
+  auto extend = [&](const std::vector<double> &v, int k_pos) {
     std::vector<double> out;
-    for (size_t k = 0; k < stages; ++k) out.push_back(gain_k * v[std::min(k, ns - 1)]);
+    for (size_t k = 0; k < stages; ++k) {
+      const double draw = v[std::min(k, ns - 1)];
+      const double mag = std::max(0.0, gain[k_pos] * std::fabs(draw) + intercept[k_pos]);
+      out.push_back(draw == 0.0 ? 0.0 : std::copysign(mag, draw));
+    }
     return out;
   };
-  const int sa = scene->AddSchedule({"draw_a", 0.0, extend(da, gain[0]), "mm"});
-  const int sb = scene->AddSchedule({"draw_b", 0.0, extend(db, gain[1]), "mm"});
-  const int sc = scene->AddSchedule({"draw_c", 0.0, extend(dc, gain[2]), "mm"});
-  const int sd = scene->AddSchedule({"draw_d", 0.0, extend(dd, gain[3]), "mm"});
+  const int sa = scene->AddSchedule({"draw_a", 0.0, extend(da, 0), "mm"});
+  const int sb = scene->AddSchedule({"draw_b", 0.0, extend(db, 1), "mm"});
+  const int sc = scene->AddSchedule({"draw_c", 0.0, extend(dc, 2), "mm"});
+  const int sd = scene->AddSchedule({"draw_d", 0.0, extend(dd, 3), "mm"});
   if (np > 0) {
     std::vector<double> p(ns, 0.0);
     for (double x : pressure) p.push_back(1e-3 * x);  // kPa -> MPa
