@@ -37,6 +37,10 @@ struct CellFields {
   // values (2: largest first) and their directions (3 each, global, current configuration).
   std::vector<double> cauchy, cauchy_mises, principal, dir1, dir2;
   std::vector<double> nodal_mises;  // per owned node, average of the elements around it
+  // -membrane_wrinkling tension_field only (empty otherwise): state 0 taut / 1 wrinkled / 2 slack,
+  // the wrinkle (= tension) direction as a global unit 3-vector in the current configuration (0
+  // when not wrinkled) and the wrinkle strain, the GL strain lost to wrinkles (kernels/wrinkling.h).
+  std::vector<double> wrinkle_state, wrinkle_dir, wrinkle_strain;
 };
 // with_true_stress: also the Cauchy fields (output and reports; per-increment probes skip them).
 PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields, bool with_true_stress = true);

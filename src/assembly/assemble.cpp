@@ -14,6 +14,7 @@
 #include "etfe/kernels/pressure.h"
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
+#include "etfe/kernels/wrinkling.h"
 
 namespace etfe {
 
@@ -400,6 +401,10 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_tru
   const bool plastic = P->material->HasPlasticStrain();
   c->ep.assign(plastic ? 3 * ne : 0, 0);
   c->ep_bar.assign(plastic ? ne : 0, 0);
+  const bool wrinkling = P->wrinkling;
+  c->wrinkle_state.assign(wrinkling ? ne : 0, 0);
+  c->wrinkle_dir.assign(wrinkling ? 3 * ne : 0, 0);
+  c->wrinkle_strain.assign(wrinkling ? ne : 0, 0);
   // Nodal averages: (sum, count) per node in a ghosted block-2 vector.
   std::vector<PetscInt> ghost_ids(m.num_ghost);
   for (PetscInt g = 0; g < m.num_ghost; ++g) ghost_ids[g] = m.global_id[m.num_owned + g];
@@ -433,6 +438,18 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_tru
       P->material->PlasticStrain(h, ep, &epb);
       c->ep[3 * e] = ep[0], c->ep[3 * e + 1] = ep[1], c->ep[3 * e + 2] = 0.5 * ep[2];
       c->ep_bar[e] = epb;
+    }
+    WrinkleInfo wi;
+    if (wrinkling && P->material->Wrinkling(E, h, &wi)) {
+      c->wrinkle_state[e] = wi.state;
+      c->wrinkle_strain[e] = wi.strain;
+      if (wi.state == WRINKLE_WRINKLED) {
+        // Pushed forward (F n) so ParaView glyphs it on the deformed film.
+        double v[3], n2 = 0.0;
+        for (int i = 0; i < 3; ++i) v[i] = F[2 * i] * wi.dir[0] + F[2 * i + 1] * wi.dir[1], n2 += v[i] * v[i];
+        const double inv = n2 > 0.0 ? 1.0 / std::sqrt(n2) : 0.0;
+        for (int i = 0; i < 3; ++i) c->wrinkle_dir[3 * e + i] = v[i] * inv;
+      }
     }
     for (int k = 0; k < 3; ++k) {
       a[2 * m.tri[3 * e + k]] += c->mises[e];

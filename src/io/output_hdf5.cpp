@@ -127,6 +127,9 @@ PetscErrorCode WriteXdmf(OutputFile *out) {
                                  {"principal_dir1", "principal_dir1", true, 3},
                                  {"principal_dir2", "principal_dir2", true, 3}};
     if (plastic) fields.push_back({"plastic_strain_eq", "plastic_strain_eq", true, 1});
+    if (out->problem->wrinkling)
+      for (const char *w : {"wrinkle_state", "wrinkle_dir", "wrinkle_strain"})
+        fields.push_back({w, w, true, std::string(w) == "wrinkle_dir" ? 3 : 1});
     for (const Field &fl : fields) {
       std::fprintf(f, " <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", fl.name,
                    fl.ncomp == 3 ? "Vector" : "Scalar", fl.cell ? "Cell" : "Node");
@@ -557,6 +560,11 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   if (P->material->HasPlasticStrain()) {
     PetscCall(WriteField(out, g, "plastic_strain", Layout::Cells, 3, c.ep.data()));
     PetscCall(WriteField(out, g, "plastic_strain_eq", Layout::Cells, 1, c.ep_bar.data()));
+  }
+  if (P->wrinkling) {
+    PetscCall(WriteField(out, g, "wrinkle_state", Layout::Cells, 1, c.wrinkle_state.data()));
+    PetscCall(WriteField(out, g, "wrinkle_dir", Layout::Cells, 3, c.wrinkle_dir.data()));
+    PetscCall(WriteField(out, g, "wrinkle_strain", Layout::Cells, 1, c.wrinkle_strain.data()));
   }
   if (P->contact) PetscCall(WriteContact(out, g));
   H5Gclose(g);
