@@ -14,10 +14,19 @@
 
 namespace etfe {
 
+// Compensation (issue 17, etfe/kernels/compensation.h): the pattern is cut smaller so that the
+// film drawn back to the design shape carries the design prestress. MD is the pattern's long
+// axis (x of the DXF), TD across it.
+enum class Compensation { None, Uniform, Stress };
+
 struct CutPatternOptions {
   PetscBool enabled = PETSC_FALSE;
   std::vector<std::string> strips;  // element sets to flatten (empty: every set but "all")
   FlattenOptions flatten;
+  Compensation compensation = Compensation::None;
+  double comp_md = 0.0, comp_td = 0.0;  // uniform: engineering strains the film is drawn by
+  double prestress[3] = {0.0, 0.0, 0.0};  // stress: S_MD, S_TD, S_MD-TD (PK2, MPa)
+  double young = 0.0, nu = 0.0;           // stress: the material's elastic constants
 };
 
 PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions *o);
@@ -25,5 +34,19 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
 // <dir>/<stem>_lines.csv; prints one line per named line. Collective.
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o,
                              const std::string &dir, const std::string &stem);
+
+// -analysis cutpattern (issue 17, cutpattern_surface.cpp): the strips of any surface mesh.
+struct CutPatternSurfaceOptions {
+  std::string mesh_file;     // -mesh_file: Gmsh surface, physical surfaces = strips
+  std::string results_path;  // -output_file: the pattern files go beside it, named by its stem
+  CutPatternOptions cutpattern;
+};
+PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o);
+// Reads and checks the mesh on rank 0, then CutPatternRun. Collective.
+PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOptions &o);
+// The strips of a surface (PETSc-free): every element set must be a disc (connected, manifold,
+// one boundary loop) and the sets must not overlap; adds a node set cut_<a>_<b> for the edges
+// strips a and b share (unless the file names one so). Notes say what was added.
+bool CutPatternPrepareSurface(MeshData *mesh, std::vector<std::string> *notes, std::string *err);
 
 } // namespace etfe

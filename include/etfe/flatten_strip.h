@@ -54,6 +54,10 @@ struct FlattenOptions {
   // whose name starts with one of the prefixes.
   std::vector<std::string> line_sets;
   std::vector<std::string> line_prefixes = {"cut_", "weld_"};
+  // Target plane lengths per link, in the order of FlattenResult::links of the same strip
+  // (compensation, issue 17): when given, the links fit these instead of their 3D lengths.
+  // The lines' length3d stays the 3D (design) length; link_error is against the target.
+  std::vector<double> link_target;
 };
 
 // A named line: the polyline through the mesh edges whose two nodes are both in the node set.
@@ -76,7 +80,7 @@ struct FlattenResult {
   std::vector<double> xy;
   std::vector<int> links;              // 2 node ids per link, smaller id first
   std::vector<char> link_on_boundary;  // 1 for boundary links
-  std::vector<double> link_length3d;   // L_i, mm
+  std::vector<double> link_length3d;   // L_i, mm (the target with FlattenOptions::link_target)
   std::vector<double> link_error;      // (l_i - L_i) / L_i
   int num_boundary_links = 0;
   std::string initial_guess;  // "projection" (best-fit plane) or "unfolding" (triangle by triangle)
@@ -122,9 +126,13 @@ bool WritePatternSvg(const std::string &path, const FlattenResult &r,
 // CSV table of the named line lengths of several strips, one row per line plus one row
 // "(outline)" per strip: strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,
 // expansion_pct.
+// With compensation (issue 17) result is the compensated pattern (what is cut) and
+// uncompensated the design pattern; two more columns then compare them:
+// length2d_uncompensated_mm, compensation_pct (without compensation: length2d_mm and 0).
 struct PatternTableEntry {
   std::string strip;
   const FlattenResult *result;
+  const FlattenResult *uncompensated = nullptr;
 };
 bool WritePatternLineTable(const std::string &path, const std::vector<PatternTableEntry> &strips,
                            std::string *err);

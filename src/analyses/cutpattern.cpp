@@ -3,16 +3,22 @@
 #include "etfe/cutpattern.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
 
+#include "etfe/kernels/compensation.h"
+#include "etfe/kernels/status.h"
+#include "etfe/material.h"
 #include "etfe/mesh/gmsh_reader.h"
 
 namespace etfe {
 
 PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions *o) {
   char strips[512] = "", lines[512] = "";
-  PetscBool set_strips = PETSC_FALSE, set_lines = PETSC_FALSE;
+  PetscBool set_strips = PETSC_FALSE, set_lines = PETSC_FALSE, ps_set = PETSC_FALSE;
+  PetscInt nps = 3;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Cutting pattern (after form finding)", "CutPattern");
   PetscCall(PetscOptionsBool("-cutpattern", "Flatten the strips of the surface into cutting patterns", "", o->enabled,
@@ -27,7 +33,49 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
                              o->flatten.interior_weight, &o->flatten.interior_weight, nullptr));
   PetscCall(PetscOptionsInt("-cutpattern_max_iterations", "Gauss-Newton iterations before giving up", "",
                             o->flatten.max_iterations, &o->flatten.max_iterations, nullptr));
+  static const char *const comp_kinds[] = {"none", "uniform", "stress"};
+  PetscInt comp = (PetscInt)o->compensation;
+  PetscCall(PetscOptionsEList("-cutpattern_compensation",
+                              "Shrink the patterns so the drawn film reaches its prestress: none, uniform "
+                              "(-cutpattern_compensation_md/td) or stress (-cutpattern_prestress and the material)",
+                              "", comp_kinds, 3, comp_kinds[comp], &comp, nullptr));
+  o->compensation = (Compensation)comp;
+  PetscCall(PetscOptionsReal("-cutpattern_compensation_md",
+                             "Uniform compensation along the pattern's long axis (MD): the film is drawn by this "
+                             "engineering strain, e.g. 0.01 cuts MD lengths 1/1.01 of the design",
+                             "", o->comp_md, &o->comp_md, nullptr));
+  PetscCall(PetscOptionsReal("-cutpattern_compensation_td", "Uniform compensation across the pattern (TD), as _md",
+                             "", o->comp_td, &o->comp_td, nullptr));
+  PetscCall(PetscOptionsRealArray("-cutpattern_prestress",
+                                  "Design prestress S_MD,S_TD[,S_MD-TD] (PK2, MPa) for -cutpattern_compensation "
+                                  "stress, MD along the pattern's long axis",
+                                  "", o->prestress, &nps, &ps_set));
   PetscOptionsEnd();
+  PetscCheck(!ps_set || nps >= 2, comm, PETSC_ERR_ARG_SIZ,
+             "-cutpattern_prestress needs S_MD,S_TD (and optionally S_MD-TD) in MPa");
+  if (ps_set && nps == 2) o->prestress[2] = 0.0;
+  PetscCheck(o->comp_md > -1 && o->comp_td > -1 && std::isfinite(o->comp_md) && std::isfinite(o->comp_td), comm,
+             PETSC_ERR_ARG_OUTOFRANGE,
+             "-cutpattern_compensation_md %g / _td %g: compensation strains must be finite and > -1", o->comp_md,
+             o->comp_td);
+  PetscCheck(o->compensation != Compensation::Uniform || o->comp_md != 0 || o->comp_td != 0, comm,
+             PETSC_ERR_USER_INPUT,
+             "-cutpattern_compensation uniform needs -cutpattern_compensation_md and/or _td (e.g. 0.01)");
+  if (o->compensation == Compensation::Stress) {
+    PetscCheck(ps_set, comm, PETSC_ERR_USER_INPUT,
+               "-cutpattern_compensation stress needs the design prestress: -cutpattern_prestress S_MD,S_TD (MPa)");
+    // The prestress is reached elastically: the material component's elastic constants.
+    std::unique_ptr<Material> m;
+    PetscCall(MaterialCreateFromOptions(comm, &m));
+    m->ElasticConstants(&o->young, &o->nu);
+    double E[3], M[3];
+    PetscCheck(CompensationPlaneStressStrain(o->young, o->nu, o->prestress, E) == KERNEL_OK &&
+                   CompensationMetricFromStrain(E, M) == KERNEL_OK,
+               comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cutpattern_prestress %g,%g,%g MPa with Young's modulus %g MPa, Poisson's ratio %g: no stretch of a "
+               "film reaches this stress (check the values and -material_young/-material_poisson)",
+               o->prestress[0], o->prestress[1], o->prestress[2], o->young, o->nu);
+  }
   PetscCheck(o->flatten.boundary_weight > 0 && o->flatten.interior_weight > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_boundary_weight and -cutpattern_interior_weight must be positive");
   auto split = [](const char *s, std::vector<std::string> *v) {
@@ -73,6 +121,56 @@ MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const
   return s;
 }
 
+// Target plane lengths of the compensated pattern of a strip: each link's design (3D) length
+// times sqrt(d^T M d) of the rest metric M of its triangles (averaged over its one or two), d its
+// direction in the uncompensated pattern r0 (x = MD, y = TD). False with a message for a metric
+// no stretch reaches.
+bool CompensatedTargets(const MeshData &strip, const FlattenResult &r0, const CutPatternOptions &o,
+                        std::vector<double> *target, std::string *err) {
+  double M[3] = {1.0, 1.0, 0.0}, E[3];
+  int st = KERNEL_OK;
+  if (o.compensation == Compensation::Uniform) st = CompensationMetricUniform(o.comp_md, o.comp_td, M);
+  else if (o.compensation == Compensation::Stress) {
+    st = CompensationPlaneStressStrain(o.young, o.nu, o.prestress, E);
+    if (st == KERNEL_OK) st = CompensationMetricFromStrain(E, M);
+  }
+  if (st != KERNEL_OK) {
+    *err = std::string("compensation: ") + KernelStatusName(st) + " (check the compensation options)";
+    return false;
+  }
+  // One metric for every triangle here (a uniform prestress); the per-link mean is where a
+  // per-element stress would enter.
+  std::map<std::pair<int, int>, int> link_of;
+  const int nl = (int)r0.links.size() / 2;
+  for (int i = 0; i < nl; ++i) link_of[{r0.links[2 * i], r0.links[2 * i + 1]}] = i;
+  std::vector<double> sum(nl, 0.0);
+  std::vector<int> count(nl, 0);
+  for (int e = 0; e < strip.NumElements(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      int a = strip.triangles[3 * e + k], b = strip.triangles[3 * e + (k + 1) % 3];
+      if (a > b) std::swap(a, b);
+      const int i = link_of.at({a, b});
+      const double d[2] = {r0.xy[2 * b] - r0.xy[2 * a], r0.xy[2 * b + 1] - r0.xy[2 * a + 1]};
+      const double *pa = &strip.coords[3 * a], *pb = &strip.coords[3 * b];
+      const double L = std::sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]) +
+                                 (pb[2] - pa[2]) * (pb[2] - pa[2]));
+      const double l = CompensatedLength(M, L, d);
+      if (!(l > 0)) {
+        *err = "compensation: link " + std::to_string(a) + "-" + std::to_string(b) + " collapsed in the pattern";
+        return false;
+      }
+      sum[i] += l;
+      ++count[i];
+    }
+  target->resize(nl);
+  for (int i = 0; i < nl; ++i) (*target)[i] = sum[i] / std::max(1, count[i]);
+  return true;
+}
+
+const char *CompensationName(Compensation c) {
+  return c == Compensation::Uniform ? "uniform" : c == Compensation::Stress ? "stress" : "none";
+}
+
 } // namespace
 
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o, const std::string &dir,
@@ -89,7 +187,7 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
     if (names.empty())
       for (const auto &kv : shape.element_sets)
         if (kv.first != "all") names.push_back(kv.first);
-    std::vector<FlattenResult> results(names.size());
+    std::vector<FlattenResult> results(names.size()), design(names.size());
     std::vector<PatternTableEntry> table;
     char line[512];
     for (size_t k = 0; k < names.size() && ok; ++k) {
@@ -106,6 +204,17 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
         ok = 0;
         break;
       }
+      if (o.compensation != Compensation::None) {
+        // The design pattern first (its axes define MD/TD), then the pattern of the compensated
+        // link lengths, started again from the strip's own layouts.
+        design[k] = r;
+        FlattenOptions fo = o.flatten;
+        if (!CompensatedTargets(strip, design[k], o, &fo.link_target, &err) || !FlattenStrip(strip, fo, &r, &err)) {
+          err = "compensated cutting pattern of strip " + names[k] + ": " + err;
+          ok = 0;
+          break;
+        }
+      }
       const std::string base = dir + "/" + stem + "_" + names[k];
       MeshData flat = strip;
       for (int n = 0; n < flat.NumNodes(); ++n)
@@ -115,7 +224,7 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
         ok = 0;
         break;
       }
-      table.push_back({names[k], &r});
+      table.push_back({names[k], &r, o.compensation != Compensation::None ? &design[k] : nullptr});
       std::snprintf(line, sizeof line,
                     "cutpattern: strip %s: %d nodes, %d links, %d iterations (%s start), S = %.3e mm^2, link error "
                     "max %.3e rms %.3e; files %s.{dxf,svg,msh}\n",
@@ -129,6 +238,15 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
       for (const PatternLine &pl : r.lines) {
         std::snprintf(line, sizeof line, "cutpattern: strip %s line %s: 3D %.3f mm, 2D %.3f mm, expansion %.4f %%\n",
                       names[k].c_str(), pl.name.c_str(), pl.length3d, pl.length2d, pl.expansion_pct);
+        report += line;
+      }
+      if (o.compensation != Compensation::None) {
+        const FlattenResult &d = design[k];
+        std::snprintf(line, sizeof line,
+                      "cutpattern: strip %s compensation %s: outline 2D %.6f mm (uncompensated %.6f mm, %+.4f %%), "
+                      "fit to the compensated lengths max %.3e\n",
+                      names[k].c_str(), CompensationName(o.compensation), r.outline_length2d, d.outline_length2d,
+                      100.0 * (r.outline_length2d - d.outline_length2d) / d.outline_length2d, r.max_rel_error);
         report += line;
       }
     }

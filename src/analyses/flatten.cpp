@@ -75,10 +75,13 @@ bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenRes
   p.topo = &t;
   p.L.resize(nl);
   p.w.resize(nl);
+  if (!opt.link_target.empty() && (int)opt.link_target.size() != nl)
+    return Fail(m, err, Format("%d target link lengths given for %d links", (int)opt.link_target.size(), nl));
   double lmean = 0.0;
   for (int i = 0; i < nl; ++i) {
     const int a = t.links[2 * i], b = t.links[2 * i + 1];
-    p.L[i] = Dist3(&m.coords[3 * (size_t)a], &m.coords[3 * (size_t)b]);
+    p.L[i] = opt.link_target.empty() ? Dist3(&m.coords[3 * (size_t)a], &m.coords[3 * (size_t)b])
+                                     : opt.link_target[i];
     lmean += p.L[i] / nl;
     p.w[i] = t.Boundary(i) ? opt.boundary_weight : opt.interior_weight;
   }

@@ -381,7 +381,9 @@ bool WritePatternSvg(const std::string &path, const FlattenResult &r,
 
 bool WritePatternLineTable(const std::string &path, const std::vector<PatternTableEntry> &strips,
                            std::string *err) {
-  std::string s = "strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,expansion_pct\n";
+  std::string s = "strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,expansion_pct,"
+                  "length2d_uncompensated_mm,compensation_pct\n";
+  auto comp = [](double l, double l0) { return l0 > 0 ? (l - l0) / l0 * 100 : 0.0; };
   for (const PatternTableEntry &e : strips) {
     if (!e.result) continue;
     const FlattenResult &r = *e.result;
@@ -390,13 +392,19 @@ bool WritePatternLineTable(const std::string &path, const std::vector<PatternTab
     const double pct = r.outline_length3d > 0
                            ? (r.outline_length2d - r.outline_length3d) / r.outline_length3d * 100
                            : 0.0;
+    const FlattenResult &u = e.uncompensated ? *e.uncompensated : r;
     const std::string strip = CsvField(e.strip);
-    Append(&s, "%s,(outline),1,%d,%d,%.4f,%.4f,%.6g\n", strip.c_str(), (int)r.outline.size(),
-           segs, r.outline_length3d, r.outline_length2d, pct);
-    for (const PatternLine &l : r.lines)
-      Append(&s, "%s,%s,%d,%d,%d,%.4f,%.4f,%.6g\n", strip.c_str(), CsvField(l.name).c_str(),
-             l.on_boundary ? 1 : 0, (int)l.paths.size(), l.segments, l.length3d, l.length2d,
-             l.expansion_pct);
+    Append(&s, "%s,(outline),1,%d,%d,%.4f,%.4f,%.6g,%.4f,%.6g\n", strip.c_str(),
+           (int)r.outline.size(), segs, r.outline_length3d, r.outline_length2d, pct,
+           u.outline_length2d, comp(r.outline_length2d, u.outline_length2d));
+    for (size_t k = 0; k < r.lines.size(); ++k) {
+      const PatternLine &l = r.lines[k];
+      // Both patterns measure the same sets in the same order.
+      const double l0 = k < u.lines.size() ? u.lines[k].length2d : l.length2d;
+      Append(&s, "%s,%s,%d,%d,%d,%.4f,%.4f,%.6g,%.4f,%.6g\n", strip.c_str(),
+             CsvField(l.name).c_str(), l.on_boundary ? 1 : 0, (int)l.paths.size(), l.segments,
+             l.length3d, l.length2d, l.expansion_pct, l0, comp(l.length2d, l0));
+    }
   }
   return WriteFile(path, s, err);
 }

@@ -22,6 +22,7 @@ static const char help[] =
 #include "etfe/assembly.h"
 #include "etfe/checkpoint.h"
 #include "etfe/contact.h"
+#include "etfe/cutpattern.h"
 #include "etfe/formfind.h"
 #include "etfe/linesearch.h"
 #include "etfe/load_stepper.h"
@@ -203,16 +204,20 @@ PetscErrorCode ConciseErrorHandler(MPI_Comm comm, int line, const char *fun, con
   return n;
 }
 
-// -analysis: stretch (load stepping, the default) or formfind; *formfind true for the latter.
-PetscErrorCode AnalysisFromOptions(MPI_Comm comm, PetscBool *formfind) {
-  static const char *const kinds[] = {"stretch", "formfind"};
+// -analysis: stretch (load stepping, the default), formfind, or cutpattern (the strips of a
+// surface mesh, no scene); *formfind / *cutpattern true for the latter two.
+PetscErrorCode AnalysisFromOptions(MPI_Comm comm, PetscBool *formfind, PetscBool *cutpattern) {
+  static const char *const kinds[] = {"stretch", "formfind", "cutpattern"};
   PetscInt kind = 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Analysis", "Analysis");
-  PetscCall(PetscOptionsEList("-analysis", "stretch (load stepping) or formfind (prescribed-stress shape)", "", kinds,
-                              2, kinds[0], &kind, nullptr));
+  PetscCall(PetscOptionsEList("-analysis",
+                              "stretch (load stepping), formfind (prescribed-stress shape) or cutpattern (flatten "
+                              "the physical surfaces of -mesh_file, no scene)",
+                              "", kinds, 3, kinds[0], &kind, nullptr));
   PetscOptionsEnd();
   *formfind = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
+  *cutpattern = kind == 2 ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -244,8 +249,18 @@ PetscErrorCode Run() {
 
   // 2. The scene: mesh, supports, loads, schedule.
   // The analysis first: a scene that offers both builds the one asked for.
-  PetscBool formfind_flag = PETSC_FALSE;
-  PetscCall(AnalysisFromOptions(comm, &formfind_flag));
+  PetscBool formfind_flag = PETSC_FALSE, cutpattern_flag = PETSC_FALSE;
+  PetscCall(AnalysisFromOptions(comm, &formfind_flag, &cutpattern_flag));
+  if (cutpattern_flag && !list) {
+    // Cutting patterns of a surface mesh: no scene, problem or solver.
+    CutPatternSurfaceOptions cso;
+    PetscCall(CutPatternSurfaceOptionsFromCommandLine(comm, &cso));
+    if (help_only) PetscFunctionReturn(0);
+    PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
+    PetscCall(CutPatternSurfaceRun(comm, cso));
+    PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
+    PetscFunctionReturn(0);
+  }
   const bool formfind = formfind_flag;
   SceneSpec scene;
   scene.form_finding = formfind;

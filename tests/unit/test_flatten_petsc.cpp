@@ -552,7 +552,8 @@ void TestExport(const std::string &dir) {
   const std::vector<std::string> csv = ReadLines(stem + ".csv");
   CHECK(csv.size() == 1 + 2 * (1 + r.lines.size()), "CSV rows %zu", csv.size());
   if (!csv.empty())
-    CHECK(csv[0] == "strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,expansion_pct",
+    CHECK(csv[0] == "strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,expansion_pct,"
+                    "length2d_uncompensated_mm,compensation_pct",
           "CSV header");
   for (const std::string &l : csv) std::printf("    csv| %s\n", l.c_str());
   if (!std::getenv("ETFE_KEEP_TEST_FILES")) {

@@ -1,0 +1,210 @@
+// -analysis cutpattern (issue 17): cutting patterns of any surface mesh, with no scene and no
+// form finding. The strips are the surface's physical groups (element sets); the cutting lines
+// between them are the edges two groups share, measured as node sets cut_<a>_<b> (besides any
+// named curve groups: cut_*, weld_* and -cutpattern_lines). Each strip must be a disc: connected,
+// manifold (no edge in three triangles, no node where the strip touches itself) with one
+// boundary loop, since only a disc lies flat without a further cut. Then the cutting-pattern
+// driver (cutpattern.cpp) flattens, compensates and writes the DXF/SVG/msh files and the CSV.
+#include <petscsys.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "etfe/cutpattern.h"
+#include "etfe/mesh/gmsh_reader.h"
+#include "etfe/output.h"
+#include "etfe/rank0.h"
+
+namespace etfe {
+
+namespace {
+
+std::string NodeName(const MeshData &m, int n) {
+  return "node " + std::to_string(n < (int)m.node_tags.size() ? m.node_tags[n] : (long long)n);
+}
+
+// Disc topology of one strip (its triangle ids in m): false with a message saying what it is.
+bool CheckDisc(const MeshData &m, const std::string &name, const std::vector<int> &tris, std::string *err) {
+  std::map<std::pair<int, int>, int> edge_count;
+  std::map<int, std::vector<int>> node_tris;
+  for (int e : tris)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.triangles[3 * e + k], b = m.triangles[3 * e + (k + 1) % 3];
+      ++edge_count[{std::min(a, b), std::max(a, b)}];
+      node_tris[a].push_back(e);
+    }
+  const std::string what = m.source + ": strip (physical surface) \"" + name + "\"";
+  // Vertex manifold: the triangles around each node form one fan (joined across edges that
+  // hold the node).
+  for (const auto &kv : node_tris) {
+    const int n = kv.first;
+    const std::vector<int> &ts = kv.second;
+    std::vector<int> fan(ts.size(), -1);
+    int fans = 0;
+    for (size_t s = 0; s < ts.size(); ++s) {
+      if (fan[s] >= 0) continue;
+      std::vector<size_t> stack{s};
+      fan[s] = fans;
+      while (!stack.empty()) {
+        const int e = ts[stack.back()];
+        stack.pop_back();
+        for (size_t u = 0; u < ts.size(); ++u) {
+          if (fan[u] >= 0) continue;
+          int shared = 0;  // nodes shared with e besides n
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j)
+              shared += m.triangles[3 * e + i] != n && m.triangles[3 * e + i] == m.triangles[3 * ts[u] + j];
+          if (shared > 0) fan[u] = fans, stack.push_back(u);
+        }
+      }
+      ++fans;
+    }
+    if (fans > 1) {
+      *err = what + " touches itself at " + NodeName(m, n) + " (" + std::to_string(fans) +
+             " separate fans of triangles meet there): a strip must be a manifold surface; split the group there";
+      return false;
+    }
+  }
+  // Euler characteristic and boundary loops: a disc has V - E + F = 1 and one loop.
+  const long long V = (long long)node_tris.size(), E = (long long)edge_count.size(), F = (long long)tris.size();
+  std::map<int, std::vector<int>> bnd;
+  for (const auto &kv : edge_count) {
+    if (kv.second > 2) {
+      *err = what + ": the edge between " + NodeName(m, kv.first.first) + " and " + NodeName(m, kv.first.second) +
+             " belongs to " + std::to_string(kv.second) + " triangles: a strip must be a manifold surface";
+      return false;
+    }
+    if (kv.second == 1) bnd[kv.first.first].push_back(kv.first.second), bnd[kv.first.second].push_back(kv.first.first);
+  }
+  int loops = 0;
+  std::set<int> seen;
+  for (const auto &kv : bnd) {
+    if (seen.count(kv.first)) continue;
+    ++loops;
+    std::vector<int> stack{kv.first};
+    seen.insert(kv.first);
+    while (!stack.empty()) {
+      const int v = stack.back();
+      stack.pop_back();
+      for (int w : bnd[v])
+        if (seen.insert(w).second) stack.push_back(w);
+    }
+  }
+  const long long chi = V - E + F;
+  if (chi == 1 && loops == 1) return true;
+  std::string kind;
+  if (loops == 0) kind = "a closed surface (no boundary to cut from)";
+  else if (chi == 2 - loops) kind = std::to_string(loops) + " boundary loops (a tube or a strip with holes)";
+  else kind = "a surface with " + std::to_string(loops) + " boundary loops and handles or separate pieces";
+  char num[160];
+  std::snprintf(num, sizeof num, " (V - E + F = %lld - %lld + %lld = %lld; a disc has 1 and one boundary loop)", V, E,
+                F, chi);
+  *err = what + " is not a disc but " + kind + num +
+         ": it cannot lie flat without another cut; split it into disc-like strips with more physical groups";
+  return false;
+}
+
+} // namespace
+
+bool CutPatternPrepareSurface(MeshData *m, std::vector<std::string> *notes, std::string *err) {
+  if (m->element_sets.empty()) {
+    *err = m->source + ": the mesh has no physical surface groups, so no strips to flatten: name each strip "
+                       "with Physical Surface(\"name\") = {...} in Gmsh";
+    return false;
+  }
+  const int ne = m->NumElements();
+  std::vector<int> strip_of(ne, -1);
+  std::vector<std::string> names;
+  for (const auto &kv : m->element_sets) {
+    const int s = (int)names.size();
+    names.push_back(kv.first);
+    for (int e : kv.second) {
+      if (strip_of[e] >= 0) {
+        *err = m->source + ": triangle " +
+               std::to_string(e < (int)m->element_tags.size() ? m->element_tags[e] : (long long)e) +
+               " is in the strips \"" + names[strip_of[e]] + "\" and \"" + kv.first +
+               "\": strips must not overlap; keep each triangle in one physical surface";
+        return false;
+      }
+      strip_of[e] = s;
+    }
+    if (!CheckDisc(*m, kv.first, kv.second, err)) return false;
+  }
+  const int loose = (int)std::count(strip_of.begin(), strip_of.end(), -1);
+  if (loose) notes->push_back(std::to_string(loose) + " triangles in no physical surface group are in no strip");
+  // Cutting lines: edges whose two triangles lie in different strips.
+  std::map<std::pair<int, int>, std::vector<int>> edge_tris;
+  for (int e = 0; e < ne; ++e)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m->triangles[3 * e + k], b = m->triangles[3 * e + (k + 1) % 3];
+      edge_tris[{std::min(a, b), std::max(a, b)}].push_back(e);
+    }
+  std::map<std::string, std::set<int>> cuts;
+  for (const auto &kv : edge_tris)
+    for (size_t i = 0; i < kv.second.size(); ++i)
+      for (size_t j = i + 1; j < kv.second.size(); ++j) {
+        const int s = strip_of[kv.second[i]], t = strip_of[kv.second[j]];
+        if (s < 0 || t < 0 || s == t) continue;
+        const std::string name = "cut_" + names[std::min(s, t)] + "_" + names[std::max(s, t)];
+        cuts[name].insert(kv.first.first);
+        cuts[name].insert(kv.first.second);
+      }
+  for (const auto &kv : cuts) {
+    if (m->node_sets.count(kv.first)) {
+      notes->push_back("the node set " + kv.first + " of the file is kept as that cutting line");
+      continue;
+    }
+    m->node_sets[kv.first] = std::vector<int>(kv.second.begin(), kv.second.end());
+    notes->push_back("cutting line " + kv.first + ": " + std::to_string(kv.second.size()) + " nodes");
+  }
+  return true;
+}
+
+PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o) {
+  char mesh_file[PETSC_MAX_PATH_LEN] = "";
+  PetscBool file_set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Cutting patterns of a surface mesh (-analysis cutpattern)", "CutPattern");
+  PetscCall(PetscOptionsString("-mesh_file",
+                               "Gmsh surface mesh whose physical surfaces are the strips (STL/OBJ: convert with "
+                               "gmsh first)",
+                               "", mesh_file, mesh_file, sizeof mesh_file, &file_set));
+  PetscOptionsEnd();
+  PetscCall(CutPatternOptionsFromCommandLine(comm, &o->cutpattern));
+  o->mesh_file = file_set ? mesh_file : "";
+  const std::string stem = file_set ? std::filesystem::path(mesh_file).stem().string() : std::string("surface");
+  OutputOptions oo;
+  PetscCall(OutputOptionsFromCommandLine(comm, stem.c_str(), &oo));
+  o->results_path = oo.path;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOptions &o) {
+  PetscMPIInt rank;
+  MeshData mesh;
+  std::vector<std::string> notes;
+  std::string err;
+  int ok = 1;
+  PetscFunctionBeginUser;
+  PetscCheck(!o.mesh_file.empty(), comm, PETSC_ERR_USER_INPUT,
+             "-analysis cutpattern needs the surface: -mesh_file surface.msh (Gmsh; its physical surfaces are the "
+             "strips)");
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0)
+    ok = ReadGmshFile(o.mesh_file, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
+         CutPatternPrepareSurface(&mesh, &notes, &err);
+  PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
+  for (const std::string &n : mesh.notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", o.mesh_file.c_str(), n.c_str()));
+  for (const std::string &n : notes) PetscCall(PetscPrintf(comm, "cutpattern: %s\n", n.c_str()));
+  // The pattern files go beside the results path: <dir>/<stem>_<strip>.{dxf,svg,msh}, <stem>_lines.csv.
+  const std::filesystem::path out(o.results_path);
+  const std::string dir = out.parent_path().empty() ? "." : out.parent_path().string();
+  PetscCall(CutPatternRun(comm, mesh, o.cutpattern, dir, out.stem().string()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
