@@ -26,7 +26,14 @@ struct CutPatternOptions {
   Compensation compensation = Compensation::None;
   double comp_md = 0.0, comp_td = 0.0;  // uniform: engineering strains the film is drawn by
   double prestress[3] = {0.0, 0.0, 0.0};  // stress: S_MD, S_TD, S_MD-TD (PK2, MPa)
+  bool prestress_given = false;           // -cutpattern_prestress was given (it then wins)
   double young = 0.0, nu = 0.0;           // stress: the material's elastic constants
+  // Stress compensation from a computed stress (form finding) when no -cutpattern_prestress is
+  // given: per element of the surface S_MD, S_TD, S_MD-TD in the element's own frame (md_axis
+  // projected on it). element_stress says the caller provides it (filled on rank 0 only).
+  bool element_stress = false;
+  std::vector<double> element_prestress;
+  double md_axis[3] = {1.0, 0.0, 0.0};
 };
 
 PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions *o);

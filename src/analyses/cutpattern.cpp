@@ -61,16 +61,15 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
   PetscCheck(o->compensation != Compensation::Uniform || o->comp_md != 0 || o->comp_td != 0, comm,
              PETSC_ERR_USER_INPUT,
              "-cutpattern_compensation uniform needs -cutpattern_compensation_md and/or _td (e.g. 0.01)");
+  o->prestress_given = ps_set;
   if (o->compensation == Compensation::Stress) {
-    PetscCheck(ps_set, comm, PETSC_ERR_USER_INPUT,
-               "-cutpattern_compensation stress needs the design prestress: -cutpattern_prestress S_MD,S_TD (MPa)");
     // The prestress is reached elastically: the material component's elastic constants.
     std::unique_ptr<Material> m;
     PetscCall(MaterialCreateFromOptions(comm, &m));
     m->ElasticConstants(&o->young, &o->nu);
     double E[3], M[3];
-    PetscCheck(CompensationPlaneStressStrain(o->young, o->nu, o->prestress, E) == KERNEL_OK &&
-                   CompensationMetricFromStrain(E, M) == KERNEL_OK,
+    PetscCheck(!ps_set || (CompensationPlaneStressStrain(o->young, o->nu, o->prestress, E) == KERNEL_OK &&
+                           CompensationMetricFromStrain(E, M) == KERNEL_OK),
                comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-cutpattern_prestress %g,%g,%g MPa with Young's modulus %g MPa, Poisson's ratio %g: no stretch of a "
                "film reaches this stress (check the values and -material_young/-material_poisson)",
@@ -125,21 +124,37 @@ MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const
 // times sqrt(d^T M d) of the rest metric M of its triangles (averaged over its one or two), d its
 // direction in the uncompensated pattern r0 (x = MD, y = TD). False with a message for a metric
 // no stretch reaches.
-bool CompensatedTargets(const MeshData &strip, const FlattenResult &r0, const CutPatternOptions &o,
-                        std::vector<double> *target, std::string *err) {
-  double M[3] = {1.0, 1.0, 0.0}, E[3];
-  int st = KERNEL_OK;
-  if (o.compensation == Compensation::Uniform) st = CompensationMetricUniform(o.comp_md, o.comp_td, M);
-  else if (o.compensation == Compensation::Stress) {
-    st = CompensationPlaneStressStrain(o.young, o.nu, o.prestress, E);
-    if (st == KERNEL_OK) st = CompensationMetricFromStrain(E, M);
+bool CompensatedTargets(const MeshData &strip, const std::vector<int> &elements, const FlattenResult &r0,
+                        const CutPatternOptions &o, std::vector<double> *target, std::string *err) {
+  // The rest metric of each triangle: one for all with uniform factors or a given prestress, or
+  // from each element's own (form-finding) stress turned into the pattern's axes.
+  const int ne = strip.NumElements();
+  std::vector<double> metric(3 * (size_t)ne);
+  for (int e = 0; e < ne; ++e) {
+    double *M = &metric[3 * (size_t)e], E[3], S[3];
+    int st = KERNEL_OK;
+    if (o.compensation == Compensation::Uniform) {
+      st = CompensationMetricUniform(o.comp_md, o.comp_td, M);
+    } else if (o.prestress_given) {
+      st = CompensationPlaneStressStrain(o.young, o.nu, o.prestress, E);
+      if (st == KERNEL_OK) st = CompensationMetricFromStrain(E, M);
+    } else {
+      double X[9], xy[6];
+      for (int k = 0; k < 3; ++k) {
+        const int n = strip.triangles[3 * e + k];
+        for (int i = 0; i < 3; ++i) X[3 * k + i] = strip.coords[3 * n + i];
+        xy[2 * k] = r0.xy[2 * n], xy[2 * k + 1] = r0.xy[2 * n + 1];
+      }
+      st = CompensationStressInPattern(X, xy, o.md_axis, &o.element_prestress[3 * (size_t)elements[e]], S);
+      if (st == KERNEL_OK) st = CompensationPlaneStressStrain(o.young, o.nu, S, E);
+      if (st == KERNEL_OK) st = CompensationMetricFromStrain(E, M);
+    }
+    if (st != KERNEL_OK) {
+      *err = "compensation of element " + std::to_string(elements[e]) + ": " + KernelStatusName(st) +
+             " (check the compensation options and the element's stress)";
+      return false;
+    }
   }
-  if (st != KERNEL_OK) {
-    *err = std::string("compensation: ") + KernelStatusName(st) + " (check the compensation options)";
-    return false;
-  }
-  // One metric for every triangle here (a uniform prestress); the per-link mean is where a
-  // per-element stress would enter.
   std::map<std::pair<int, int>, int> link_of;
   const int nl = (int)r0.links.size() / 2;
   for (int i = 0; i < nl; ++i) link_of[{r0.links[2 * i], r0.links[2 * i + 1]}] = i;
@@ -154,7 +169,7 @@ bool CompensatedTargets(const MeshData &strip, const FlattenResult &r0, const Cu
       const double *pa = &strip.coords[3 * a], *pb = &strip.coords[3 * b];
       const double L = std::sqrt((pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]) +
                                  (pb[2] - pa[2]) * (pb[2] - pa[2]));
-      const double l = CompensatedLength(M, L, d);
+      const double l = CompensatedLength(&metric[3 * (size_t)e], L, d);
       if (!(l > 0)) {
         *err = "compensation: link " + std::to_string(a) + "-" + std::to_string(b) + " collapsed in the pattern";
         return false;
@@ -179,6 +194,10 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
   int ok = 1;
   std::string err, report;
   PetscFunctionBeginUser;
+  PetscCheck(o.compensation != Compensation::Stress || o.prestress_given || o.element_stress, comm,
+             PETSC_ERR_USER_INPUT,
+             "-cutpattern_compensation stress needs the design prestress: -cutpattern_prestress S_MD,S_TD (MPa) "
+             "(form finding gives its own stress)");
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) {
     std::error_code ec;
@@ -209,7 +228,7 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
         // link lengths, started again from the strip's own layouts.
         design[k] = r;
         FlattenOptions fo = o.flatten;
-        if (!CompensatedTargets(strip, design[k], o, &fo.link_target, &err) || !FlattenStrip(strip, fo, &r, &err)) {
+        if (!CompensatedTargets(strip, it->second, design[k], o, &fo.link_target, &err) || !FlattenStrip(strip, fo, &r, &err)) {
           err = "compensated cutting pattern of strip " + names[k] + ": " + err;
           ok = 0;
           break;

@@ -208,7 +208,22 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
                           res->iterations, path.c_str()));
     if (o.cutpattern.enabled) {
       const std::filesystem::path p(path);
-      PetscCall(CutPatternRun(P->comm, shape, o.cutpattern, p.parent_path().empty() ? "." : p.parent_path().string(),
+      // Stress compensation without -cutpattern_prestress: the form-finding stress, (ratio S, S)
+      // in each element's MD/TD frame (the Cauchy stress at the fixed point, taken as the PK2
+      // the drawn film must reach).
+      CutPatternOptions cpo = o.cutpattern;
+      cpo.element_stress = true;
+      for (int i = 0; i < 3; ++i) cpo.md_axis[i] = P->scene.md_axis[i];
+      if (P->rank == 0 && cpo.compensation == Compensation::Stress && !cpo.prestress_given) {
+        const auto &ratio = P->scene.element_stress_ratio;
+        cpo.element_prestress.resize(3 * (size_t)shape.NumElements());
+        for (int e = 0; e < shape.NumElements(); ++e) {
+          cpo.element_prestress[3 * e] = (ratio.empty() ? o.ratio : ratio[e]) * o.stress;
+          cpo.element_prestress[3 * e + 1] = o.stress;
+          cpo.element_prestress[3 * e + 2] = 0.0;
+        }
+      }
+      PetscCall(CutPatternRun(P->comm, shape, cpo, p.parent_path().empty() ? "." : p.parent_path().string(),
                               p.stem().string()));
     }
   }

@@ -38,6 +38,43 @@ int CompensationMetricUniform(double c_md, double c_td, double M[3]) {
   return KERNEL_OK;
 }
 
+int CompensationStressInPattern(const double X[9], const double xy[6], const double md_axis[3],
+                                const double S_local[3], double S_pattern[3]) {
+  double g1[3], g2[3], n[3];
+  for (int i = 0; i < 3; ++i) g1[i] = X[3 + i] - X[i], g2[i] = X[6 + i] - X[i];
+  n[0] = g1[1] * g2[2] - g1[2] * g2[1];
+  n[1] = g1[2] * g2[0] - g1[0] * g2[2];
+  n[2] = g1[0] * g2[1] - g1[1] * g2[0];
+  const double nn = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  const double mm = std::sqrt(md_axis[0] * md_axis[0] + md_axis[1] * md_axis[1] + md_axis[2] * md_axis[2]);
+  if (!(nn > 0) || !std::isfinite(nn) || !(mm > 0)) return KERNEL_DEGENERATE;
+  const double mn = (md_axis[0] * n[0] + md_axis[1] * n[1] + md_axis[2] * n[2]) / nn;
+  double t[3];
+  for (int i = 0; i < 3; ++i) t[i] = md_axis[i] - mn * n[i] / nn;
+  if (std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) < 1e-3 * mm)
+    for (int i = 0; i < 3; ++i) t[i] = g1[i];
+  // t = a g1 + b g2 (t lies in the plane), carried over as a f1 + b f2.
+  const double g11 = g1[0] * g1[0] + g1[1] * g1[1] + g1[2] * g1[2];
+  const double g12 = g1[0] * g2[0] + g1[1] * g2[1] + g1[2] * g2[2];
+  const double g22 = g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2];
+  const double tg1 = t[0] * g1[0] + t[1] * g1[1] + t[2] * g1[2];
+  const double tg2 = t[0] * g2[0] + t[1] * g2[1] + t[2] * g2[2];
+  const double det = g11 * g22 - g12 * g12;
+  if (!(det > 0)) return KERNEL_DEGENERATE;
+  const double a = (tg1 * g22 - tg2 * g12) / det, b = (tg2 * g11 - tg1 * g12) / det;
+  const double f1[2] = {xy[2] - xy[0], xy[3] - xy[1]}, f2[2] = {xy[4] - xy[0], xy[5] - xy[1]};
+  if (!(f1[0] * f2[1] - f1[1] * f2[0] > 0)) return KERNEL_DEGENERATE;
+  const double tx = a * f1[0] + b * f2[0], ty = a * f1[1] + b * f2[1];
+  const double tl = std::hypot(tx, ty);
+  if (!(tl > 0)) return KERNEL_DEGENERATE;
+  const double c = tx / tl, s = ty / tl;
+  const double Smd = S_local[0], Std = S_local[1], Smt = S_local[2];
+  S_pattern[0] = c * c * Smd + s * s * Std - 2.0 * c * s * Smt;
+  S_pattern[1] = s * s * Smd + c * c * Std + 2.0 * c * s * Smt;
+  S_pattern[2] = c * s * (Smd - Std) + (c * c - s * s) * Smt;
+  return KERNEL_OK;
+}
+
 double CompensatedLength(const double M[3], double L, const double d[2]) {
   const double dd = d[0] * d[0] + d[1] * d[1];
   if (!(dd > 0)) return -1.0;

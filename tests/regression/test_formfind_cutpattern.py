@@ -1,7 +1,8 @@
 """Cutting patterns of the form-found saddle (issue 5, SPEC §7): the middle and corner strips are
 flattened and written as DXF, SVG and Gmsh; with the thesis's weights (boundary 1e12) the
 boundary and cutting lines keep their 3D length; with uniform weights the doubly curved strips
-come out shorter in 2D along the weld line over the arch, by more as the rise grows."""
+come out shorter in 2D along the weld line over the arch, by more as the rise grows; compensated
+for the form-finding stress, the isotropic middle part shrinks by the closed form."""
 import os
 import re
 
@@ -44,4 +45,22 @@ with scratch_dir() as tmp:
         print("r = %d %%, middle weld line over the arch: expansion %.4f %%" % (r, weld[r]))
     chk.check(weld[10] < 0 and weld[15] < 0 and weld[20] < 0, "uniform weights: the weld line is shorter in 2D")
     chk.check(weld[10] > weld[15] > weld[20], "and more so as the rise grows")
+    # Stress compensation from the form-finding stress (issue 17): the middle part carries 1 MPa
+    # isotropically, so every one of its lines is cut 1/sqrt(1 + 2 (1 - nu) S / E) of its length
+    # (elastic defaults E = 800 MPa, nu = 0.43); the corner part's 3:1 stress shrinks MD lines more.
+    rc, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s11.opts"), "-formfind_monitor", 0,
+                         "-output", 0, "-formfind_mesh_out", os.path.join(tmp, "c11.msh"), "-cutpattern",
+                         "-cutpattern_lines", "frame", "-cutpattern_compensation", "stress"])
+    with open(os.path.join(tmp, "c11_lines.csv")) as f:
+        rows = [l.strip().split(",") for l in f if l.strip()]
+    rows = [dict(zip(rows[0], r)) for r in rows[1:]]
+    want = (1.0 / (1.0 + 2 * (1 - 0.43) * 1.0 / 800.0) ** 0.5 - 1) * 100
+    mid = [float(r["compensation_pct"]) for r in rows if r["strip"] == "middle"]
+    print("stress compensation, middle part (1 MPa isotropic): %s %% per line, closed form %.6f %%" % (mid, want))
+    chk.check(len(mid) == 4 and all(abs(c - want) < 1e-4 * abs(want) for c in mid),
+              "middle part: every line compensated by the closed form %.6f %%" % want)
+    corner = {r["line"]: float(r["compensation_pct"]) for r in rows if r["strip"] == "corner"}
+    print("corner part (MD:TD = 3:1): %s" % corner)
+    chk.check(corner.get("frame", 0) < want < 0 < corner.get("weld_arch", -1),
+              "corner part: the frame line shrinks more, the weld line (across the 3 MPa) grows (Poisson)")
 chk.finish()

@@ -5,6 +5,7 @@
 //    stretch U = C^1/2 is the design length again, in any direction (closed form for a rotated
 //    principal frame);
 //  * uniform factors: cut MD/TD lengths are 1/(1 + c) of the design;
+//  * an element's MD/TD stress turned into the pattern's axes by the triangle's own map;
 //  * bad input (NaN, Poisson's ratio 0.5, a strain that no stretch reaches) is refused.
 #include <cmath>
 
@@ -64,6 +65,38 @@ int main() {
     CHECK_CLOSE(CompensatedLength(M, 500.0, x), 500.0 / 1.02, 1e-15, 0);
     CHECK_CLOSE(CompensatedLength(M, 500.0, y), 500.0 / 1.01, 1e-15, 0);
     CHECK(CompensationMetricUniform(-1.0, 0.0, M) == KERNEL_DEGENERATE, "c = -1 refused");
+  }
+  // The element frame carried into the pattern: a triangle tilted out of the XY plane, its
+  // pattern turned by an angle; MD = global X projected on the triangle. The stress in pattern
+  // axes has the same invariants and its MD direction is where the triangle's map sends X.
+  {
+    const double tilt = 0.4, turn = 0.7;
+    const double P[3][2] = {{0.0, 0.0}, {100.0, 20.0}, {30.0, 80.0}};  // in-plane coordinates
+    double X[9], xy[6];
+    for (int k = 0; k < 3; ++k) {
+      // the plane spanned by the orthonormal u = (1, 0, 0), v = (0, cos tilt, sin tilt)
+      X[3 * k] = P[k][0];
+      X[3 * k + 1] = P[k][1] * std::cos(tilt);
+      X[3 * k + 2] = P[k][1] * std::sin(tilt);
+      xy[2 * k] = std::cos(turn) * P[k][0] - std::sin(turn) * P[k][1];
+      xy[2 * k + 1] = std::sin(turn) * P[k][0] + std::cos(turn) * P[k][1];
+    }
+    const double md[3] = {1.0, 0.0, 0.0}, S[3] = {6.0, 2.0, 1.0};
+    double Sp[3];
+    CHECK(CompensationStressInPattern(X, xy, md, S, Sp) == KERNEL_OK, "status");
+    // MD (global X = in-plane u) goes to the direction 'turn' in the pattern.
+    const double c = std::cos(turn), s = std::sin(turn);
+    CHECK_CLOSE(Sp[0], c * c * 6.0 + s * s * 2.0 - 2 * c * s * 1.0, 1e-13, 1e-13);
+    CHECK_CLOSE(Sp[1], s * s * 6.0 + c * c * 2.0 + 2 * c * s * 1.0, 1e-13, 1e-13);
+    CHECK_CLOSE(Sp[2], c * s * (6.0 - 2.0) + (c * c - s * s) * 1.0, 1e-13, 1e-13);
+    CHECK_CLOSE(Sp[0] + Sp[1], 8.0, 1e-14, 0);  // trace kept
+    // MD along the normal: the edge 0 -> 1 is MD instead.
+    const double normal[3] = {0.0, -std::sin(tilt), std::cos(tilt)};
+    CHECK(CompensationStressInPattern(X, xy, normal, S, Sp) == KERNEL_OK, "status");
+    const double th = std::atan2(xy[3] - xy[1], xy[2] - xy[0]), c2 = std::cos(th), s2 = std::sin(th);
+    CHECK_CLOSE(Sp[0], c2 * c2 * 6.0 + s2 * s2 * 2.0 - 2 * c2 * s2 * 1.0, 1e-12, 1e-12);
+    const double flat[6] = {0, 0, 1, 0, 2, 0};
+    CHECK(CompensationStressInPattern(X, flat, md, S, Sp) == KERNEL_DEGENERATE, "degenerate pattern triangle");
   }
   // Bad input.
   {

@@ -29,6 +29,15 @@ int CompensationMetricFromStrain(const double E[3], double M[3]);
 // M of the uniform compensation (engineering strains c_md, c_td > -1).
 int CompensationMetricUniform(double c_md, double c_td, double M[3]);
 
+// An element's stress S_local (S_MD, S_TD, S_MD-TD in its frame: first axis md_axis projected on
+// the triangle's plane, falling back to the edge from node 0 to node 1 when md_axis is within
+// ~1e-3 of the normal, as MembraneReferenceBuild) turned into the pattern's axes: X the 3D
+// triangle (9), xy its flattened image (6, same node order, counter-clockwise seen from the
+// normal (X1-X0)x(X2-X0)). The MD axis is carried to the pattern by the triangle's own affine
+// map. Returns KERNEL_DEGENERATE for a degenerate triangle in 3D or in the pattern.
+int CompensationStressInPattern(const double X[9], const double xy[6], const double md_axis[3],
+                                const double S_local[3], double S_pattern[3]);
+
 // The cut length of a design link of length L along the (not necessarily unit, nonzero)
 // direction d: L sqrt(d^T M d) / |d|. Returns a negative value for a zero direction.
 double CompensatedLength(const double M[3], double L, const double d[2]);
