@@ -37,6 +37,9 @@ struct CutPatternOptions {
 };
 
 PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions *o);
+// The sub-mesh of one element set (a strip), nodes renumbered in order of first use, with every
+// node set restricted to it.
+MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const std::string &name);
 // shape: the 3D surface (valid on rank 0). Writes <dir>/<stem>_<strip>.{dxf,svg,msh} and
 // <dir>/<stem>_lines.csv; prints one line per named line. Collective.
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o,

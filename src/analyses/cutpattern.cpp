@@ -94,9 +94,6 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
   PetscFunctionReturn(0);
 }
 
-namespace {
-
-// The sub-mesh of one element set, with every node set restricted to it.
 MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const std::string &name) {
   MeshData s;
   s.source = m.source + " [" + name + "]";
@@ -119,6 +116,8 @@ MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const
   }
   return s;
 }
+
+namespace {
 
 // Target plane lengths of the compensated pattern of a strip: each link's design (3D) length
 // times sqrt(d^T M d) of the rest metric M of its triangles (averaged over its one or two), d its
