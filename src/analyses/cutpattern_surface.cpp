@@ -170,8 +170,8 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Cutting patterns of a surface mesh (-analysis cutpattern)", "CutPattern");
   PetscCall(PetscOptionsString("-mesh_file",
-                               "Gmsh surface mesh whose physical surfaces are the strips (STL/OBJ: convert with "
-                               "gmsh first)",
+                               "Gmsh surface mesh whose physical surfaces are the strips (OBJ groups / STL solids: "
+                               "convert with scripts/surface2msh)",
                                "", mesh_file, mesh_file, sizeof mesh_file, &file_set));
   PetscOptionsEnd();
   PetscCall(CutPatternOptionsFromCommandLine(comm, &o->cutpattern));
