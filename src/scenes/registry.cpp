@@ -16,6 +16,7 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Annulus(MPI_Comm, SceneSpec *, SceneObserver *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -51,6 +52,10 @@ PetscErrorCode SceneRegisterAll(void) {
                           "the thesis's saddle: form finding, cutting patterns, stretch fabrication over the arch, "
                           "pressurization",
                           "options/saddle/ff_r*_s*.opts, dd1511.opts, dd1531.opts, pd*.opts, dd1511_pressure*.opts"));
+  PetscCall(SceneRegister("annulus", SceneBuild_Annulus,
+                          "pretensioned annulus, rigid hub rotated: wrinkled zone and torque against Stein & "
+                          "Hedgepeth's tension-field closed form",
+                          "options/annulus.opts"));
   PetscFunctionReturn(0);
 }
 
