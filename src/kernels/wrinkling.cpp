@@ -38,7 +38,7 @@ void TensionFieldClassify(double young, double nu, const double E[3], WrinkleInf
   const Principal p = PrincipalStrains(E);
   info->dir[0] = info->dir[1] = 0.0;
   info->strain = 0.0;
-  if (p.e2 + nu * p.e1 >= 0.0) {
+  if (p.e2 + nu * p.e1 >= -kTautStrainTolerance) {
     info->state = WRINKLE_TAUT;
   } else if (p.e1 <= 0.0) {
     info->state = WRINKLE_SLACK;

@@ -14,8 +14,12 @@
 // Tangent in the wrinkled state (spectral derivative; dE1 = n.dE.n,
 // dn = (m.dE.n)/(E1-E2) m):
 //   D = Y [ N N^T + 2 E1/(E1-E2) W W^T ],  N = (c^2, s^2, cs),  W = (-cs, cs, (c^2-s^2)/2),
-// exact and finite there (E1 - E2 > (1+nu) E1 > 0). The taut test comes first and is inclusive,
-// so E = 0 (every Newton start) is taut with the elastic tangent. In the slack state the exact
+// exact and finite there (E1 - E2 > (1+nu) E1 > 0). The taut test comes first and allows
+// E2 + nu E1 down to -kTautStrainTolerance: an unloaded film's round-off strains (~1e-16, of
+// either sign) are taut with the elastic tangent, not wrinkled or slack with a near-singular one
+// (a stress-free saddle otherwise starts Newton on a singular in-plane tangent). The stress is
+// continuous across the taut|wrinkled boundary, so the shift changes it by at most
+// E kTautStrainTolerance / (1 - nu^2) (a compressive minor stress of that size may remain). In the slack state the exact
 // tangent is 0 (a singular stiffness); the tangent only is regularized to
 // kSlackTangentFraction * D_e (the stress stays exactly 0), which changes the Newton path in
 // slack regions, never the converged answer.
@@ -26,6 +30,7 @@ namespace etfe {
 enum WrinkleState : int { WRINKLE_TAUT = 0, WRINKLE_WRINKLED = 1, WRINKLE_SLACK = 2 };
 
 constexpr double kSlackTangentFraction = 1e-6;
+constexpr double kTautStrainTolerance = 1e-10;
 
 struct WrinkleInfo {
   int state;         // WrinkleState
