@@ -169,6 +169,14 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
                         true_all[true_all.size() / 2], true_all.back(), v.a[3], v.a[0], v.a[1],
                         v.a[2], v.b[3], v.b[0], v.b[1], v.b[2], v.i_emin, v.i_smin, v.ii_emin, v.ii_smin, glob[0],
                         glob[1], glob[2], glob[3]));
+  if (!f.wrinkle_state.empty()) {
+    // -membrane_wrinkling tension_field: the states the relaxed law decided (kernels/wrinkling.h).
+    double cnt[3] = {0, 0, 0}, gcnt[3];
+    for (double s : f.wrinkle_state) cnt[(int)s] += 1;
+    PetscCallMPI(MPI_Allreduce(cnt, gcnt, 3, MPI_DOUBLE, MPI_SUM, P->comm));
+    PetscCall(PetscPrintf(P->comm, "saddle: tension_field taut = %.0f, wrinkled = %.0f, slack = %.0f elements\n",
+                          gcnt[0], gcnt[1], gcnt[2]));
+  }
   for (size_t k = 0; k < c->slide_nodes.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "saddle: slide_%zu (Y = %.0f) X = %.4f mm, Y = %.4f mm\n", k + 1,
                           P->scene.mesh.coords[3 * c->slide_nodes[k] + 1], v.slide[2 * k], v.slide[2 * k + 1]));
