@@ -62,6 +62,16 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
              PETSC_ERR_USER_INPUT,
              "-cutpattern_compensation uniform needs -cutpattern_compensation_md and/or _td (e.g. 0.01)");
   o->prestress_given = ps_set;
+  if (ps_set) {
+    // A film carries no compression (it wrinkles): the smaller principal prestress must be >= 0.
+    const double *S = o->prestress;
+    const double smin = 0.5 * (S[0] + S[1]) - std::sqrt(0.25 * (S[0] - S[1]) * (S[0] - S[1]) + S[2] * S[2]);
+    char what[160];  // PETSc's %g writes 10 as "10."
+    std::snprintf(what, sizeof what, "%g,%g,%g MPa has the principal stress %g MPa", S[0], S[1], S[2], smin);
+    PetscCheck(smin >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-cutpattern_prestress %s: a film carries no compression, so no pattern reaches it; give a tensile "
+               "(or zero) prestress", what);
+  }
   if (o->compensation == Compensation::Stress) {
     // The prestress is reached elastically: the material component's elastic constants.
     std::unique_ptr<Material> m;

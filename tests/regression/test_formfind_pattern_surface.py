@@ -5,8 +5,8 @@ physical surfaces of a Gmsh file, with no scene and no form finding. Meshes are 
   * a sphere strip's largest link error falls as the strip narrows (the rate is printed);
   * surfaces no scene makes (a four-triangle pyramid, a hypar) flatten with their errors printed;
   * two strips sharing an edge get the cutting line cut_a_b, of one length in both patterns;
-  * no physical groups, a tube, a strip touching itself at a node, a non-manifold edge: refused
-    with a message saying so;
+  * no physical groups, a tube, a strip touching itself at a node, a non-manifold edge, a
+    compressive prestress: refused with a message saying so;
   * compensation: uniform factors shrink MD/TD lengths to 1/(1 + c); a flat strip compensated
     for a uniaxial prestress S and stretched back to its design length by the patch scene
     carries S in every element to 1e-6."""
@@ -97,6 +97,9 @@ with scratch_dir() as tmp:
             ("fin", pm.t_junction(), None, "non-manifold")):
         out = flatten(tmp, name, mesh, groups, expect_fail=True)
         chk.check(want in out, "%s: refused with \"%s\"" % (name, want))
+    out = flatten(tmp, "compressed", pm.pyramid(), None, ["-cutpattern_compensation", "stress",
+                                                          "-cutpattern_prestress", "2,-1"], expect_fail=True)
+    chk.check("a film carries no compression" in out, "a compressive prestress is refused")
     # Compensation of a flat strip 1000 x 200 mm.
     nodes, tris, sides = pm.grid(10, 4, lambda u, v: (1000.0 * u, 200.0 * v, 0.0))
     groups = {"film": (2, list(range(len(tris))))}
