@@ -191,3 +191,15 @@ def msh41_turn_half(path, out_path):
         k += 1 + 2 * cnt
     with open(out_path, "w") as f:
         f.write("\n".join(lines))
+
+
+def combine(parts):
+    """One mesh of several strips: parts = [(name, (nodes, tris, sides), (dx, dy, dz))], each
+    shifted by its offset (apart, so no two nodes meet). Returns nodes, triangles, groups."""
+    nodes, tris, groups = [], [], {}
+    for name, (n, t, _), off in parts:
+        base, first = len(nodes), len(tris)
+        nodes += [(p[0] + off[0], p[1] + off[1], p[2] + off[2]) for p in n]
+        tris += [tuple(base + k for k in tri) for tri in t]
+        groups[name] = (2, list(range(first, len(tris))))
+    return nodes, tris, groups

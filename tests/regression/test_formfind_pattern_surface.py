@@ -49,21 +49,23 @@ def line_rows(csv_path):
 
 
 with scratch_dir() as tmp:
-    # Developable strips: every link keeps its length.
-    for name, mesh in (("cylinder", pm.cylinder_strip()), ("cone", pm.cone_strip())):
-        out = flatten(tmp, name, mesh)
-        err, outl = strips(out)
+    # Developable strips: every link keeps its length (both strips of one mesh, one run).
+    nodes, tris, groups = pm.combine([("cylinder", pm.cylinder_strip(), (0, 0, 0)),
+                                      ("cone", pm.cone_strip(), (0, 0, 3000))])
+    err, outl = strips(flatten(tmp, "developable", (nodes, tris, {}), groups))
+    for name in ("cylinder", "cone"):
         e = err.get(name, (float("nan"),))[0]
         print("%s strip: max link error %.3e" % (name, e))
         chk.check(e < 1e-10, "%s (developable): every link keeps its length, max error %.3e < 1e-10" % (name, e))
         for ext in ("dxf", "svg", "msh"):
-            chk.check(os.path.getsize(os.path.join(tmp, "%s_%s.%s" % (name, name, ext))) > 100,
-                      "%s: the %s pattern is written" % (name, ext))
+            p = os.path.join(tmp, "developable_%s.%s" % (name, ext))
+            chk.check(os.path.exists(p) and os.path.getsize(p) > 100, "%s: the %s pattern is written" % (name, ext))
     # A doubly curved strip: the error falls as it narrows.
-    errs = {}
-    for w in (400, 200, 100, 50):
-        out = flatten(tmp, "sphere%d" % w, pm.sphere_strip(width=w), groups=None)
-        errs[w] = strips(out)[0]["sphere%d" % w][0]
+    widths = (400, 200, 100, 50)
+    nodes, tris, groups = pm.combine([("sphere%d" % w, pm.sphere_strip(width=w), (0, 0, 3000 * k))
+                                      for k, w in enumerate(widths)])
+    err = strips(flatten(tmp, "sphere", (nodes, tris, {}), groups))[0]
+    errs = {w: err["sphere%d" % w][0] for w in widths}
     print("sphere strip R 1000 mm, 1000 mm long, 16 x 8 cells: width -> max link error, rate")
     ws = sorted(errs, reverse=True)
     for a, b in zip(ws, ws[1:]):
@@ -73,9 +75,9 @@ with scratch_dir() as tmp:
     last = math.log(errs[100] / errs[50]) / math.log(2)
     chk.check(1.7 < last < 2.3, "sphere strip: error ~ width^2 when narrow (rate %.2f)" % last)
     # Non-developable surfaces no scene makes.
-    for name, mesh in (("pyramid", pm.pyramid()), ("hypar", pm.hypar())):
-        out = flatten(tmp, name, mesh)
-        err, outl = strips(out)
+    nodes, tris, groups = pm.combine([("pyramid", pm.pyramid(), (0, 0, 0)), ("hypar", pm.hypar(), (0, 0, 3000))])
+    err, outl = strips(flatten(tmp, "odd", (nodes, tris, {}), groups))
+    for name in ("pyramid", "hypar"):
         e = err.get(name, (float("nan"), float("nan")))
         print("%s: max link error %.3e, rms %.3e, outline expansion %.2e %%" % (name, e[0], e[1], outl.get(name)))
         chk.check(1e-3 < e[0] < 0.2, "%s: not developable, so its links stretch or shrink (max %.3e)" % (name, e[0]))
