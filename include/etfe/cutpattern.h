@@ -54,9 +54,11 @@ struct CutPatternSurfaceOptions {
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o);
 // Reads and checks the mesh on rank 0, then CutPatternRun. Collective.
 PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOptions &o);
-// The strips of a surface (PETSc-free): every element set must be a disc (connected, manifold,
-// one boundary loop) and the sets must not overlap; adds a node set cut_<a>_<b> for the edges
-// strips a and b share (unless the file names one so). Notes say what was added.
-bool CutPatternPrepareSurface(MeshData *mesh, std::vector<std::string> *notes, std::string *err);
+// The strips of a surface (PETSc-free): every element set (or only those named in `only`, when
+// given) must be a disc (connected, manifold, one boundary loop) and the sets must not overlap;
+// adds a node set cut_<a>_<b> for the edges strips a and b share (unless the file names one
+// so). Notes say what was added.
+bool CutPatternPrepareSurface(MeshData *mesh, const std::vector<std::string> &only,
+                              std::vector<std::string> *notes, std::string *err);
 
 } // namespace etfe

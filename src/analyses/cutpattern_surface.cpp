@@ -110,7 +110,8 @@ bool CheckDisc(const MeshData &m, const std::string &name, const std::vector<int
 
 } // namespace
 
-bool CutPatternPrepareSurface(MeshData *m, std::vector<std::string> *notes, std::string *err) {
+bool CutPatternPrepareSurface(MeshData *m, const std::vector<std::string> &only, std::vector<std::string> *notes,
+                              std::string *err) {
   if (m->element_sets.empty()) {
     *err = m->source + ": the mesh has no physical surface groups, so no strips to flatten: name each strip "
                        "with Physical Surface(\"name\") = {...} in Gmsh";
@@ -132,7 +133,8 @@ bool CutPatternPrepareSurface(MeshData *m, std::vector<std::string> *notes, std:
       }
       strip_of[e] = s;
     }
-    if (!CheckDisc(*m, kv.first, kv.second, err)) return false;
+    const bool chosen = only.empty() || std::find(only.begin(), only.end(), kv.first) != only.end();
+    if (chosen && !CheckDisc(*m, kv.first, kv.second, err)) return false;
   }
   const int loose = (int)std::count(strip_of.begin(), strip_of.end(), -1);
   if (loose) notes->push_back(std::to_string(loose) + " triangles in no physical surface group are in no strip");
@@ -196,7 +198,7 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0)
     ok = ReadGmshFile(o.mesh_file, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
-         CutPatternPrepareSurface(&mesh, &notes, &err);
+         CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err);
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &n : mesh.notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", o.mesh_file.c_str(), n.c_str()));
   for (const std::string &n : notes) PetscCall(PetscPrintf(comm, "cutpattern: %s\n", n.c_str()));

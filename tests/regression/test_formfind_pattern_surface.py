@@ -99,6 +99,10 @@ with scratch_dir() as tmp:
             ("fin", pm.t_junction(), None, "non-manifold")):
         out = flatten(tmp, name, mesh, groups, expect_fail=True)
         chk.check(want in out, "%s: refused with \"%s\"" % (name, want))
+    nodes, tris, groups = pm.combine([("ring", pm.tube(), (0, 0, 0)), ("flat", pm.hypar(), (0, 0, 3000))])
+    out = flatten(tmp, "mixed", (nodes, tris, {}), groups, ["-cutpattern_strips", "flat"])
+    chk.check("flat" in strips(out)[0] and "ring" not in strips(out)[0],
+              "-cutpattern_strips: only the chosen strips must be discs (the tube beside them is left alone)")
     out = flatten(tmp, "compressed", pm.pyramid(), None, ["-cutpattern_compensation", "stress",
                                                           "-cutpattern_prestress", "2,-1"], expect_fail=True)
     chk.check("a film carries no compression" in out, "a compressive prestress is refused")
