@@ -265,7 +265,7 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
     double fg[3];
     ContactEvaluate(c, pr, &u[3 * l], P->time, fg, nullptr);
     const int before = pr.committed.status;
-    if (c.law == FrictionLaw::Lagged) ContactLaggedCommit(c.params, pr.trial.g, pr.trial.f, &pr.committed);
+    if (c.law == FrictionLaw::Lagged) ContactLaggedCommit(c.params, pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
     else pr.committed = pr.trial;
     local[pr.committed.status]++;
     if (pr.committed.status == CONTACT_OPEN && before != CONTACT_OPEN) local[3]++;

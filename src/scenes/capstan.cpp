@@ -50,7 +50,14 @@ PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t, Pets
   for (const ContactPair &pr : P->contact->pairs) {
     if (is_b[pr.natural_node]) continue;  // held by the grip: their slide is prescribed
     local[0] += pr.committed.status != CONTACT_OPEN;
-    local[1] += pr.committed.status == CONTACT_SLIP;
+    // Slipping, or sticking at the Coulomb limit: the lagged law commits a slipping pair whose
+    // node stopped or turned back within the increment as sticking with its force still on the
+    // cone (kernels/contact_law.cpp), so in gross slip pairs pass between the two; either way
+    // their friction is fully mobilised. (The implicit law's sticking pairs lie inside the cone.)
+    const ContactPairReport r = ContactReport(*P->contact, pr);
+    const double limit = P->contact->params.mu * std::fabs(r.force[2]);
+    local[1] += pr.committed.status == CONTACT_SLIP ||
+                (pr.committed.status == CONTACT_STICK && std::hypot(r.force[0], r.force[1]) >= limit * (1.0 - 1e-9));
   }
   PetscCallMPI(MPI_Allreduce(local, global, 2, MPIU_INT, MPI_SUM, P->comm));
   c->t2_last = t2;

@@ -5,7 +5,7 @@
   discretised more finely (16 -> 32 -> 64 -> 128 cells);
 * other wrap angles and mu = 1.0 (the thesis's friction cases) within 5 %;
 * the increments study: the implicit law's mu_eff changes less over 40..320 increments than the
-  lagged (thesis) law's;
+  lagged (thesis) law's, and the lagged law's falls steadily toward mu;
 * stiff penalties: k_n = k_t from 1e2 to 1e12 N/mm all converge (or would stop with a message).
 """
 import math
@@ -51,7 +51,7 @@ for angle, mu, pull in ((90, 0.3, 0.1), (180, 1.0, 1.0)):
         chk.check(err < 0.05, "angle %g mu %g: mu_eff %.5f within 5%%" % (angle, mu, m))
 
 print("\nincrements study (64 cells)")
-spread = {}
+spread, series = {}, {}
 for law in ("implicit", "lagged"):
     vals = []
     for n in (40, 80, 160, 320):
@@ -63,9 +63,16 @@ for law in ("implicit", "lagged"):
         if m is not None:
             vals.append(m)
     spread[law] = (max(vals) - min(vals)) if len(vals) > 1 else float("inf")
+    series[law] = vals
 print("spread over increments: implicit %.4f, lagged %.4f" % (spread["implicit"], spread["lagged"]))
 chk.check(spread["implicit"] < spread["lagged"],
           "the implicit law should depend less on the number of increments than the lagged one")
+# The lagged law's error is its one-increment lag (k_t times the slide of an increment, far above
+# a pair's Coulomb limit here), so it only approaches mu as the increments shrink; since its
+# pairs stick again and turn (issue 16) it does so steadily, from above.
+lag = series["lagged"]
+chk.check(len(lag) == 4 and all(b < a for a, b in zip(lag, lag[1:])) and lag[-1] > 0.3 * 0.97,
+          "lagged mu_eff approaches mu = 0.3 steadily from above over 40..320 increments: %s" % ["%.4f" % v for v in lag])
 chk.check(spread["implicit"] < 0.01, "implicit mu_eff varies by %.4f over 40..320 increments" % spread["implicit"])
 
 print("\nlarge slide: frozen frame (thesis) vs following frame, pull 1 mm (64 cells)")

@@ -236,7 +236,7 @@ void TestLaggedSequence() {
     CHECK_CLOSE(f[2], -100.0, tol, 0.0);
     const double Kst[9] = {500, 0, 0, 0, 500, 0, 0, 0, 1000};
     for (int i = 0; i < 9; ++i) CHECK(K[i] == Kst[i], "stick tangent entry %d = %g", i, K[i]);
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.status == CONTACT_STICK, "5 < 30: stick, got %d", s.status);
     CHECK(s.g[0] == g[0] && s.g[1] == g[1] && s.g[2] == g[2], "commit stores the gap");
   }
@@ -247,7 +247,7 @@ void TestLaggedSequence() {
     CHECK_CLOSE(f[0], 25.0, tol, 0.0);
     CHECK_CLOSE(f[1], 10.0, tol, 0.0);
     CHECK_CLOSE(f[2], -120.0, tol, 0.0);
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.status == CONTACT_STICK, "26.9 < 36: stick");
   }
   // 3. Stick overshoots the cone; the commit puts it back on the cone, same direction, SLIP.
@@ -258,7 +258,7 @@ void TestLaggedSequence() {
     CHECK_CLOSE(f[0], 55.0, tol, 0.0);
     CHECK_CLOSE(f[1], 30.0, tol, 0.0);
     CHECK(s.status == CONTACT_STICK, "status of the step is the committed one");
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.status == CONTACT_SLIP, "62.6 >= 36: slip");
     CHECK_CLOSE(s.f[0], 36.0 * c, tol, 0.0);
     CHECK_CLOSE(s.f[1], 36.0 * sn, tol, 0.0);
@@ -289,17 +289,22 @@ void TestLaggedSequence() {
     for (int i = 0; i < 3; ++i)
       CHECK_CLOSE(f[i], s.f[i] + K[3 * i] * dg[0] + K[3 * i + 1] * dg[1] + K[3 * i + 2] * dg[2],
                   1e-13, 1e-12);
-    ContactLaggedCommit(p, g, f, &s);
-    CHECK(s.status == CONTACT_SLIP, "on the cone stays slip");
-    CHECK_CLOSE(s.f[0], 39.0 * c, tol, 0.0);
+    // Commit: elastic trial f_n,t + kt dg_t = 36 (c, s) + 500 (0.09, 0.04), outside 39: slip along
+    // the trial (the direction follows the motion), on the cone.
+    const double tr[2] = {36.0 * c + 45.0, 36.0 * sn + 20.0}, ntr = std::hypot(tr[0], tr[1]);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK(s.status == CONTACT_SLIP, "trial %g outside 39 stays slip", ntr);
+    CHECK_CLOSE(s.f[0], 39.0 * tr[0] / ntr, tol, 0.0);
+    CHECK_CLOSE(s.f[1], 39.0 * tr[1] / ntr, tol, 0.0);
   }
+  const double c4 = s.f[0] / 39.0, s4 = s.f[1] / 39.0;  // committed slip direction
   // 5. Slip ignores tangential motion (thesis law: f_t follows the normal force only), even when
   //    the node reverses.
   {
     const double g[3] = {0.0, -0.2, -0.13};
     ContactLaggedForce(p, s, g, f, K);
-    CHECK_CLOSE(f[0], 39.0 * c, tol, 0.0);
-    CHECK_CLOSE(f[1], 39.0 * sn, tol, 0.0);
+    CHECK_CLOSE(f[0], 39.0 * c4, tol, 0.0);
+    CHECK_CLOSE(f[1], 39.0 * s4, tol, 0.0);
     CHECK(K[0] == 0.0 && K[1] == 0.0 && K[3] == 0.0 && K[4] == 0.0, "no tangential stiffness");
   }
   // 6. Normal unloading in slip slides down the cone.
@@ -307,17 +312,18 @@ void TestLaggedSequence() {
     const double g[3] = {0.2, 0.1, -0.10};  // dw = +0.03
     ContactLaggedForce(p, s, g, f, K);
     CHECK_CLOSE(f[2], -100.0, tol, 0.0);
-    CHECK_CLOSE(f[0], 30.0 * c, tol, 0.0);
-    CHECK_CLOSE(f[1], 30.0 * sn, tol, 0.0);
-    ContactLaggedCommit(p, g, f, &s);
-    CHECK(s.status == CONTACT_SLIP, "still on the cone");
+    CHECK_CLOSE(f[0], 30.0 * c4, tol, 0.0);
+    CHECK_CLOSE(f[1], 30.0 * s4, tol, 0.0);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK(s.status == CONTACT_SLIP, "no tangential motion, trial 39 outside 30: still slip");
+    CHECK_CLOSE(s.f[0], 30.0 * c4, tol, 0.0);
   }
   // 7. Lift-off within the step (f_z would become >= 0): zero force and tangent, then OPEN.
   {
     const double g[3] = {0.3, 0.1, 0.01};
     ContactLaggedForce(p, s, g, f, K);
     CHECK(MaxAbs(f, 3) == 0.0 && MaxAbs(K, 9) == 0.0, "lift-off: zero force and tangent");
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.status == CONTACT_OPEN, "lift-off commits OPEN, got %d", s.status);
     CHECK(MaxAbs(s.f, 3) == 0.0, "open pair has no force");
   }
@@ -327,7 +333,7 @@ void TestLaggedSequence() {
     const double g[3] = {0.3, 0.1, -0.02};
     ContactLaggedForce(p, s, g, f, K);
     CHECK(MaxAbs(f, 3) == 0.0 && MaxAbs(K, 9) == 0.0, "open: zero force within the step");
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.status == CONTACT_STICK, "re-closed pair sticks, got %d", s.status);
     CHECK_CLOSE(s.f[2], -20.0, tol, 0.0);
     CHECK(s.f[0] == 0.0 && s.f[1] == 0.0, "no tangential memory on re-closing");
@@ -338,7 +344,7 @@ void TestLaggedSequence() {
     ContactLaggedForce(p, s, g, f, K);
     CHECK_CLOSE(f[0], 5.0, 1e-12, 0.0);
     CHECK_CLOSE(f[2], -50.0, tol, 0.0);
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.status == CONTACT_STICK, "5 < 15: stick");
     const double g2[3] = {0.305, 0.1, -0.05};
     ContactLaggedForce(p, s, g2, f, K);
@@ -348,6 +354,174 @@ void TestLaggedSequence() {
     ContactLaggedForce(p, s, g3, f, K);
     CHECK_CLOSE(f[0], -5.0, 1e-11, 0.0);
   }
+}
+
+// Lagged law, stick -> slip -> stick (thesis Fig. 4.4 narrative): a pair pushed past the cone
+// slips; once its motion stops while the pressure grows, the elastic trial falls inside the cone
+// and it sticks again, its force then following the springs (4.27).
+// kn = 1000, kt = 500, mu = 0.3, pressed to f_z = -100 (limit 30).
+void TestLaggedStickSlipStick() {
+  const ContactParameters p{1000.0, 500.0, 0.3};
+  ContactState s = State(0, 0, -0.1, 0, 0, -100.0, CONTACT_STICK);
+  double f[3], K[9];
+  const double tol = 1e-13;
+  int statuses[5], k = 0;
+  // Stick springs overshoot (50 > 30): slip, corrected onto the cone.
+  {
+    const double g[3] = {0.1, 0.0, -0.1};
+    ContactLaggedForce(p, s, g, f, K);
+    CHECK_CLOSE(f[0], 50.0, tol, 0.0);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK_CLOSE(s.f[0], 30.0, tol, 0.0);
+    statuses[k++] = s.status;
+  }
+  // Sliding on: the slip law (no tangential stiffness), trial 30 + 500 * 0.1 = 80 > 30: slip.
+  {
+    const double g[3] = {0.2, 0.0, -0.1};
+    ContactLaggedForce(p, s, g, f, K);
+    CHECK(K[0] == 0.0 && K[4] == 0.0, "slip step: no tangential stiffness");
+    CHECK_CLOSE(f[0], 30.0, tol, 0.0);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK_CLOSE(s.f[0], 30.0, tol, 0.0);
+    statuses[k++] = s.status;
+  }
+  // The node stops, the pressure grows to 120 (limit 36): the slip law gives 36 along x, the
+  // trial stays 30 < 36: stick again, keeping the force it converged with (no jump).
+  {
+    const double g[3] = {0.2, 0.0, -0.12};
+    ContactLaggedForce(p, s, g, f, K);
+    CHECK_CLOSE(f[0], 36.0, tol, 0.0);
+    CHECK_CLOSE(f[2], -120.0, tol, 0.0);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK_CLOSE(s.f[0], 36.0, tol, 0.0);
+    CHECK_CLOSE(s.f[2], -120.0, tol, 0.0);
+    statuses[k++] = s.status;
+  }
+  // Sticking: the springs carry the next (backward) motion, 36 - 500 * 0.01 = 31 < 36, stick.
+  {
+    const double g[3] = {0.19, 0.0, -0.12};
+    ContactLaggedForce(p, s, g, f, K);
+    CHECK(K[0] == 500.0 && K[4] == 500.0, "stick step: tangential springs");
+    CHECK_CLOSE(f[0], 31.0, 1e-12, 0.0);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK_CLOSE(s.f[0], 31.0, 1e-12, 0.0);
+    statuses[k++] = s.status;
+  }
+  // And past the cone again (31 + 20 = 51 > 36): slip.
+  {
+    const double g[3] = {0.23, 0.0, -0.12};
+    ContactLaggedForce(p, s, g, f, K);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK_CLOSE(s.f[0], 36.0, tol, 0.0);
+    statuses[k++] = s.status;
+  }
+  const int want[5] = {CONTACT_SLIP, CONTACT_SLIP, CONTACT_STICK, CONTACT_STICK, CONTACT_SLIP};
+  for (int i = 0; i < 5; ++i) CHECK(statuses[i] == want[i], "commit %d: status %d, want %d", i, statuses[i], want[i]);
+}
+
+// Lagged law, slip reversal: a pair sliding in +x whose node turns back sticks (trial inside the
+// cone, or pointing back), its springs unload through zero and it slips in -x with its force on
+// the other side of the cone; a sideways turn rotates the slip direction toward the motion (it no
+// longer stays frozen at the first slip).
+void TestLaggedReversal() {
+  const ContactParameters p{1000.0, 500.0, 0.3};
+  const ContactState sliding = State(0.2, 0, -0.1, 30.0, 0, -100.0, CONTACT_SLIP);  // in +x
+  ContactState s = sliding;
+  double f[3], K[9];
+  const double tol = 1e-13;
+  {
+    // Back by 0.05: the step's slip law keeps +30, the trial 30 - 25 = 5 is inside: stick, with
+    // the converged force.
+    const double g[3] = {0.15, 0.0, -0.1};
+    ContactLaggedForce(p, s, g, f, K);
+    CHECK_CLOSE(f[0], 30.0, tol, 0.0);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK(s.status == CONTACT_STICK, "reversal: sticks first, got %d", s.status);
+    CHECK_CLOSE(s.f[0], 30.0, tol, 0.0);
+  }
+  {
+    // Back by 0.1 more: springs 30 - 50 = -20, inside: stick.
+    const double g[3] = {0.05, 0.0, -0.1};
+    ContactLaggedForce(p, s, g, f, K);
+    CHECK_CLOSE(f[0], -20.0, 1e-12, 0.0);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK(s.status == CONTACT_STICK, "unloading through zero: stick, got %d", s.status);
+  }
+  {
+    // Back by 0.05 more: -20 - 25 = -45, past -30: slip in -x, on the cone.
+    const double g[3] = {0.0, 0.0, -0.1};
+    ContactLaggedForce(p, s, g, f, K);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK(s.status == CONTACT_SLIP && std::fabs(s.f[0] + 30.0) <= 1e-12 * 30.0 && s.f[1] == 0.0,
+          "reversed slip: f = (-30, 0), got (%g, %g) status %d", s.f[0], s.f[1], s.status);
+  }
+  {
+    // Sideways while slipping in -x: trial (-30, 500 * 0.1) turns the slip direction.
+    const double g[3] = {0.0, 0.1, -0.1};
+    ContactLaggedForce(p, s, g, f, K);
+    CHECK_CLOSE(f[0], -30.0, tol, 0.0);
+    CHECK(f[1] == 0.0, "within the step the direction is the committed one (4.28)");
+    ContactLaggedCommit(p, s, g, f, &s);
+    const double n = std::hypot(30.0, 50.0);
+    CHECK(s.status == CONTACT_SLIP, "sideways: slip");
+    CHECK_CLOSE(s.f[0], -30.0 * 30.0 / n, tol, 0.0);
+    CHECK_CLOSE(s.f[1], 30.0 * 50.0 / n, tol, 0.0);
+  }
+  {
+    // A large turn-back within one slip step (trial 30 - 100 = -70, outside but pointing back)
+    // sticks with the converged force; the next step's springs (30 - 100) send it into slip in -x.
+    s = sliding;
+    const double g[3] = {0.0, 0.0, -0.1};
+    ContactLaggedForce(p, s, g, f, K);
+    ContactLaggedCommit(p, s, g, f, &s);
+    CHECK(s.status == CONTACT_STICK && s.f[0] == 30.0, "turned back: stick at +30, got %d, %g", s.status, s.f[0]);
+    const double g2[3] = {-0.2, 0.0, -0.1};
+    ContactLaggedForce(p, s, g2, f, K);
+    ContactLaggedCommit(p, s, g2, f, &s);
+    CHECK(s.status == CONTACT_SLIP && std::fabs(s.f[0] + 30.0) <= 1e-12 * 30.0, "then slips in -x, got %d, %g",
+          s.status, s.f[0]);
+  }
+}
+
+// A random gap history (stick, slip, reversals, lift-offs): the committed force is inside or on
+// the cone, a slip commit puts it on the cone, a pair that sticks keeps the force it converged
+// with, and the history shows what the frozen law never did: slipping pairs that stick again and
+// slip directions that turn.
+void TestLaggedRandomHistory() {
+  Rng rng;
+  const ContactParameters p{1e5, 3e4, 0.4};
+  int n_restick = 0, n_turn = 0, n_slip = 0, bad_cone = 0, bad_keep = 0;
+  ContactState s = State(0, 0, 0, 0, 0, 0, CONTACT_STICK);
+  double g[3] = {0, 0, -1e-4};
+  for (int it = 0; it < 10000; ++it) {
+    for (int i = 0; i < 2; ++i) g[i] += rng.Range(-1, 1) * 2e-4;
+    g[2] = std::min(g[2] + rng.Range(-1, 0.9) * 5e-5, 2e-5);
+    double f[3];
+    const ContactState before = s;
+    ContactLaggedForce(p, s, g, f, nullptr);
+    ContactLaggedCommit(p, s, g, f, &s);
+    if (s.status == CONTACT_OPEN) continue;
+    const double limit = p.mu * std::fabs(s.f[2]), ft = std::hypot(s.f[0], s.f[1]);
+    if (ft > limit * (1 + 1e-12)) ++bad_cone;
+    if (s.status == CONTACT_SLIP) {
+      ++n_slip;
+      if (std::fabs(ft - limit) > 1e-12 * limit) ++bad_cone;
+    } else if (f[2] < 0.0 && (s.f[0] != f[0] || s.f[1] != f[1])) {
+      ++bad_keep;
+    }
+    if (before.status == CONTACT_SLIP && s.status == CONTACT_STICK) ++n_restick;
+    if (before.status == CONTACT_SLIP && s.status == CONTACT_SLIP) {
+      const double c = (before.f[0] * s.f[0] + before.f[1] * s.f[1]) /
+                       (std::hypot(before.f[0], before.f[1]) * ft);
+      if (c < std::cos(kPi / 180.0)) ++n_turn;
+    }
+  }
+  CHECK(bad_cone == 0, "%d commits off the cone", bad_cone);
+  CHECK(bad_keep == 0, "%d sticking commits changed the converged force", bad_keep);
+  CHECK(n_slip > 200 && n_restick > 50 && n_turn > 50, "coverage slip %d slip->stick %d turns %d", n_slip,
+        n_restick, n_turn);
+  std::printf("lagged random history: 10000 steps, %d slip commits, %d slip->stick, %d slip directions turned "
+              "by > 1 deg\n", n_slip, n_restick, n_turn);
 }
 
 // Lagged special cases: slip with no committed direction, frictionless, no lift-off when the
@@ -366,7 +540,7 @@ void TestLaggedSpecial() {
     CHECK(K[0] == 500.0 && K[4] == 500.0 && K[8] == 1000.0 && K[2] == 0.0 && K[5] == 0.0,
           "stick tangent for an undirected slip");
     ContactState n;
-    ContactLaggedCommit(p, g, f, &n);
+    ContactLaggedCommit(p, s, g, f, &n);
     CHECK(n.status == CONTACT_SLIP && InsideCone(p, n.f), "commit projects it");
   }
   {
@@ -375,7 +549,7 @@ void TestLaggedSpecial() {
     ContactState s = State(0, 0, 0, 0, 0, 0, CONTACT_STICK);
     const double g[3] = {0.01, 0.0, -0.01};
     ContactLaggedForce(p, s, g, f, K);
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.status == CONTACT_SLIP && s.f[0] == 0.0 && s.f[1] == 0.0, "mu = 0 commits f_t = 0");
     const double g2[3] = {0.5, -0.3, -0.02};
     ContactLaggedForce(p, s, g2, f, K);
@@ -398,8 +572,9 @@ void TestCommitCone() {
     const double f[3] = {rng.Range(-2, 2) * F, rng.Range(-2, 2) * F, rng.Range(-2, 0.5) * F};
     const double g[3] = {rng.Range(-1, 1) * F / kn, rng.Range(-1, 1) * F / kn,
                          rng.Range(-1, 1) * F / kn};
-    ContactState s;
-    ContactLaggedCommit(p, g, f, &s);
+    // From a sticking state the trial is the converged force itself.
+    ContactState s = State(0, 0, 0, rng.Range(-1, 1) * F, 0, -F, CONTACT_STICK);
+    ContactLaggedCommit(p, s, g, f, &s);
     CHECK(s.g[0] == g[0] && s.g[1] == g[1] && s.g[2] == g[2], "commit stores the gap");
     if (f[2] >= 0.0) {
       if (g[2] < 0.0) {
@@ -444,7 +619,7 @@ void TestCommitCone() {
     g[2] = std::min(g[2] + rng.Range(-1.2, 1) * 1e-4, 1e-4);
     double f[3], K[9];
     ContactLaggedForce(p, s, g, f, K);
-    ContactLaggedCommit(p, g, f, &s);
+    ContactLaggedCommit(p, s, g, f, &s);
     if (s.status != CONTACT_OPEN && !InsideCone(p, s.f)) ++bad;
   }
   CHECK(bad == 0, "%d committed forces outside the cone in a random history", bad);
@@ -490,9 +665,9 @@ void TestBlockOnPlane() {
     const double g[3] = {k * h, 0.0, -d};
     const double exact = std::min(p.kt * g[0], limit);
     double f[3], K[9];
-    ContactImplicitForce(p, imp, g, f, K);
+    const int st = ContactImplicitForce(p, imp, g, f, K);
     if (std::fabs(f[0] - exact) > 1e-12 * limit || f[1] != 0.0) ++imp_bad;
-    ContactLaggedCommit(p, g, f, &imp);
+    imp = State(g[0], g[1], g[2], f[0], f[1], f[2], st);  // the implicit law commits what it found
 
     // Single shot from the untouched state gives the same force (path independence).
     if (k == steps) {
@@ -506,7 +681,7 @@ void TestBlockOnPlane() {
     const double over = f[0] - exact;
     max_lag = std::max(max_lag, over);
     if (over < -1e-12 * limit || over > p.kt * h * (1 + 1e-9)) ++lag_bad;
-    ContactLaggedCommit(p, g, f, &lag);
+    ContactLaggedCommit(p, lag, g, f, &lag);
     if (std::fabs(lag.f[0] - exact) > 1e-12 * limit) ++lag_commit_bad;
   }
   CHECK(imp_bad == 0, "implicit differs from min(kt g_x, mu kn d) in %d steps", imp_bad);
@@ -528,6 +703,9 @@ int main() {
   TestImplicitCone();
   TestImplicitReclose();
   TestLaggedSequence();
+  TestLaggedStickSlipStick();
+  TestLaggedReversal();
+  TestLaggedRandomHistory();
   TestLaggedSpecial();
   TestCommitCone();
   TestFixed();

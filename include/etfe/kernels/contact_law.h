@@ -38,14 +38,18 @@ struct ContactState {
 void ContactLaggedForce(const ContactParameters &p, const ContactState &committed,
                         const double g[3], double f[3], double dfdg[9]);
 
-// Between load steps (thesis Fig. 4.4): from the converged force f, the status of the next step
-// (stick if |f_t| < mu |f_z| (1 - 1e-12), else slip; open if f_z >= 0) and the force put back on
-// the cone (|f_t| = mu |f_z|, same direction) when it overshot. Writes next (g = the converged
-// gap). f_z >= 0 with a penetrating gap (w < 0) re-closes the pair: stick, f = (0, 0, kn w).
-// Also serves as the commit of the implicit law. Start pairs from {g, f = 0, STICK}: committing
-// f = 0 at w = 0 gives OPEN, which the lagged law keeps force-free for a whole step.
-void ContactLaggedCommit(const ContactParameters &p, const double g[3], const double f[3],
-                         ContactState *next);
+// Between load steps (thesis Fig. 4.4): the status and force of the next step, decided at the
+// converged gap g from an elastic trial. committed is the state the step started from (next may
+// alias it). For a step that ran the stick springs the trial is the converged force f; for a
+// slip step it is f_n,t + kt (g_t - g_n,t). With the converged f_z: trial outside the cone
+// (|f_t*| >= mu |f_z| (1 - 1e-12)) slips, its force put on the cone along the trial (the
+// direction follows the motion); trial inside, or a slip step whose trial points against the
+// committed force (the node turned back), sticks with the converged force f. Open if
+// f_z >= 0; f_z >= 0 with a penetrating gap (w < 0) re-closes the pair: stick,
+// f = (0, 0, kn w). Writes next (g = the converged gap). Start pairs from {g, f = 0, STICK}:
+// committing f = 0 at w = 0 gives OPEN, which the lagged law keeps force-free for a whole step.
+void ContactLaggedCommit(const ContactParameters &p, const ContactState &committed, const double g[3],
+                         const double f[3], ContactState *next);
 
 // Implicit law: Coulomb return map on the friction cone at the current gap.
 //   normal: f_z = kn min(w, 0)              (open, f = 0, when w >= 0: lift-off)
