@@ -16,7 +16,9 @@ struct Principal {
   double c, s;    // n = (c, s): direction of e1
 };
 
-Principal PrincipalStrains(const double E[3]) {
+// Principal strains; the direction (trigonometry, the costly part) only when asked, i.e. for a
+// wrinkled element: every element is classified at every residual evaluation.
+Principal PrincipalStrains(const double E[3], bool direction) {
   const double m = 0.5 * (E[0] + E[1]);
   const double d = 0.5 * (E[0] - E[1]);
   const double g = 0.5 * E[2];  // tensor shear
@@ -24,10 +26,13 @@ Principal PrincipalStrains(const double E[3]) {
   Principal p;
   p.e1 = m + r;
   p.e2 = m - r;
-  // atan2(0, 0) = 0: equal principal strains (never wrinkled, see the header) give n = e1 axis.
-  const double th = 0.5 * std::atan2(g, d);
-  p.c = std::cos(th);
-  p.s = std::sin(th);
+  p.c = 1.0, p.s = 0.0;
+  if (direction) {
+    // atan2(0, 0) = 0: equal principal strains (never wrinkled, see the header) give n = e1 axis.
+    const double th = 0.5 * std::atan2(g, d);
+    p.c = std::cos(th);
+    p.s = std::sin(th);
+  }
   return p;
 }
 
@@ -35,7 +40,7 @@ Principal PrincipalStrains(const double E[3]) {
 
 void TensionFieldClassify(double young, double nu, const double E[3], WrinkleInfo *info) {
   (void)young;  // the criterion is a sign test; the modulus only scales the stress
-  const Principal p = PrincipalStrains(E);
+  Principal p = PrincipalStrains(E, false);
   info->dir[0] = info->dir[1] = 0.0;
   info->strain = 0.0;
   if (p.e2 + nu * p.e1 >= -kTautStrainTolerance) {
@@ -45,6 +50,7 @@ void TensionFieldClassify(double young, double nu, const double E[3], WrinkleInf
     info->strain = -p.e2;
   } else {
     info->state = WRINKLE_WRINKLED;
+    p = PrincipalStrains(E, true);
     info->dir[0] = p.c;
     info->dir[1] = p.s;
     info->strain = -(p.e2 + nu * p.e1);
@@ -68,7 +74,7 @@ int TensionFieldStress(double young, double nu, const double E[3], double S[3], 
     }
     return info->state;
   }
-  const Principal p = PrincipalStrains(E);
+  const Principal p = PrincipalStrains(E, true);
   const double c = p.c, s = p.s;
   const double N[3] = {c * c, s * s, c * s};
   const double sig = young * p.e1;
