@@ -17,7 +17,7 @@ namespace etfe {
 
 namespace {
 
-enum class PatchMode { Uniaxial, Biaxial, PureShear };
+enum class PatchMode { Uniaxial, Biaxial, PureShear, Shear };
 
 struct PatchContext {
   double ex, ey;  // engineering strain at schedule value 1
@@ -48,7 +48,7 @@ PetscErrorCode PatchReport(Problem *P, void *vctx) {
                         "patch: Sxx in [%.10e, %.10e], Syy in [%.10e, %.10e], Sxy in [%.3e, %.3e] MPa\n"
                         "patch: stress_spread = %.3e (max - min over elements, relative)\n",
                         glo[0], ghi[0], glo[1], ghi[1], glo[2], ghi[2], spread));
-  if (std::string(P->material->Name()) == "elastic") {
+  if (std::string(P->material->Name()) == "elastic" && ctx->mode != PatchMode::Shear) {
     double young, nu, S[2];
     P->material->ElasticConstants(&young, &nu);
     const double lx = 1.0 + ctx->ex * ctx->final_factor;
@@ -70,7 +70,7 @@ PetscErrorCode PatchReport(Problem *P, void *vctx) {
 } // namespace
 
 PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
-  PetscReal lx = 1000.0, ly = 500.0, ex = 0.02, ey = 0.0, perturb = 0.0;
+  PetscReal lx = 1000.0, ly = 500.0, ex = 0.02, ey = 0.0, shear = 0.0, perturb = 0.0;
   PetscReal schedule[32] = {1.0};
   PetscInt nx = 8, ny = 4, refine = 0, nsched = 32;
   PetscBool sched_set = PETSC_FALSE, file_set = PETSC_FALSE;
@@ -83,8 +83,11 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *
   PetscCall(PetscOptionsReal("-patch_strain_y", "Engineering strain in Y (biaxial only)", "", ey, &ey, nullptr));
   PetscCall(PetscOptionsString("-patch_mode",
                                "uniaxial (top edge free), biaxial (-patch_strain_y on the top edge), "
-                               "pureshear (Eyy = -Exx exactly at stage ends, interpolated in between)",
+                               "pureshear (Eyy = -Exx exactly at stage ends, interpolated in between), "
+                               "shear (shear panel: every edge node on u = (ex X + g Y, ex Y), g = -patch_shear)",
                                "", mode, mode, sizeof mode, nullptr));
+  PetscCall(PetscOptionsReal("-patch_shear", "Shear g = du_x/dY at schedule value 1 (-patch_mode shear)", "", shear,
+                             &shear, nullptr));
   PetscCall(PetscOptionsString("-mesh_file",
                                "Gmsh mesh of the rectangle instead of the generator (node sets left, "
                                "right, bottom, top)",
@@ -128,7 +131,10 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *
   if (ms == "uniaxial") pmode = PatchMode::Uniaxial;
   else if (ms == "biaxial") pmode = PatchMode::Biaxial;
   else if (ms == "pureshear") pmode = PatchMode::PureShear;
-  else SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-patch_mode %s: use uniaxial, biaxial or pureshear", mode);
+  else if (ms == "shear") pmode = PatchMode::Shear;
+  else SETERRQ(comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-patch_mode %s: use uniaxial, biaxial, pureshear or shear", mode);
+  PetscCheck(pmode == PatchMode::Shear || shear == 0.0, comm, PETSC_ERR_ARG_INCOMP,
+             "-patch_shear %g is for -patch_mode shear (the mode is %s)", shear, mode);
   PetscCheck(GeneratedTriangles(nx, ny, ps == "crossed" ? 4 : 2, refine) <= kMaxGeneratedTriangles, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-mesh_nx %" PetscInt_FMT " -mesh_ny %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more "
              "than the %.3g a generated mesh may have", nx, ny, refine, GeneratedTriangles(nx, ny, ps == "crossed" ? 4 : 2, refine),
@@ -166,6 +172,24 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *
   const int is = scene->AddSchedule(s);
   const auto &sets = scene->mesh.node_sets;
   for (int n : sets.at("all")) scene->constraints.push_back({n, 2, {}});
+  if (pmode == PatchMode::Shear) {
+    // Shear panel (pretension ex in X and Y plus the shear g): the homogeneous deformation
+    // F = [[1 + ex, g], [0, 1 + ex]] on every edge node, so the whole panel takes it.
+    std::vector<char> edge(scene->mesh.NumNodes(), 0);
+    for (const char *name : {"left", "right", "bottom", "top"})
+      for (int n : sets.at(name)) edge[n] = 1;
+    for (int n = 0; n < scene->mesh.NumNodes(); ++n) {
+      if (!edge[n]) continue;
+      const double X = scene->mesh.coords[3 * n], Y = scene->mesh.coords[3 * n + 1];
+      scene->constraints.push_back({n, 0, {{ex * X + shear * Y, 0.0}, {is, -1}}});
+      scene->constraints.push_back({n, 1, {{ex * Y, 0.0}, {is, -1}}});
+    }
+    auto *ctx = new PatchContext{ex, ey, pmode, schedule[nsched - 1]};
+    observer->report = PatchReport;
+    observer->ctx = ctx;
+    observer->destroy = [](void *c) { delete (PatchContext *)c; };
+    PetscFunctionReturn(0);
+  }
   for (int n : sets.at("left")) scene->constraints.push_back({n, 0, {}});
   for (int n : sets.at("bottom")) scene->constraints.push_back({n, 1, {}});
   for (int n : sets.at("right")) scene->constraints.push_back({n, 0, {{ex * lx, 0.0}, {is, -1}}});

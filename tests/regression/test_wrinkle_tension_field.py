@@ -12,6 +12,11 @@ closed form.
     element with the wrinkles along x (angle 0): Sxx = E Exx, Syy = Sxy = 0, wrinkle_dir = (+-1, 0, 0),
     wrinkle_strain = (1 - nu) Exx, all to 1e-8 (the wrinkle angles 30/45/90 deg and the shear
     panel with pretension are checked at kernel level in tests/unit/test_wrinkling.cpp).
+(b') Shear panel (-patch_mode shear: pretension 1e-3 in X and Y plus the shear g = du_x/dY on
+    every edge node; interior nodes free): with g = 0.01 every element wrinkles at ~45 deg; the
+    closed form of the homogeneous F = [[1+e0, g], [0, 1+e0]] (E1 and its direction n of the GL
+    strain, S = E E1 n n, wrinkle_dir = F n/|F n|, wrinkle_strain = -(E2 + nu E1)) holds to 1e-8;
+    with g = 0.001 the panel stays taut and carries the plane-stress law's stress.
 (c) Newton on that wrinkling problem in one increment (elements go taut -> wrinkled on the way):
     quadratic at the end, r_{k+1}/r_k^2 < 0.1 per N on the last two iterations above the 1e-8 N
     round-off floor (measured ~1e-2), estimated order log(r_{k+1}/r_k)/log(r_k/r_{k-1}) > 1.5.
@@ -66,6 +71,40 @@ def same_as_none(chk, name, tf, none):
               "%s: the none run writes no wrinkle fields" % name)
 
 
+def shear_panel(chk, etfe, tmp, e0, g, wrinkled):
+    h5 = os.path.join(tmp, "shear_%g.h5" % g)
+    T.run(etfe, ["-options_file", T.opts("patch"), "-patch_mode", "shear", "-patch_strain_x", e0, "-patch_shear", g,
+                 "-membrane_wrinkling", "tension_field", "-load_increments", "1", "-output_file", h5,
+                 "-load_monitor", "0"])
+    d = T.read_steps(h5)[-1][2]
+    F = np.array([[1 + e0, g], [0.0, 1 + e0]])
+    E = 0.5 * (F.T @ F - np.eye(2))
+    w, v = np.linalg.eigh(E)
+    E2, E1, n = w[0], w[1], v[:, 1]
+    label = "shear panel g = %g" % g
+    if wrinkled:
+        S = YOUNG * E1 * np.array([n[0] ** 2, n[1] ** 2, n[0] * n[1]])
+        fn = F @ n
+        fn = np.array([fn[0], fn[1], 0.0]) / np.linalg.norm(fn)
+        lost = -(E2 + NU * E1)
+    else:
+        c = YOUNG / (1 - NU * NU)
+        S = c * np.array([E[0, 0] + NU * E[1, 1], NU * E[0, 0] + E[1, 1], (1 - NU) * E[0, 1]])
+    state = d["wrinkle_state"]
+    print("%s: states %s, angle of n %.4f deg, S closed form %s, FE max deviation %.3e MPa" % (
+        label, np.unique(state), math.degrees(math.atan2(n[1], n[0])), np.array2string(S, precision=8),
+        float(np.abs(d["stress"] - S).max())))
+    chk.check(np.all(state == (1 if wrinkled else 0)), "%s: every element %s" % (label, "wrinkled" if wrinkled else "taut"))
+    scale = float(np.abs(S).max())
+    chk.less(float(np.abs(d["stress"] - S).max()) / scale, 1e-8, "%s: PK2 stress vs closed form (relative)" % label)
+    if wrinkled:
+        # The direction's sign is free: compare n n^T.
+        dirs = d["wrinkle_dir"]
+        dev = max(float(np.abs(np.outer(x, x) - np.outer(fn, fn)).max()) for x in dirs)
+        chk.less(dev, 1e-8, "%s: wrinkle_dir vs F n/|F n|" % label)
+        chk.less(float(np.abs(d["wrinkle_strain"] - lost).max()) / lost, 1e-8, "%s: wrinkle_strain vs -(E2 + nu E1)" % label)
+
+
 def main_test(etfe, chk):
     with T.scratch_dir("wrinkle") as tmp:
         for name, args in NO_WRINKLE.items():
@@ -92,6 +131,9 @@ def main_test(etfe, chk):
         chk.less(float(np.abs(np.abs(wd[:, 0]) - 1.0).max() + np.abs(wd[:, 1:]).max()), 1e-8,
                  "pureshear wrinkle_dir = (+-1, 0, 0)")
         chk.less(float(np.abs(ws - (1 - NU) * Exx).max() / Exx), 1e-8, "pureshear wrinkle_strain = (1-nu) Exx")
+
+        for g, wrinkled in ((0.01, True), (0.001, False)):
+            shear_panel(chk, etfe, tmp, 1e-3, g, wrinkled)
 
         hist = T.snes_histories(out)
         chk.check(len(hist) >= 1 and len(hist[0]) >= 4, "pureshear: a Newton history was printed")
