@@ -66,6 +66,13 @@ struct SceneSpec {
   ContactSpec contact;
   std::vector<double> element_stress_ratio;  // form finding: MD:TD per element (empty: uniform)
   std::vector<double> initial_guess;     // 3 per node or empty (zero displacement)
+  // Stress-free shape of each element where it differs from the nodes' positions (a cutting
+  // pattern laid onto the surface: -saddle_reference pattern): 9 coordinates per element in
+  // scene order, any placement; empty: every element is stress free where its nodes are.
+  std::vector<double> element_reference;
+  // How far the elements' reference has gone from the placed shape (0) to element_reference (1)
+  // at load time t: a lay-on stage ramps it, so the misfit is loaded gradually.
+  ScheduledValue reference_blend;
   std::string initial_guess_note;        // printed in the header when a guess is used
 
   int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }

@@ -69,7 +69,7 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   LocalMesh &m = P->mesh;
   const int nn = gm.NumNodes(), ne = gm.NumElements();
   MeshNumbering numbering;
-  PetscCall(LocalMeshCreate(comm, gm, P->scene.md_axis, &m, &numbering));
+  PetscCall(LocalMeshCreate(comm, gm, P->scene.md_axis, P->scene.element_reference, &m, &numbering));
   const PetscInt nl = m.NumLocal();
 
   // History only when the material has one.
@@ -177,6 +177,10 @@ PetscErrorCode ProblemSetLoadTime(Problem *P, double t, Vec U) {
   PetscScalar *u;
   PetscFunctionBeginUser;
   P->time = t;
+  if (!P->mesh.ref_free.empty()) {
+    const double s = P->scene.reference_blend.At(P->scene.schedules, t);
+    if (s != P->mesh.ref_blend) PetscCall(LocalMeshBlendReference(P->comm, &P->mesh, s));
+  }
   PetscCall(VecGetArray(U, &u));
   for (size_t k = 0; k < P->con_owned_dof.size(); ++k)
     u[P->con_owned_dof[k]] = P->con_owned_value[k].At(P->scene.schedules, t) - P->con_owned_offset[k];

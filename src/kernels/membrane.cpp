@@ -102,6 +102,30 @@ int MembraneReferenceBuild(const double X[9], const double md_axis[3], double mi
   return KERNEL_OK;
 }
 
+int MembraneCarryAxis(const double X[9], const double Y[9], const double axis[3], double out[3]) {
+  double a[3], b[3], n[3], ya[3], yb[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = X[3 + i] - X[i], b[i] = X[6 + i] - X[i];
+    ya[i] = Y[3 + i] - Y[i], yb[i] = Y[6 + i] - Y[i];
+  }
+  Cross3(a, b, n);
+  double ny[3];
+  Cross3(ya, yb, ny);
+  const double aa = Dot3(a, a), bb = Dot3(b, b), ab = Dot3(a, b), det = aa * bb - ab * ab;
+  if (!(det > kSliverTol * kSliverTol * std::fmax(aa, bb) * std::fmax(aa, bb)) ||
+      !(Dot3(ny, ny) > kSliverTol * kSliverTol * std::fmax(Dot3(ya, ya), Dot3(yb, yb)) *
+                             std::fmax(Dot3(ya, ya), Dot3(yb, yb))))
+    return KERNEL_DEGENERATE;
+  // The in-plane part of axis as alpha a + beta b (normal equations of the edge basis), then the
+  // same combination of Y's edges: the triangle's own affine map X -> Y applied to the axis.
+  const double ra = Dot3(axis, a), rb = Dot3(axis, b);
+  const double alpha = (bb * ra - ab * rb) / det, beta = (aa * rb - ab * ra) / det;
+  for (int i = 0; i < 3; ++i) out[i] = alpha * ya[i] + beta * yb[i];
+  for (int i = 0; i < 3; ++i)
+    if (!std::isfinite(out[i])) return KERNEL_NONFINITE;
+  return KERNEL_OK;
+}
+
 void MembraneKinematics(const MembraneReference &ref, const double x[9], double F[6],
                         double E[3]) {
   // sum_a gradN_a = 0, so F only depends on the edge vectors: using them avoids cancellation

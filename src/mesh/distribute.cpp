@@ -34,15 +34,36 @@ static PetscErrorCode PartitionAndBroadcast(MPI_Comm comm, const MeshData &mesh,
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode BuildReferenceGeometry(const MeshData &gm, const double md_axis[3], LocalMesh *lm) {
+// A triangle in its own MD frame (the frame of ref): node 0 at the origin, 2 coordinates a node.
+static void LocalTriangle(const double X[9], const MembraneReference &ref, double T[6]) {
+  for (int a = 0; a < 3; ++a)
+    for (int j = 0; j < 2; ++j) {
+      double v = 0.0;
+      for (int i = 0; i < 3; ++i) v += (X[3 * a + i] - X[i]) * ref.frame[3 * j + i];
+      T[2 * a + j] = v;
+    }
+}
+
+static PetscErrorCode BuildReferenceGeometry(const MeshData &gm, const double md_axis[3],
+                                            const std::vector<double> &element_reference, LocalMesh *lm) {
   LocalMesh &m = *lm;
   PetscFunctionBeginUser;
   m.ref.resize(m.num_elements);
+  if (!element_reference.empty()) m.ref_placed.resize(6 * m.num_elements), m.ref_free.resize(6 * m.num_elements);
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double X[9];
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < 3; ++i) X[3 * a + i] = m.X[3 * m.tri[3 * e + a] + i];
     int st = MembraneReferenceBuild(X, md_axis, 0.0, &m.ref[e]);
+    if (st == KERNEL_OK && !element_reference.empty()) {
+      const double *Y = &element_reference[9 * m.element_natural[e]];
+      double md[3];
+      MembraneReference free_ref;
+      LocalTriangle(X, m.ref[e], &m.ref_placed[6 * e]);
+      st = MembraneCarryAxis(X, Y, md_axis, md);
+      if (st == KERNEL_OK) st = MembraneReferenceBuild(Y, md, 0.0, &free_ref);
+      if (st == KERNEL_OK) LocalTriangle(Y, free_ref, &m.ref_free[6 * e]);
+    }
     PetscCheck(st == KERNEL_OK, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
                "%s: element %" PetscInt_FMT " (nodes %" PetscInt_FMT " %" PetscInt_FMT
                " %" PetscInt_FMT "): %s; fix the mesh (remove or merge the element)",
@@ -53,7 +74,8 @@ static PetscErrorCode BuildReferenceGeometry(const MeshData &gm, const double md
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LocalMeshCreate(MPI_Comm comm, const MeshData &gm, const double md_axis[3], LocalMesh *lm,
+PetscErrorCode LocalMeshCreate(MPI_Comm comm, const MeshData &gm, const double md_axis[3],
+                               const std::vector<double> &element_reference, LocalMesh *lm,
                                MeshNumbering *numbering) {
   LocalMesh &m = *lm;
   PetscMPIInt rank, size;
@@ -123,9 +145,32 @@ PetscErrorCode LocalMeshCreate(MPI_Comm comm, const MeshData &gm, const double m
       m.tri[3 * e + a] = (int)local_of[gm.triangles[3 * m.element_natural[e] + a]];
   PetscCallMPI(MPI_Exscan(&m.num_elements, &m.element_start, 1, MPIU_INT, MPI_SUM, comm));
   if (rank == 0) m.element_start = 0;
-  PetscCall(BuildReferenceGeometry(gm, md_axis, lm));
+  PetscCheck(element_reference.empty() || element_reference.size() == 9 * (size_t)ne, comm, PETSC_ERR_PLIB,
+             "%s: %zu stress-free element coordinates for %d elements (9 each)", gm.source.c_str(),
+             element_reference.size(), ne);
+  PetscCall(BuildReferenceGeometry(gm, md_axis, element_reference, lm));
   numbering->petsc_id = std::move(petsc_id);
   numbering->local_of = std::move(local_of);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode LocalMeshBlendReference(MPI_Comm comm, LocalMesh *lm, double s) {
+  LocalMesh &m = *lm;
+  const double md[3] = {1.0, 0.0, 0.0};  // the triangles are in their MD frames
+  PetscInt bad = -1, bad_global;
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < m.num_elements && !m.ref_free.empty(); ++e) {
+    double Y[9] = {0.0};
+    for (int a = 0; a < 3; ++a)
+      for (int j = 0; j < 2; ++j) Y[3 * a + j] = (1.0 - s) * m.ref_placed[6 * e + 2 * a + j] + s * m.ref_free[6 * e + 2 * a + j];
+    if (MembraneReferenceBuild(Y, md, 0.0, &m.ref[e]) != KERNEL_OK && bad < 0) bad = m.element_natural[e];
+  }
+  PetscCallMPI(MPI_Allreduce(&bad, &bad_global, 1, MPIU_INT, MPI_MAX, comm));
+  PetscCheck(bad_global < 0, comm, PETSC_ERR_ARG_WRONG,
+             "element %" PetscInt_FMT ": its stress-free shape blended %.3g of the way from the placed one is "
+             "degenerate (the pattern folds this triangle over): check the cutting pattern of its strip",
+             bad_global, s);
+  m.ref_blend = s;
   PetscFunctionReturn(0);
 }
 

@@ -32,6 +32,11 @@ int SaddleNearestNode(const MeshData &m, double x, double y);
 // Stretch fabrication (-analysis stretch): drawing of the frame at a, b, c, d, symmetry, arch
 // contact, optional pressure cycle, probes and the report. The mesh (PD initial shape or a
 // form-found DD shape) and its node sets are already in scene.
+// -saddle_reference pattern: per element of m (9 each) its triangle in the flat cutting pattern of
+// its strip (element sets middle, corner), for SceneSpec::element_reference. Collective (each
+// rank flattens the same strips).
+PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vector<double> *element_reference);
+
 PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene, SceneObserver *observer);
 
 } // namespace etfe

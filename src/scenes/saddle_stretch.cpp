@@ -206,6 +206,8 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   std::vector<double> part_a = {0, 0, 400, 400}, part_b = {1300, 0, 1700, 400};
   std::vector<double> elem_i = {200, 200}, elem_ii = {500, 700}, slides = {0, 250, 500, 750, 950};
   char history[PETSC_MAX_PATH_LEN] = "";
+  const char *references[] = {"surface", "pattern"};
+  PetscInt reference = 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Saddle stretch fabrication", "Scene");
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_draw_a", "Drawing at a (X = 2000, Y = 0; in X) per stage [mm]", &da));
@@ -223,6 +225,10 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_element_I", "Element I position x,y [mm]", &elem_i));
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_element_II", "Element II position x,y [mm]", &elem_ii));
   PetscCall(ReadArray(PetscOptionsObject, "-saddle_slide_points", "Y of the arch slide points I..V [mm]", &slides));
+  PetscCall(PetscOptionsEList("-saddle_reference",
+                              "Stress-free state: surface (the form-found shape, as the thesis's analysis) or pattern "
+                              "(the flat cutting patterns of the strips, laid on during the first drawing step)",
+                              "", references, 2, references[reference], &reference, nullptr));
   PetscCall(PetscOptionsString("-saddle_history", "Probe history CSV (default beside -output_file)", "", history,
                                history, sizeof history, nullptr));
   PetscOptionsEnd();
@@ -240,6 +246,7 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
       PetscCheck(std::isfinite(x), comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: drawing, gain and pressure values must be finite");
   c->part_a = {part_a[0], part_a[1], part_a[2], part_a[3]};
   c->part_b = {part_b[0], part_b[1], part_b[2], part_b[3]};
+  if (reference == 1) PetscCall(SaddlePatternReference(comm, m, &scene->element_reference));
   c->drawing_stages = (PetscInt)ns;
 
   // Schedules: drawing stages, then the pressure cycle with the drawing held.
@@ -262,6 +269,12 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   const int sb = scene->AddSchedule({"draw_b", 0.0, extend(db, 1), "mm"});
   const int sc = scene->AddSchedule({"draw_c", 0.0, extend(dc, 2), "mm"});
   const int sd = scene->AddSchedule({"draw_d", 0.0, extend(dd, 3), "mm"});
+  if (!scene->element_reference.empty()) {
+    // The film is laid on in the first drawing step: the reference goes from the surface to the
+    // flat pattern while the frame draws (saddle_pattern_reference.cpp says why not before it).
+    const int sl = scene->AddSchedule({"lay_on", 0.0, std::vector<double>(stages, 1.0), ""});
+    scene->reference_blend = {{1.0, 0.0}, {sl, -1}};
+  }
   if (np > 0) {
     std::vector<double> p(ns, 0.0);
     for (double x : pressure) p.push_back(1e-3 * x);  // kPa -> MPa

@@ -415,6 +415,42 @@ void TestFrame(Rng &rng) {
   }
 }
 
+// The axis carried by a triangle's own affine map: exact for any linear map of an in-plane axis,
+// the normal component dropped, slivers refused.
+void TestCarryAxis(Rng &rng) {
+  for (int trial = 0; trial < 20; ++trial) {
+    double X[9], A[9], Y[9], n[3], axis[3], out[3];
+    RandomTriangle(rng, 100.0, X);
+    for (double &a : A) a = rng.Next();
+    for (int i = 0; i < 3; ++i) A[4 * i] += 2.0;  // diagonal dominance: A invertible
+    for (int a = 0; a < 3; ++a) Rotate(A, X + 3 * a, Y + 3 * a);
+    for (int i = 0; i < 3; ++i) Y[i] += 7.0 * i;  // a translation changes nothing
+    for (int i = 3; i < 9; ++i) Y[i] += 7.0 * (i % 3);
+    double e1[3], e2[3];
+    for (int i = 0; i < 3; ++i) e1[i] = X[3 + i] - X[i], e2[i] = X[6 + i] - X[i];
+    Cross(e1, e2, n);
+    const double s = rng.Next(), t = rng.Next(), r = rng.Next();
+    for (int i = 0; i < 3; ++i) axis[i] = s * e1[i] + t * e2[i] + r * n[i] / std::sqrt(Dot(n, n)) * 50.0;
+    CHECK(etfe::MembraneCarryAxis(X, Y, axis, out) == etfe::KERNEL_OK, "carry trial %d", trial);
+    double in_plane[3], expect[3];
+    for (int i = 0; i < 3; ++i) in_plane[i] = s * e1[i] + t * e2[i];
+    Rotate(A, in_plane, expect);
+    for (int i = 0; i < 3; ++i) CHECK_CLOSE(out[i], expect[i], 1e-12, 1e-12 * 100.0);
+  }
+  // A flat pattern stretched 2:1 along X: MD (X) doubles, TD (Y) is kept, the normal is dropped.
+  const double X[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, Y[9] = {0, 0, 0, 2, 0, 0, 0, 1, 0};
+  const double ax[3] = {1, 0, 0}, ay[3] = {0, 1, 0}, az[3] = {0, 0, 1};
+  double out[3];
+  CHECK(etfe::MembraneCarryAxis(X, Y, ax, out) == etfe::KERNEL_OK && std::fabs(out[0] - 2.0) < 1e-15 &&
+            std::fabs(out[1]) < 1e-15, "MD stretched");
+  CHECK(etfe::MembraneCarryAxis(X, Y, ay, out) == etfe::KERNEL_OK && std::fabs(out[1] - 1.0) < 1e-15 &&
+            std::fabs(out[0]) < 1e-15, "TD kept");
+  CHECK(etfe::MembraneCarryAxis(X, Y, az, out) == etfe::KERNEL_OK && Dot(out, out) < 1e-30, "normal dropped");
+  const double sliver[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0};
+  CHECK(etfe::MembraneCarryAxis(sliver, Y, ax, out) == etfe::KERNEL_DEGENERATE, "sliver X");
+  CHECK(etfe::MembraneCarryAxis(X, sliver, ax, out) == etfe::KERNEL_DEGENERATE, "sliver Y");
+}
+
 void TestOutputs() {
   const double s1[3] = {100.0, 0.0, 0.0};
   CHECK_CLOSE(etfe::MisesPlaneStress(s1), 100.0, 1e-15, 0.0);
@@ -491,6 +527,7 @@ int main() {
   TestHomogeneous(rng);
   TestDegenerate();
   TestFrame(rng);
+  TestCarryAxis(rng);
   TestOutputs();
   TestEquilibrium(rng);
   TEST_MAIN_END();

@@ -25,6 +25,13 @@ struct MembraneReference {
 int MembraneReferenceBuild(const double X[9], const double md_axis[3], double min_area,
                            MembraneReference *ref);
 
+// The direction axis carried from triangle X to triangle Y (9 each, same node order) by the
+// affine map that takes X's nodes to Y's: the part of axis in X's plane, written as a combination
+// of X's edges, is returned as the same combination of Y's edges (not normalized). Used to give
+// a triangle whose stress-free shape Y differs from its placed shape X (a cutting pattern laid
+// onto the surface) the MD axis it has on the surface. KERNEL_DEGENERATE for a sliver X or Y.
+int MembraneCarryAxis(const double X[9], const double Y[9], const double axis[3], double out[3]);
+
 // Deformation gradient F (3x2 row-major, F[2*i+j] = dx_i/dxi_j) and Green-Lagrange strain
 // E = (Exx, Eyy, 2Exy) at the current coordinates x.
 void MembraneKinematics(const MembraneReference &ref, const double x[9], double F[6], double E[3]);

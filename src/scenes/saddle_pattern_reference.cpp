@@ -1,0 +1,59 @@
+// -saddle_reference pattern (issue 16): the film's stress-free state is the flat cutting pattern
+// of its strips, as in the experiments (the specimens were welded from flat strips: thesis L267,
+// L692, L1666), not the form-found surface the thesis's own analysis started from (L1689).
+// Each strip (element sets "middle" and "corner" of a form-found mesh) is flattened with the
+// cutting-pattern analysis (flatten_strip.h, the thesis's boundary weight 1e12, so weld and frame
+// lines keep their length); every element then takes its flat triangle as its reference while
+// its nodes start on the surface, welded at the weld line. The reference is blended from the
+// surface to the pattern during the first drawing step (SceneSpec::reference_blend, schedule
+// "lay_on"), so the misfit is loaded gradually and under tension: the flat pattern does not fit
+// the doubly curved frame (its interior links are up to ~1.3 % off their 3D lengths), and a lay-on
+// without drawing compresses parts of the film, which a membrane cannot carry (measured: Newton
+// finds no equilibrium even at 1/2500 of such a stage, the line search failing at |R| ~ 1e-3 N).
+#include <petscsys.h>
+
+#include <vector>
+
+#include "etfe/cutpattern.h"
+#include "etfe/flatten_strip.h"
+#include "saddle_geometry.h"
+
+namespace etfe {
+
+PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vector<double> *element_reference) {
+  static const char *strips[] = {"middle", "corner"};
+  PetscFunctionBeginUser;
+  std::vector<int> covered(m.NumElements(), 0);
+  element_reference->assign(9 * (size_t)m.NumElements(), 0.0);
+  for (const char *name : strips) {
+    auto it = m.element_sets.find(name);
+    PetscCheck(it != m.element_sets.end() && !it->second.empty(), comm, PETSC_ERR_ARG_WRONG,
+               "-saddle_reference pattern: %s has no element set \"%s\"; the flat pattern needs the strips of a "
+               "form-found surface (-mesh_file written by options/saddle/ff_*.opts), not the PD start",
+               m.source.c_str(), name);
+    const MeshData strip = ExtractStrip(m, it->second, name);
+    FlattenResult r;
+    std::string err;
+    PetscCheck(FlattenStrip(strip, FlattenOptions(), &r, &err), comm, PETSC_ERR_NOT_CONVERGED,
+               "-saddle_reference pattern: flattening strip %s of %s failed: %s", name, m.source.c_str(), err.c_str());
+    for (size_t k = 0; k < it->second.size(); ++k) {
+      const int e = it->second[k];
+      covered[e]++;
+      for (int a = 0; a < 3; ++a) {
+        const int n = strip.triangles[3 * k + a];
+        double *Y = &(*element_reference)[9 * (size_t)e + 3 * a];
+        Y[0] = r.xy[2 * n], Y[1] = r.xy[2 * n + 1], Y[2] = 0.0;
+      }
+    }
+    PetscCall(PetscPrintf(comm, "saddle: reference = flat pattern of strip %s (%zu elements, outline 3D %.3f mm, "
+                                "2D %.3f mm, largest link error %.2e)\n",
+                          name, it->second.size(), r.outline_length3d, r.outline_length2d, r.max_rel_error));
+  }
+  for (int e = 0; e < m.NumElements(); ++e)
+    PetscCheck(covered[e] == 1, comm, PETSC_ERR_ARG_WRONG,
+               "-saddle_reference pattern: element %d of %s is in %d of the strips middle, corner (must be in one)",
+               e, m.source.c_str(), covered[e]);
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
