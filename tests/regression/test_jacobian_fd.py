@@ -68,6 +68,11 @@ COMMON = ["-snes_test_jacobian", "-snes_test_jacobian_view", "::ascii_matlab", "
 CASES = {  # name: (options file, extra options)
     "hencky_rings3_pressure": ("hencky", ["-mesh_rings", "3"]),
     "patch_plastic_0.05": ("patch", ["-material_type", "plastic", "-patch_strain_x", "0.05"]),
+    # Tension field (issue 15): the shear panel (3 x 2 cells, so every element touches a displaced
+    # edge node: no element sits at E = 0, where the relaxed law has a kink) wrinkles; the relaxed
+    # law's tangent includes the wrinkle direction's dependence on the strain.
+    "patch_shear_tension_field": ("patch", ["-patch_mode", "shear", "-patch_strain_x", "1e-3", "-patch_shear", "0.01",
+                                            "-membrane_wrinkling", "tension_field", "-mesh_nx", "3", "-mesh_ny", "2"]),
 }
 FREE_LIMIT = 1e-5
 
