@@ -50,6 +50,7 @@ struct Problem {
   double shift_fnorm0 = 0.0;
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
+  PetscBool near_null_space = PETSC_FALSE;  // rigid-body modes attached to J (AMG preconditioners)
   std::unique_ptr<Material> material;
   std::vector<double> history;        // committed history, HistorySize() per local element
   std::vector<double> history_trial;  // scratch for the commit pass

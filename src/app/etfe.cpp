@@ -53,6 +53,10 @@ PetscErrorCode ReadMembraneOptions(MPI_Comm comm, Problem *P) {
                              "Geometric stiffness from the tensile part of the stress only (wrinkling films; "
                              "the answer is unchanged)", "", P->tangent_tension_only, &P->tangent_tension_only,
                              nullptr));
+  PetscCall(PetscOptionsBool("-membrane_near_null_space",
+                             "Attach the 6 rigid-body modes of the nodal coordinates to the tangent as its near-null "
+                             "space (for -pc_type gamg; LU ignores it)", "", P->near_null_space, &P->near_null_space,
+                             nullptr));
   const char *wrinkling_models[] = {"none", "tension_field"};
   PetscInt wrinkling = P->wrinkling ? 1 : 0;
   PetscCall(PetscOptionsEList("-membrane_wrinkling",

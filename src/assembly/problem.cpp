@@ -57,6 +57,26 @@ static PetscErrorCode CreateMatrix(Problem *P, const MeshData &gm,
   PetscFunctionReturn(0);
 }
 
+// AMG (GAMG) builds its coarse spaces from the near-null space; without one it takes the 3
+// translations per node, and a membrane's rotations then look like high-energy modes to it.
+static PetscErrorCode SetRigidBodyNearNullSpace(Problem *P) {
+  const LocalMesh &m = P->mesh;
+  Vec coords;
+  PetscScalar *c;
+  MatNullSpace nsp;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(P->comm, 3 * m.num_owned, PETSC_DETERMINE, &coords));
+  PetscCall(VecSetBlockSize(coords, 3));
+  PetscCall(VecGetArray(coords, &c));
+  for (PetscInt i = 0; i < 3 * m.num_owned; ++i) c[i] = m.X[i];  // owned nodes come first
+  PetscCall(VecRestoreArray(coords, &c));
+  PetscCall(MatNullSpaceCreateRigidBody(coords, &nsp));
+  PetscCall(MatSetNearNullSpace(P->J, nsp));
+  PetscCall(MatNullSpaceDestroy(&nsp));
+  PetscCall(VecDestroy(&coords));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material,
                              Problem *P) {
   PetscFunctionBeginUser;
@@ -152,6 +172,7 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   PetscCall(ISLocalToGlobalMappingCreate(comm, 3, nl, m.global_id.data(), PETSC_COPY_VALUES,
                                          &P->l2g));
   PetscCall(CreateMatrix(P, gm, numbering.petsc_id));
+  if (P->near_null_space) PetscCall(SetRigidBodyNearNullSpace(P));
 
   // Initial displacement (scene guess, then the prescribed values at t = 0).
   if (!P->scene.initial_guess.empty()) {
