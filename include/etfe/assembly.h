@@ -22,6 +22,10 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 // Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
 // collapse. Collective; *ok false names the element in problem->bad_element.
 PetscErrorCode CheckStep(Problem *problem, Vec X, Vec W, PetscBool *ok);
+// The largest relative change of an element edge an update Y would make to first order,
+// max over edges |Y_a - Y_b| / |X_a - X_b| (reference edge lengths): the size of a Newton step in
+// strain, the same on every mesh density (a nodal cap in mm is not). Collective.
+PetscErrorCode LargestUpdateGradient(Problem *problem, Vec Y, PetscReal *gradient);
 // Moves the reference configuration to the current one (X += U on owned and ghost nodes),
 // rebuilds the element reference geometry and absorbs U into the constraint offsets. U is not
 // changed; the caller zeroes it. Used by form finding's updated-reference iterations.

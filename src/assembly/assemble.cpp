@@ -329,6 +329,28 @@ PetscErrorCode CheckStep(Problem *P, Vec X, Vec W, PetscBool *ok) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode LargestUpdateGradient(Problem *P, Vec Y, PetscReal *gradient) {
+  const LocalMesh &m = P->mesh;
+  Vec Yl;
+  const PetscScalar *y;
+  PetscReal g = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(GetLocalArray(Y, P->U_work, &Yl, &y));
+  for (PetscInt e = 0; e < m.num_elements; ++e)
+    for (int a = 0; a < 3; ++a) {
+      const int i = m.tri[3 * e + a], j = m.tri[3 * e + (a + 1) % 3];
+      double dy = 0.0, dx = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        dy += (y[3 * i + c] - y[3 * j + c]) * (y[3 * i + c] - y[3 * j + c]);
+        dx += (m.X[3 * i + c] - m.X[3 * j + c]) * (m.X[3 * i + c] - m.X[3 * j + c]);
+      }
+      if (dx > 0.0) g = std::max(g, std::sqrt(dy / dx));
+    }
+  PetscCall(RestoreLocalArray(P->U_work, &Yl, &y));
+  PetscCallMPI(MPI_Allreduce(&g, gradient, 1, MPIU_REAL, MPIU_MAX, P->comm));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode UpdateReference(Problem *P, Vec U) {
   LocalMesh &m = P->mesh;
   Vec Ul;

@@ -26,6 +26,7 @@ namespace {
 struct EtfeLineSearch {
   Problem *problem = nullptr;
   PetscReal max_update = 0.0;  // mm; 0 = no cap
+  PetscReal max_strain_update = 0.0;  // largest |Y_a - Y_b| / |X_a - X_b| over edges; 0 = no cap
   PetscReal linear_warn = 1e-6, linear_fail = 1e-2;
   PetscBool check_linear = PETSC_TRUE;
   PetscReal armijo = 1e-4;
@@ -90,6 +91,15 @@ PetscErrorCode Apply(SNESLineSearch ls) {
   }
 
   Problem *P = d->problem;
+  if (d->max_strain_update > 0.0 && P) {
+    PetscReal g;
+    PetscCall(LargestUpdateGradient(P, Y, &g));
+    if (lambda * g > d->max_strain_update) {
+      PetscCall(PetscInfo(ls, "step capped: largest edge strain update %g > %g\n", (double)(lambda * g),
+                          (double)d->max_strain_update));
+      lambda = d->max_strain_update / g;
+    }
+  }
   PetscReal best_lambda = -1.0, best_norm = PETSC_MAX_REAL;
   PetscBool accepted = PETSC_FALSE;
   for (PetscInt it = 0; it <= ls->max_its && !accepted; ++it, lambda *= 0.5) {
@@ -150,6 +160,10 @@ PetscErrorCode SetFromOptions(SNESLineSearch ls, PetscOptionItems *PetscOptionsO
   PetscCall(PetscOptionsReal("-snes_linesearch_etfe_max_update",
                              "Largest nodal displacement update per Newton iteration [mm] (0: none)",
                              "", d->max_update, &d->max_update, nullptr));
+  PetscCall(PetscOptionsReal("-snes_linesearch_etfe_max_strain_update",
+                             "Largest relative change of an element edge per Newton iteration, |dU_a - dU_b|/|X_a - X_b| "
+                             "(a cap that means the same on every mesh density; 0: none)",
+                             "", d->max_strain_update, &d->max_strain_update, nullptr));
   PetscCall(PetscOptionsBool("-snes_linesearch_etfe_check_linear",
                              "Check the true residual of the linear solve", "", d->check_linear,
                              &d->check_linear, nullptr));
@@ -166,8 +180,9 @@ PetscErrorCode View(SNESLineSearch ls, PetscViewer viewer) {
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (ascii)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  max nodal update %g mm, linear check %s\n",
-                                     (double)d->max_update, d->check_linear ? "on" : "off"));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  max nodal update %g mm, max edge strain update %g, linear check %s\n",
+                                     (double)d->max_update, (double)d->max_strain_update,
+                                     d->check_linear ? "on" : "off"));
   PetscFunctionReturn(0);
 }
 
