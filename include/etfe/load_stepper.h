@@ -20,6 +20,9 @@ struct LoadStepperOptions {
   // of prescribed values and loads, so the interior follows a jump of the boundary instead of
   // leaving it to Newton's first iterations (+1 factorisation per increment).
   PetscBool tangent_predictor = PETSC_FALSE;
+  // Extra diagonal shift (relative to E h) of the predictor's tangent only: at a stress-free start
+  // the film's out-of-plane stiffness is nearly zero and the predictor's solve throws the nodes far.
+  PetscReal tangent_predictor_shift = 0.0;
   PetscInt monitor = 1;
   PetscInt stop_after = -1;      // end cleanly after this many increments (-1: never)
   PetscReal force_rtol = 1e-10;  // converged when |R| <= force_rtol * (reactions + loads)
