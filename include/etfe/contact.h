@@ -52,7 +52,10 @@ struct ContactPairReport {
 
 struct ContactSet {
   ContactParameters params{};
-  FrictionLaw law = FrictionLaw::Implicit;
+  FrictionLaw law = FrictionLaw::Implicit;  // the law of the first stage
+  // -contact_friction a,b,c: the law of each stage (the last one holds for the stages after it);
+  // empty when one law serves the whole run. A stage with "none" is frictionless (mu = 0).
+  std::vector<FrictionLaw> stage_laws;
   // -contact_normal follow: the master point is the current closest point of the support and
   // the frame follows it (large slide); frozen: the thesis's frame fixed at t0.
   bool follow = false;
@@ -72,6 +75,7 @@ struct ContactSet {
 struct ContactOptions {
   ContactParameters params;
   FrictionLaw law = FrictionLaw::Implicit;
+  std::vector<FrictionLaw> stage_laws;  // as given (a law per stage when they differ)
   bool follow = false;
   PetscReal frictionless_until = 0.0, search_tol = 1e-6;
   std::vector<PetscInt> probe_nodes;
@@ -90,6 +94,8 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], d
 // Counts over all ranks: open, stick, slip, and pairs that lifted off in this increment.
 PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[4]);
 const char *FrictionLawName(FrictionLaw law);
+// The law in force at load time t (stage s covers t in (s, s+1]).
+FrictionLaw ContactLawAt(const ContactSet &c, double time);
 ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);
 // Appends one line per probe pair to <stem>_contact_node<id>.csv, stem = the results file without
 // its extension (written by the owning rank): step, time, status, slide x0/y0 (local), slide X/Y

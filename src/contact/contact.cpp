@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <string>
 
 #include "etfe/contact.h"
 #include "etfe/csv_history.h"
@@ -33,21 +35,35 @@ const char *FrictionLawName(FrictionLaw law) {
   return "?";
 }
 
+FrictionLaw ContactLawAt(const ContactSet &c, double time) {
+  if (c.stage_laws.empty()) return c.law;
+  // Stage s (0-based) covers load times (s, s+1]; the tolerance keeps a stage end that the
+  // increments reach with round-off above it in its own stage.
+  const double s = std::ceil(time - 1e-9) - 1.0;
+  const size_t stage = s <= 0.0 ? 0 : (size_t)s;
+  return c.stage_laws[std::min(stage, c.stage_laws.size() - 1)];
+}
+
 PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,
                                              ContactOptions *o) {
   static const char *const laws[] = {"lagged", "implicit", "none", "fixed"};
   static const char *const frames[] = {"frozen", "follow"};
-  PetscInt law = (PetscInt)FrictionLaw::Implicit, frame = 0;
+  PetscInt frame = 0;
   PetscInt probes[64] = {0}, nprobe = 64;
+  char *law_names[64] = {nullptr};
+  PetscInt nlaw = 64;
+  PetscBool law_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   o->params.kn = default_kn;
   o->params.kt = -1.0;
   o->params.mu = 0.3;
   o->search_tol = default_search_tol;
   PetscOptionsBegin(comm, nullptr, "Friction contact with rigid supports", "Contact");
-  PetscCall(PetscOptionsEList("-contact_friction",
-                              "Friction law: lagged (thesis), implicit (return map), none, fixed (glued)", "",
-                              laws, 4, laws[law], &law, nullptr));
+  PetscCall(PetscOptionsStringArray("-contact_friction",
+                                    "Friction law (default implicit): lagged (thesis), implicit (return map), none, fixed (glued); "
+                                    "a comma list gives each stage its law, the last holding for the stages after "
+                                    "it (e.g. implicit,fixed: the arch slides while drawing, then holds the film)",
+                                    "", law_names, &nlaw, &law_set));
   PetscCall(PetscOptionsReal("-contact_mu", "Coulomb friction coefficient", "", o->params.mu, &o->params.mu, nullptr));
   PetscCall(PetscOptionsReal("-contact_kn", "Normal penalty [N/mm] (default 1e3 E h)", "", o->params.kn,
                              &o->params.kn, nullptr));
@@ -66,7 +82,24 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
                                  "", probes, &nprobe, nullptr));
   PetscOptionsEnd();
   o->probe_nodes.assign(probes, probes + nprobe);
-  o->law = (FrictionLaw)law;
+  o->stage_laws.clear();
+  if (!law_set) nlaw = 0;
+  PetscErrorCode bad = 0;
+  for (PetscInt i = 0; i < nlaw; ++i) {
+    PetscInt k = 0;
+    while (k < 4 && std::strcmp(law_names[i], laws[k]) != 0) ++k;
+    if (k == 4 && !bad) bad = (PetscErrorCode)(i + 1);
+    o->stage_laws.push_back(k < 4 ? (FrictionLaw)k : FrictionLaw::Implicit);
+  }
+  std::string bad_name = bad ? law_names[bad - 1] : "";
+  for (PetscInt i = 0; i < nlaw; ++i) PetscCall(PetscFree(law_names[i]));
+  PetscCheck(!bad, comm, PETSC_ERR_ARG_WRONG,
+             "-contact_friction: \"%s\" (entry %d) is not a friction law; use lagged, implicit, none or fixed, one "
+             "value or one per stage separated by commas",
+             bad_name.c_str(), (int)bad);
+  o->law = o->stage_laws.empty() ? FrictionLaw::Implicit : o->stage_laws[0];
+  const bool one_law =
+      std::all_of(o->stage_laws.begin(), o->stage_laws.end(), [&](FrictionLaw l) { return l == o->law; });
   o->follow = frame == 1;
   if (o->params.kt < 0) o->params.kt = o->params.kn;
   // Range checks on what was given, before "none" sets mu to zero.
@@ -77,10 +110,13 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
              o->params.kn, o->params.kt);
   PetscCheck(o->search_tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_search_tol %g must be positive",
              o->search_tol);
-  PetscCheck(!(o->follow && o->law == FrictionLaw::Lagged), comm, PETSC_ERR_SUP,
+  const bool any_lagged = o->law == FrictionLaw::Lagged ||
+                          std::count(o->stage_laws.begin(), o->stage_laws.end(), FrictionLaw::Lagged) > 0;
+  PetscCheck(!(o->follow && any_lagged), comm, PETSC_ERR_SUP,
              "-contact_normal follow works with -contact_friction implicit, none or fixed; the lagged "
              "(thesis) law keeps the thesis's frozen frame");
-  if (o->law == FrictionLaw::None) o->params.mu = 0.0;
+  // A single "none" makes the whole run frictionless; in a list only its stages are (ContactEvaluate).
+  if (one_law && o->law == FrictionLaw::None) o->params.mu = 0.0;
   PetscFunctionReturn(0);
 }
 
@@ -96,6 +132,17 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   c->params = o.params;
   c->law = o.law;
   c->follow = o.follow;
+  PetscCheck(o.stage_laws.size() <= (size_t)P->scene.NumStages(), P->comm, PETSC_ERR_ARG_SIZ,
+             "-contact_friction lists %d laws but the analysis has %d stages: give one law, or one per stage",
+             (int)o.stage_laws.size(), P->scene.NumStages());
+  // One law (or a list that repeats it) is the single-law run, unchanged.
+  for (FrictionLaw l : o.stage_laws)
+    if (l != o.law) c->stage_laws = o.stage_laws;
+  // ProblemSetContact marks the tangent non-symmetric from the first stage's law; a later stage
+  // with friction needs it too (slip tangent, eq. 4.31).
+  for (FrictionLaw l : c->stage_laws)
+    if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->params.mu > 0)
+      PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));
   c->frictionless_until = o.frictionless_until;
   c->probe_nodes = o.probe_nodes;
   const PetscReal tol = o.search_tol;
@@ -180,8 +227,8 @@ namespace {
 // law sees the slide since the last commit in the current tangent plane and the committed
 // force carried into the current frame; the tangent keeps the frame fixed within an iteration
 // (its rotation contributes O(f / radius), small against the penalties).
-int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], bool frictionless, double fg[3],
-                   double Kg[9]) {
+int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], FrictionLaw law, bool frictionless,
+                   double fg[3], double Kg[9]) {
   double x[3], du[3], g[3], f[3], K[9], fc[3];
   for (int i = 0; i < 3; ++i) x[i] = pr.X[i] + u[i], du[i] = u[i] - pr.committed.g[i];
   const double d = SupportProject(c.supports[pr.support], x, pr.M, pr.R);
@@ -190,9 +237,9 @@ int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], bool
   ContactToLocal(pr.R, pr.committed.f, fc);
   ContactState from{{0, 0, 0}, {fc[0], fc[1], fc[2]}, pr.committed.status};
   ContactParameters p = c.params;
-  if (frictionless) p.mu = 0.0;
+  if (frictionless || law == FrictionLaw::None) p.mu = 0.0;
   int status;
-  if (c.law == FrictionLaw::Fixed) {
+  if (law == FrictionLaw::Fixed) {
     ContactFixedForce(p, g, f, K);
     for (int i = 0; i < 2; ++i) f[i] += fc[i];
     status = CONTACT_STICK;
@@ -227,22 +274,32 @@ ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pr) {
 int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], double time,
                     double fg[3], double Kg[9]) {
   const bool frictionless = time <= c.frictionless_until + 1e-12;
-  if (c.follow) return EvaluateFollow(c, pr, u, frictionless, fg, Kg);
+  const FrictionLaw law = ContactLawAt(c, time);
+  if (c.follow) return EvaluateFollow(c, pr, u, law, frictionless, fg, Kg);
   double g[3], f[3], K[9];
   ContactToLocal(pr.R, u, g);
   for (int i = 0; i < 3; ++i) g[i] += pr.g0[i];
   int status = pr.committed.status;
-  if (frictionless && c.law != FrictionLaw::Fixed) {
+  ContactParameters params = c.params;
+  if (law == FrictionLaw::None) params.mu = 0.0;  // a "none" stage of a per-stage list
+  if (frictionless && law != FrictionLaw::Fixed) {
     ContactParameters frictionless = c.params;
     frictionless.mu = 0.0;
     status = ContactImplicitForce(frictionless, pr.committed, g, f, K);
-  } else switch (c.law) {
-  case FrictionLaw::Lagged: ContactLaggedForce(c.params, pr.committed, g, f, K); break;
+  } else switch (law) {
+  case FrictionLaw::Lagged: ContactLaggedForce(params, pr.committed, g, f, K); break;
   case FrictionLaw::Implicit:
-  case FrictionLaw::None: status = ContactImplicitForce(c.params, pr.committed, g, f, K); break;
+  case FrictionLaw::None: status = ContactImplicitForce(params, pr.committed, g, f, K); break;
   case FrictionLaw::Fixed: {
-    const double dg[3] = {g[0] - pr.g0[0], g[1] - pr.g0[1], g[2] - pr.g0[2]};
-    ContactFixedForce(c.params, dg, f, K);
+    // A run fixed throughout holds each node where it touched at t0. A fixed stage after
+    // another law holds it where the last commit left it, with the force it had: springs from
+    // the committed state (the pair no longer slides, whatever its friction did before).
+    const bool held_since_t0 = c.stage_laws.empty();
+    const double *g_from = held_since_t0 ? pr.g0 : pr.committed.g;
+    const double dg[3] = {g[0] - g_from[0], g[1] - g_from[1], g[2] - g_from[2]};
+    ContactFixedForce(params, dg, f, K);
+    if (!held_since_t0)
+      for (int i = 0; i < 3; ++i) f[i] += pr.committed.f[i];
     status = CONTACT_STICK;
   } break;
   }
@@ -265,7 +322,8 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
     double fg[3];
     ContactEvaluate(c, pr, &u[3 * l], P->time, fg, nullptr);
     const int before = pr.committed.status;
-    if (c.law == FrictionLaw::Lagged) ContactLaggedCommit(c.params, pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
+    if (ContactLawAt(c, P->time) == FrictionLaw::Lagged)
+      ContactLaggedCommit(c.params, pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
     else pr.committed = pr.trial;
     local[pr.committed.status]++;
     if (pr.committed.status == CONTACT_OPEN && before != CONTACT_OPEN) local[3]++;
