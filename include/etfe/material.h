@@ -8,7 +8,8 @@
 
 namespace etfe {
 
-struct WrinkleInfo;  // etfe/kernels/wrinkling.h
+struct WrinkleInfo;      // etfe/kernels/wrinkling.h
+struct PlasticMaterial;  // etfe/kernels/plasticity.h
 
 class Material {
 public:
@@ -27,6 +28,9 @@ public:
   virtual bool PlasticStrain(const double *hist, double ep[3], double *ep_bar) const {
     return false;
   }
+  // The ETFE elasto-plastic parameters when the law is that one (the tension field's wrinkled
+  // return map needs them), else nullptr.
+  virtual const PlasticMaterial *PlasticLaw() const { return nullptr; }
   // Tension-field state at E from the committed history (-membrane_wrinkling tension_field):
   // false when the law does not relax compression.
   virtual bool Wrinkling(const double E[3], const double *hist, WrinkleInfo *info) const {
@@ -44,7 +48,7 @@ typedef PetscErrorCode (*MaterialCreator)(std::unique_ptr<Material> *);
 std::unique_ptr<Material> MaterialCreatePrescribedStress(double s_md, double s_td);
 
 // The law wrapped in the tension-field membrane (-membrane_wrinkling tension_field,
-// src/material/tension_field.cpp): compression relaxed, plastic flow frozen while wrinkled.
+// src/material/tension_field.cpp): compression relaxed (plastic: uniaxial flow along the wrinkles).
 std::unique_ptr<Material> MaterialWrapTensionField(std::unique_ptr<Material> inner);
 
 PetscErrorCode MaterialRegisterAll(void);

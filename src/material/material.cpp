@@ -50,6 +50,7 @@ public:
     return st;
   }
   bool HasPlasticStrain() const override { return true; }
+  const PlasticMaterial *PlasticLaw() const override { return &m; }
   bool PlasticStrain(const double *h, double ep[3], double *ep_bar) const override {
     ep[0] = h[0], ep[1] = h[1], ep[2] = h[2];
     *ep_bar = h[3];

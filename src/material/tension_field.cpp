@@ -4,21 +4,21 @@
 // law) with the mixed stress/strain criterion:
 //  * taut: the wrapped law runs unchanged (the same call, so an element that never wrinkles
 //    gives bit for bit the numbers of -membrane_wrinkling none, plastic return map included);
-//  * wrinkled or slack: the relaxed elastic stress of Ee and its tangent; the plastic history is
-//    carried over unchanged. Assumption (documented in the README): plastic flow is frozen while
-//    an element is wrinkled or slack. A wrinkled ETFE film carries a uniaxial stress that is
-//    small next to the taut regions around it; an element whose uniaxial stress would exceed
-//    its current yield stress keeps the elastic value (a return map on the uniaxial state is
-//    not done).
+//  * wrinkled or slack, elastic law: the relaxed stress of E and its tangent;
+//  * the ETFE elasto-plastic law: src/kernels/wrinkling_plastic.cpp decides on the plane-stress
+//    return map's answer (taut when it leaves no compression); a wrinkled element flows by a
+//    uniaxial return map along the wrinkles (associated flow of the uniaxial stress, on the
+//    same hardening curve); a slack one keeps its history (no stress, no flow).
 // A taut trial stays taut through the return map (the plane-stress map shrinks the deviatoric
-// modes faster than the mean one, so the minor principal stress does not drop below 0), hence
-// the state is decided before the return map without a second pass.
+// modes faster than the mean one, so the minor principal stress does not drop below 0).
 #include <algorithm>
+#include <cstring>
 #include <memory>
 #include <string>
 
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/wrinkling.h"
+#include "etfe/kernels/wrinkling_plastic.h"
 #include "etfe/material.h"
 
 namespace etfe {
@@ -39,6 +39,13 @@ public:
   void ElasticConstants(double *e, double *n) const override { inner->ElasticConstants(e, n); }
 
   bool Wrinkling(const double E[3], const double *hist, WrinkleInfo *info) const override {
+    if (const PlasticMaterial *pm = inner->PlasticLaw()) {
+      PlasticState committed, trial;
+      double S[3], D[9];
+      std::memcpy(&committed, hist, sizeof committed);
+      TensionFieldPlastic(*pm, E, committed, &trial, S, D, info);
+      return true;
+    }
     double young, nu, Ee[3];
     ElasticStrain(E, hist, Ee, &young, &nu);
     TensionFieldClassify(young, nu, Ee, info);
@@ -47,12 +54,19 @@ public:
 
   int Evaluate(const double E[3], const double *hold, double *hnew, double S[3],
                double D[9]) const override {
+    double Dl[9];
+    if (const PlasticMaterial *pm = inner->PlasticLaw()) {
+      PlasticState committed, trial;
+      std::memcpy(&committed, hold, sizeof committed);
+      const int st = TensionFieldPlastic(*pm, E, committed, &trial, S, D ? D : Dl, nullptr);
+      if (hnew) std::memcpy(hnew, &trial, sizeof trial);
+      return st;
+    }
     double young, nu, Ee[3];
     ElasticStrain(E, hold, Ee, &young, &nu);
     WrinkleInfo info;
     TensionFieldClassify(young, nu, Ee, &info);
     if (info.state == WRINKLE_TAUT) return inner->Evaluate(E, hold, hnew, S, D);
-    double Dl[9];
     TensionFieldStress(young, nu, Ee, S, D ? D : Dl, nullptr);
     if (hnew) std::copy(hold, hold + inner->HistorySize(), hnew);
     return KERNEL_OK;
@@ -61,8 +75,8 @@ public:
   PetscErrorCode View(MPI_Comm comm) const override {
     PetscFunctionBeginUser;
     PetscCall(inner->View(comm));
-    PetscCall(PetscPrintf(comm, "  wrinkling: tension field (no compression; taut/wrinkled/slack per element, "
-                                "plastic flow frozen while wrinkled or slack)\n"));
+    PetscCall(PetscPrintf(comm, "  wrinkling: tension field (no compression; taut/wrinkled/slack per element%s)\n",
+                          inner->PlasticLaw() ? "; uniaxial return map along the wrinkles, no flow while slack" : ""));
     PetscFunctionReturn(0);
   }
 

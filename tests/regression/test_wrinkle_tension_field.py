@@ -17,6 +17,10 @@ closed form.
     closed form of the homogeneous F = [[1+e0, g], [0, 1+e0]] (E1 and its direction n of the GL
     strain, S = E E1 n n, wrinkle_dir = F n/|F n|, wrinkle_strain = -(E2 + nu E1)) holds to 1e-8;
     with g = 0.001 the panel stays taut and carries the plane-stress law's stress.
+(b'') The same pure-shear patch with the ETFE elasto-plastic law: E Exx = 16.16 MPa is above the
+    13.28 MPa yield stress, so every wrinkled element flows by the uniaxial return map:
+    Sxx = Sy(ep) = E (Exx - ep) (closed form on the first hardening segment), Syy = Sxy = 0,
+    plastic_strain_eq = ep, plastic strain ep (1, -1/2, 0), all to 1e-8.
 (c) Newton on that wrinkling problem in one increment (elements go taut -> wrinkled on the way):
     quadratic at the end, r_{k+1}/r_k^2 < 0.1 per N on the last two iterations above the 1e-8 N
     round-off floor (measured ~1e-2), estimated order log(r_{k+1}/r_k)/log(r_k/r_{k-1}) > 1.5.
@@ -131,6 +135,24 @@ def main_test(etfe, chk):
         chk.less(float(np.abs(np.abs(wd[:, 0]) - 1.0).max() + np.abs(wd[:, 1:]).max()), 1e-8,
                  "pureshear wrinkle_dir = (+-1, 0, 0)")
         chk.less(float(np.abs(ws - (1 - NU) * Exx).max() / Exx), 1e-8, "pureshear wrinkle_strain = (1-nu) Exx")
+
+        h5p = os.path.join(tmp, "pureshear_plastic.h5")
+        T.run(etfe, ["-options_file", T.opts("patch"), "-patch_mode", "pureshear", "-material_type", "plastic",
+                     "-membrane_wrinkling", "tension_field", "-load_increments", "1", "-output_file", h5p,
+                     "-load_monitor", "0"])
+        d = T.read_steps(h5p)[-1][2]
+        y0, h0 = 13.28, 80.5  # thesis Table 4.2, first segment (the plastic law's defaults)
+        ep = (YOUNG * Exx - y0) / (YOUNG + h0)
+        sp = y0 + h0 * ep
+        print("pureshear plastic: states %s; Sxx in [%.12e, %.12e] (closed form %.12e), ep_bar in [%.10e, %.10e] "
+              "(closed form %.10e)" % (np.unique(d["wrinkle_state"]), d["stress"][:, 0].min(), d["stress"][:, 0].max(),
+                                       sp, d["plastic_strain_eq"].min(), d["plastic_strain_eq"].max(), ep))
+        chk.check(ep > 0 and np.all(d["wrinkle_state"] == 1), "pureshear plastic: every element wrinkled and yielding")
+        chk.less(float(np.abs(d["stress"][:, 0] - sp).max()) / sp, 1e-8, "pureshear plastic Sxx vs Sy(ep)")
+        chk.less(float(np.abs(d["stress"][:, 1:]).max()) / sp, 1e-8, "pureshear plastic Syy, Sxy vs 0")
+        chk.less(float(np.abs(d["plastic_strain_eq"] - ep).max()) / ep, 1e-8, "pureshear plastic ep_bar")
+        chk.less(float(np.abs(d["plastic_strain"] - np.array([ep, -0.5 * ep, 0.0])).max()) / ep, 1e-8,
+                 "pureshear plastic strain (ep, -ep/2, 0)")
 
         for g, wrinkled in ((0.01, True), (0.001, False)):
             shear_panel(chk, etfe, tmp, 1e-3, g, wrinkled)
