@@ -1,0 +1,60 @@
+"""The dense-mesh levers (options/saddle/dense.opts and the others tried, issue 13) do not move
+the answer: DD1511 on the form-found 1:1 saddle at 10^4 triangles, first 3 of 200 increments,
+part A/B Mises and the five slides of every step agree with the plain run to 1e-6 of each
+quantity's largest value; the levers of dense.opts take no more Newton iterations than the plain
+run."""
+import csv
+import os
+
+from etfe_testlib import REPO, increments, main, run, scratch_dir
+
+INCREMENTS = 3
+LEVERS = {
+    "dense.opts": ["-options_file", os.path.join(REPO, "options/saddle/dense.opts")],
+    "all levers": ["-options_file", os.path.join(REPO, "options/saddle/dense.opts"),
+                   "-membrane_tangent_shift", "3e-5", "-snes_linesearch_etfe_max_update", "0",
+                   "-snes_linesearch_etfe_max_strain_update", "0.05"],
+}
+COLUMNS = ["A_mises", "B_mises"] + ["slide%d_%s" % (i, c) for i in range(1, 6) for c in "XY"]
+
+
+def history(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def test(etfe, chk):
+    with scratch_dir() as tmp:
+        msh = os.path.join(tmp, "ff_n50.msh")
+        run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s11.opts"), "-mesh_n", 50,
+                   "-formfind_mesh_out", msh, "-output", 0, "-output_file", os.path.join(tmp, "ff.h5")])
+
+        def case(name, extra):
+            _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
+                                "-load_stop_after", INCREMENTS, "-output", 0,
+                                "-output_file", os.path.join(tmp, name + ".h5"),
+                                "-saddle_history", os.path.join(tmp, name + ".csv")] + extra)
+            its = [i["newton"] for i in increments(out)]
+            print("%-10s Newton per increment %s" % (name, its))
+            return its, history(os.path.join(tmp, name + ".csv"))
+
+        its0, h0 = case("plain", [])
+        chk.check(len(h0) == INCREMENTS, "plain run: %d history rows" % len(h0))
+        for name, extra in LEVERS.items():
+            its, h = case(name.replace(" ", "_").replace(".", "_"), extra)
+            chk.check(len(h) == len(h0), "%s: %d history rows" % (name, len(h)))
+            worst, where = 0.0, None
+            for c in COLUMNS:
+                scale = max(abs(float(r[c])) for r in h0)
+                if scale == 0:
+                    continue
+                for r0, r in zip(h0, h):
+                    d = abs(float(r0[c]) - float(r[c])) / scale
+                    if d > worst:
+                        worst, where = d, (r0["step"], c)
+            chk.less(worst, 1e-6, "%s: largest difference from the plain run (at step/column %s)" % (name, where))
+            if name == "dense.opts":
+                chk.check(sum(its) <= sum(its0), "dense.opts: %d Newton iterations <= plain %d" % (sum(its), sum(its0)))
+
+
+main(test)
