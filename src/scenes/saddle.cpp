@@ -25,8 +25,7 @@ namespace {
 
 struct SaddleContext {
   SaddleGeometry g;
-  int centre_node = -1, corner_node = -1;
-  std::vector<int> cut_line;  // nodes on X = 0 ordered by Y
+  SaddleShapeNodes shape;
 };
 
 } // namespace
@@ -41,29 +40,54 @@ int SaddleNearestNode(const MeshData &m, double x, double y) {
   return best;
 }
 
-namespace {
+SaddleShapeNodes SaddleShapeNodesOf(const MeshData &m, const SaddleGeometry &g) {
+  SaddleShapeNodes n;
+  n.centre = SaddleNearestNode(m, 0.0, 0.0);
+  n.corner = SaddleNearestNode(m, 0.5 * (g.arch_x + g.half_length), 0.0);
+  auto it = m.node_sets.find("sym_x");
+  if (it != m.node_sets.end()) n.cut_line = it->second;
+  std::sort(n.cut_line.begin(), n.cut_line.end(),
+            [&](int a, int b) { return m.coords[3 * a + 1] < m.coords[3 * b + 1]; });
+  return n;
+}
 
-PetscErrorCode SaddleReport(Problem *P, void *vctx) {
-  auto *c = (SaddleContext *)vctx;
+PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const SaddleShapeNodes &n, bool start) {
   double xc[3], xk[3];
   PetscFunctionBeginUser;
-  PetscCall(ProblemGetNodePosition(P, P->U, c->centre_node, xc));
-  PetscCall(ProblemGetNodePosition(P, P->U, c->corner_node, xk));
+  PetscCall(ProblemGetNodePosition(P, P->U, n.centre, xc));
+  PetscCall(ProblemGetNodePosition(P, P->U, n.corner, xk));
   double len = 0.0, prev[3];
-  for (size_t k = 0; k < c->cut_line.size(); ++k) {
+  for (size_t k = 0; k < n.cut_line.size(); ++k) {
     double x[3];
-    PetscCall(ProblemGetNodePosition(P, P->U, c->cut_line[k], x));
+    PetscCall(ProblemGetNodePosition(P, P->U, n.cut_line[k], x));
     if (k) len += std::sqrt((x[0] - prev[0]) * (x[0] - prev[0]) + (x[1] - prev[1]) * (x[1] - prev[1]) +
                             (x[2] - prev[2]) * (x[2] - prev[2]));
     for (int i = 0; i < 3; ++i) prev[i] = x[i];
   }
-  const double H = c->g.rise, L = 2.0 * c->g.arch_x, sag = H - xc[2];
+  const double H = g.rise, L = 2.0 * g.arch_x, sag = H - xc[2];
   const double kappa = 8.0 * sag / (L * L + 4.0 * sag * sag);
   PetscCall(PetscPrintf(P->comm,
                         "saddle: rise H = %.1f mm (r = %.1f %%), h1 = %.3f mm (middle part centre), h2 = %.3f mm (corner part centre)\n"
                         "saddle: middle sag = %.3f mm over %.0f mm, curvature = %.6e 1/mm (radius %.1f mm)\n"
                         "saddle: middle_cutting_line = %.3f mm (full length over Y = -1000..1000)\n",
-                        H, 100.0 * H / (2.0 * c->g.half_span), xc[2], xk[2], sag, L, kappa, 1.0 / kappa, 2.0 * len));
+                        H, 100.0 * H / (2.0 * g.half_span), xc[2], xk[2], sag, L, kappa, 1.0 / kappa, 2.0 * len));
+  if (start) {
+    // The initial surface: for the DD cases the form-found (minimal-surface) target of thesis
+    // Fig. 5.23, for the PD cases the arch extruded and ruled.
+    const double h1_0 = P->scene.mesh.coords[3 * n.centre + 2], h2_0 = P->scene.mesh.coords[3 * n.corner + 2];
+    PetscCall(PetscPrintf(P->comm,
+                          "saddle: initial surface h1_start = %.3f mm, h2_start = %.3f mm; drawn - start: dh1 = %+.3f mm, dh2 = %+.3f mm\n",
+                          h1_0, h2_0, xc[2] - h1_0, xk[2] - h2_0));
+  }
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+PetscErrorCode SaddleReport(Problem *P, void *vctx) {
+  auto *c = (SaddleContext *)vctx;
+  PetscFunctionBeginUser;
+  PetscCall(SaddleShapeReport(P, c->g, c->shape, false));
   PetscFunctionReturn(0);
 }
 
@@ -150,11 +174,7 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
     if (!fixed[k]) scene->constraints.push_back({k, 0, {}});
   for (int k : m.node_sets["sym_y"])
     if (!fixed[k]) scene->constraints.push_back({k, 1, {}});
-  ctx->centre_node = SaddleNearestNode(m, 0.0, 0.0);
-  ctx->corner_node = SaddleNearestNode(m, 0.5 * (g.arch_x + g.half_length), 0.0);
-  ctx->cut_line = m.node_sets["sym_x"];
-  std::sort(ctx->cut_line.begin(), ctx->cut_line.end(),
-            [&](int a, int b) { return m.coords[3 * a + 1] < m.coords[3 * b + 1]; });
+  ctx->shape = SaddleShapeNodesOf(m, g);
   observer->report = SaddleReport;
   observer->ctx = ctx;
   observer->destroy = [](void *c) { delete (SaddleContext *)c; };

@@ -29,6 +29,19 @@ struct SaddleGeometry {
 
 int SaddleNearestNode(const MeshData &m, double x, double y);
 
+// Where the saddle's shape is measured (thesis L1866, Fig. 5.22, whose drawing is lost; heights
+// above the frame plane z = 0): h1 at the middle part's centre (X = 0, Y = 0), h2 at the corner
+// part's centre (X midway between the arch and the frame, Y = 0), the middle cutting line X = 0
+// (node set sym_x, by Y). Shared by the form-finding and the stretch reports.
+struct SaddleShapeNodes {
+  int centre = -1, corner = -1;
+  std::vector<int> cut_line;
+};
+SaddleShapeNodes SaddleShapeNodesOf(const MeshData &m, const SaddleGeometry &g);
+// Prints h1, h2, the middle sag (rise H - h1) and curvature, and the middle cutting line at the
+// current displacement (collective). start: also h1, h2 of the initial surface and the change.
+PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const SaddleShapeNodes &n, bool start);
+
 // Stretch fabrication (-analysis stretch): drawing of the frame at a, b, c, d, symmetry, arch
 // contact, optional pressure cycle, probes and the report. The mesh (PD initial shape or a
 // form-found DD shape) and its node sets are already in scene.

@@ -33,6 +33,7 @@ struct StretchContext {
   std::vector<char> in_a, in_b;        // per scene element
   std::string history;                 // -saddle_history ("": beside the results)
   PetscInt drawing_stages = 0;
+  SaddleShapeNodes shape;              // heights h1, h2 and the middle cutting line (saddle.cpp)
 };
 
 int NearestElement(const MeshData &m, double x, double y) {
@@ -180,6 +181,7 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
   for (size_t k = 0; k < c->slide_nodes.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "saddle: slide_%zu (Y = %.0f) X = %.4f mm, Y = %.4f mm\n", k + 1,
                           P->scene.mesh.coords[3 * c->slide_nodes[k] + 1], v.slide[2 * k], v.slide[2 * k + 1]));
+  PetscCall(SaddleShapeReport(P, c->g, c->shape, true));  // the saddle heights of thesis L1866-1875
   PetscFunctionReturn(0);
 }
 
@@ -341,6 +343,7 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   c->elem_ii = NearestElement(m, elem_ii[0], elem_ii[1]);
   for (double y : slides) c->slide_nodes.push_back(SaddleNearestNode(m, A, y));
   c->history = history;
+  c->shape = SaddleShapeNodesOf(m, g);
   observer->step_monitor = StretchStep;
   observer->report = StretchReport;
   observer->ctx = c;

@@ -3,6 +3,7 @@ triangles, 19 arch contacts) with 40 increments:
 
 * the drawing completes; Mises over the quarter sits in the plastic range of the film
   (median between S_y1 = 13.28 and S_y2 = 23.04 MPa), the equivalent plastic strain below 10 %;
+  the report's saddle heights h1, h2 (and sag) against the form-found start;
 * friction trend of the thesis (ch. 4): part A Mises is lowest with the arch fixed and decreases
   as mu grows from 0 to 1;
 * 1 and 2 ranks give the same answer (contact pairs and probes on any rank);
@@ -42,6 +43,15 @@ with scratch_dir() as tmp:
         st = f["steps"][last]["contact/status"][:]
     chk.check(ep.max() < 0.10, "equivalent plastic strain below 10 %% (max %.4f)" % ep.max())
     chk.check(len(st) == 19, "19 contact pairs on the arch (thesis density)")
+    # Saddle heights (thesis L1866-1875) from the form-finding report's code: h1 + sag = H, the
+    # start heights are the form-found surface's, and the drawn film sags below it.
+    rise, ini = v["rise"], v["initial"]
+    chk.check(abs(rise["h1"] + v["middle"]["sag"] - rise["H"]) < 2e-3 and
+              abs(rise["h1"] - ini["h1_start"] - ini["dh1"]) < 2e-3 and abs(rise["h2"] - ini["h2_start"] - ini["dh2"]) < 2e-3,
+              "stretch report: h1 %.3f + sag %.3f = H %.1f mm, changes from the start h1 %+.3f, h2 %+.3f mm"
+              % (rise["h1"], v["middle"]["sag"], rise["H"], ini["dh1"], ini["dh2"]))
+    chk.check(100 < ini["h1_start"] < 150 and ini["dh1"] < 0, "DD1511 starts at the form-found h1 %.1f mm and the "
+              "drawing lowers it (%+.1f mm)" % (ini["h1_start"], ini["dh1"]))
 
     part_a = {}
     for label, extra in (("fixed", ["-contact_friction", "fixed"]), ("mu=0", ["-contact_friction", "none"]),
