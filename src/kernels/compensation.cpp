@@ -1,6 +1,7 @@
 // Compensation of cutting patterns: rest metric per element and compensated link lengths (see
 // etfe/kernels/compensation.h).
 #include "etfe/kernels/compensation.h"
+#include "etfe/kernels/membrane.h"
 
 #include <cmath>
 
@@ -53,18 +54,13 @@ int CompensationStressInPattern(const double X[9], const double xy[6], const dou
   for (int i = 0; i < 3; ++i) t[i] = md_axis[i] - mn * n[i] / nn;
   if (std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) < 1e-3 * mm)
     for (int i = 0; i < 3; ++i) t[i] = g1[i];
-  // t = a g1 + b g2 (t lies in the plane), carried over as a f1 + b f2.
-  const double g11 = g1[0] * g1[0] + g1[1] * g1[1] + g1[2] * g1[2];
-  const double g12 = g1[0] * g2[0] + g1[1] * g2[1] + g1[2] * g2[2];
-  const double g22 = g2[0] * g2[0] + g2[1] * g2[1] + g2[2] * g2[2];
-  const double tg1 = t[0] * g1[0] + t[1] * g1[1] + t[2] * g1[2];
-  const double tg2 = t[0] * g2[0] + t[1] * g2[1] + t[2] * g2[2];
-  const double det = g11 * g22 - g12 * g12;
-  if (!(det > 0)) return KERNEL_DEGENERATE;
-  const double a = (tg1 * g22 - tg2 * g12) / det, b = (tg2 * g11 - tg1 * g12) / det;
+  // t carried into the pattern by the triangle's own map (the MD axis of the laid-on pattern too).
   const double f1[2] = {xy[2] - xy[0], xy[3] - xy[1]}, f2[2] = {xy[4] - xy[0], xy[5] - xy[1]};
   if (!(f1[0] * f2[1] - f1[1] * f2[0] > 0)) return KERNEL_DEGENERATE;
-  const double tx = a * f1[0] + b * f2[0], ty = a * f1[1] + b * f2[1];
+  const double Y[9] = {xy[0], xy[1], 0.0, xy[2], xy[3], 0.0, xy[4], xy[5], 0.0};
+  double tc[3];
+  if (MembraneCarryAxis(X, Y, t, tc) != KERNEL_OK) return KERNEL_DEGENERATE;
+  const double tx = tc[0], ty = tc[1];
   const double tl = std::hypot(tx, ty);
   if (!(tl > 0)) return KERNEL_DEGENERATE;
   const double c = tx / tl, s = ty / tl;
