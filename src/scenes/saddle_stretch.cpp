@@ -103,10 +103,17 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f, false));
   PetscCall(Measure(P, c, f, &v));
+  // Arch pairs open / sticking / slipping after this increment (the lagged law's stick-slip,
+  // issue 16; the progress line prints the same counts).
+  PetscInt status[3] = {0, 0, 0}, status_all[3];
+  if (P->contact)
+    for (const ContactPair &pr : P->contact->pairs) status[pr.committed.status]++;
+  PetscCallMPI(MPI_Allreduce(status, status_all, 3, MPIU_INT, MPI_SUM, P->comm));
   if (P->rank == 0) {
     std::string header = "step,time,A_Exx,A_Eyy,A_Exy,A_mises,B_Exx,B_Eyy,B_Exy,B_mises,I_smin,I_emin,II_smin,II_emin";
     for (size_t k = 0; k < c->slide_nodes.size(); ++k)
       header += ",slide" + std::to_string(k + 1) + "_X,slide" + std::to_string(k + 1) + "_Y";
+    header += ",pairs_open,pairs_stick,pairs_slip";
     FILE *out = CsvHistoryOpen(path, step, header.c_str());
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
     std::fprintf(out, "%lld,%.10g", (long long)step, t);
@@ -114,7 +121,7 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
     for (double x : v.b) std::fprintf(out, ",%.8e", x);
     std::fprintf(out, ",%.8e,%.8e,%.8e,%.8e", v.i_smin, v.i_emin, v.ii_smin, v.ii_emin);
     for (double x : v.slide) std::fprintf(out, ",%.8e", x);
-    std::fprintf(out, "\n");
+    std::fprintf(out, ",%lld,%lld,%lld\n", (long long)status_all[0], (long long)status_all[1], (long long)status_all[2]);
     std::fclose(out);
   }
   PetscFunctionReturn(0);

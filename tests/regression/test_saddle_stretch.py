@@ -9,6 +9,7 @@ triangles, 19 arch contacts) with 40 increments:
 * 1 and 2 ranks give the same answer (contact pairs and probes on any rank);
 * the pressure cycle after drawing (thesis §5.4) completes and leaves a residual displacement.
 """
+import csv
 import os
 import re
 
@@ -43,6 +44,11 @@ with scratch_dir() as tmp:
         st = f["steps"][last]["contact/status"][:]
     chk.check(ep.max() < 0.10, "equivalent plastic strain below 10 %% (max %.4f)" % ep.max())
     chk.check(len(st) == 19, "19 contact pairs on the arch (thesis density)")
+    with open(f1[:-3] + "_history.csv") as fh:
+        rows = list(csv.DictReader(fh))
+    chk.check(len(rows) == 40 and all(int(r["pairs_open"]) + int(r["pairs_stick"]) + int(r["pairs_slip"]) == 19 for r in rows)
+              and [int(r["pairs_stick"]) for r in rows][-1] == int((st == 1).sum()),
+              "the history states the arch pairs open/stick/slip per increment (the last row as the results)")
     # Saddle heights (thesis L1866-1875) from the form-finding report's code: h1 + sag = H, the
     # start heights are the form-found surface's, and the drawn film sags below it.
     rise, ini = v["rise"], v["initial"]
