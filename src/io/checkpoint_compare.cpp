@@ -4,8 +4,10 @@
 // what is written, never what is computed. Allowed to change:
 //   solvers      -snes_* -ksp_* -pc_* -mat_* (MUMPS, ...) -sub_* -mg_* -redundant_* -fieldsplit_*
 //                -load_force_rtol -load_max_cutbacks -load_grow_after -load_easy_iterations
-//                -load_extrapolate -load_tangent_predictor (predictors and the cut-back policy)
+//                -load_extrapolate -load_tangent_predictor* (predictors and the cut-back policy)
+//                -load_force_roundoff (the round-off floor of the force test)
 //                -membrane_tangent_* (shift, adaptive shift, tension only: the Newton path only)
+//                -membrane_near_null_space (what AMG is told about the tangent)
 //   output       -output* -checkpoint_* -restart -contact_probe_nodes -saddle_history
 //                -load_monitor -load_stop_after -formfind_monitor
 //   diagnostics  PETSc's own (-log*, -info, -malloc*, -options_*, -help, ...), -etfe_traceback
@@ -32,7 +34,8 @@ namespace {
 const char *const kMayChange[] = {
     "snes_", "ksp_", "pc_", "mat_", "sub_", "mg_", "redundant_", "fieldsplit_",
     "load_force_rtol", "load_max_cutbacks", "load_grow_after", "load_easy_iterations", "load_extrapolate",
-    "load_tangent_predictor", "membrane_tangent_", "formfind_monitor",
+    "load_tangent_predictor", "membrane_tangent_", "formfind_monitor", "load_force_roundoff",
+    "membrane_near_null_space",
     "output", "checkpoint_", "restart", "contact_probe_nodes", "saddle_history", "load_monitor", "load_stop_after",
     "log", "info", "malloc", "memory_", "options_", "help", "etfe_traceback", "fp_trap", "on_error", "history",
     "viewer", "objects_", "check_pointer", "checkstack", "no_signal_handler", "debugger", "start_in_debugger",
