@@ -127,6 +127,31 @@ int AnnulusStateAtRadius(const AnnulusTorsion &p, double R, AnnulusTorsionResult
   return 0;
 }
 
+// The wrinkled state whose field (rotation or torque, both increasing with the wrinkle radius R)
+// equals target: R bracketed between a and b, then bisected.
+static int RadiusWhere(const AnnulusTorsion &p, double AnnulusTorsionResult::*field, double target,
+                       AnnulusTorsionResult *res) {
+  double lo = p.a, hi = p.a;
+  AnnulusTorsionResult r;
+  for (int k = 1; k <= 60; ++k) {
+    const double R = p.a + (p.b - p.a) * (1.0 - std::pow(0.5, k * 0.25));
+    if (AnnulusStateAtRadius(p, R, &r) != 0) return 2;
+    if (r.*field >= target) {
+      hi = R;
+      break;
+    }
+    lo = R;
+  }
+  if (hi == p.a) return 2;
+  for (int it = 0; it < 100 && hi - lo > 1e-13 * p.b; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    if (AnnulusStateAtRadius(p, mid, &r) != 0) return 2;
+    if (r.*field < target) lo = mid;
+    else hi = mid;
+  }
+  return AnnulusStateAtRadius(p, 0.5 * (lo + hi), res) == 0 ? 0 : 2;
+}
+
 int AnnulusStateAtRotation(const AnnulusTorsion &p, double phi, AnnulusTorsionResult *res) {
   if (!Valid(p) || !(phi >= 0)) return 1;
   const double G = 0.5 * p.young / (1.0 + p.nu);
@@ -137,26 +162,7 @@ int AnnulusStateAtRotation(const AnnulusTorsion &p, double phi, AnnulusTorsionRe
     res->phi = phi;
     return 0;
   }
-  // phi(R) increases from phi0 at R = a; find R_hi with phi(R_hi) > phi below b.
-  double lo = p.a, hi = p.a;
-  AnnulusTorsionResult r;
-  for (int k = 1; k <= 60; ++k) {
-    const double R = p.a + (p.b - p.a) * (1.0 - std::pow(0.5, k * 0.25));
-    if (AnnulusStateAtRadius(p, R, &r) != 0) return 2;
-    if (r.phi >= phi) {
-      hi = R;
-      break;
-    }
-    lo = R;
-  }
-  if (hi == p.a) return 2;
-  for (int it = 0; it < 100 && hi - lo > 1e-13 * p.b; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if (AnnulusStateAtRadius(p, mid, &r) != 0) return 2;
-    if (r.phi < phi) lo = mid;
-    else hi = mid;
-  }
-  return AnnulusStateAtRadius(p, 0.5 * (lo + hi), res) == 0 ? 0 : 2;
+  return RadiusWhere(p, &AnnulusTorsionResult::phi, phi, res);
 }
 
 int AnnulusStateAtTorque(const AnnulusTorsion &p, double C, AnnulusTorsionResult *res) {
@@ -169,25 +175,7 @@ int AnnulusStateAtTorque(const AnnulusTorsion &p, double C, AnnulusTorsionResult
     res->phi = C / (2 * G) * (1 / (p.a * p.a) - 1 / (p.b * p.b));
     return 0;
   }
-  double lo = p.a, hi = p.a;
-  AnnulusTorsionResult r;
-  for (int k = 1; k <= 60; ++k) {
-    const double R = p.a + (p.b - p.a) * (1.0 - std::pow(0.5, k * 0.25));
-    if (AnnulusStateAtRadius(p, R, &r) != 0) return 2;
-    if (r.C >= C) {
-      hi = R;
-      break;
-    }
-    lo = R;
-  }
-  if (hi == p.a) return 2;
-  for (int it = 0; it < 100 && hi - lo > 1e-13 * p.b; ++it) {
-    const double mid = 0.5 * (lo + hi);
-    if (AnnulusStateAtRadius(p, mid, &r) != 0) return 2;
-    if (r.C < C) lo = mid;
-    else hi = mid;
-  }
-  return AnnulusStateAtRadius(p, 0.5 * (lo + hi), res) == 0 ? 0 : 2;
+  return RadiusWhere(p, &AnnulusTorsionResult::C, C, res);
 }
 
 } // namespace etfe
