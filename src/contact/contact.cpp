@@ -136,8 +136,8 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
              "-contact_friction lists %d laws but the analysis has %d stages: give one law, or one per stage",
              (int)o.stage_laws.size(), P->scene.NumStages());
   // One law (or a list that repeats it) is the single-law run, unchanged.
-  for (FrictionLaw l : o.stage_laws)
-    if (l != o.law) c->stage_laws = o.stage_laws;
+  if (std::any_of(o.stage_laws.begin(), o.stage_laws.end(), [&](FrictionLaw l) { return l != o.law; }))
+    c->stage_laws = o.stage_laws;
   // ProblemSetContact marks the tangent non-symmetric from the first stage's law; a later stage
   // with friction needs it too (slip tangent, eq. 4.31).
   for (FrictionLaw l : c->stage_laws)
@@ -283,9 +283,8 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
   ContactParameters params = c.params;
   if (law == FrictionLaw::None) params.mu = 0.0;  // a "none" stage of a per-stage list
   if (frictionless && law != FrictionLaw::Fixed) {
-    ContactParameters frictionless = c.params;
-    frictionless.mu = 0.0;
-    status = ContactImplicitForce(frictionless, pr.committed, g, f, K);
+    params.mu = 0.0;
+    status = ContactImplicitForce(params, pr.committed, g, f, K);
   } else switch (law) {
   case FrictionLaw::Lagged: ContactLaggedForce(params, pr.committed, g, f, K); break;
   case FrictionLaw::Implicit:

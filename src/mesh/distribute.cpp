@@ -159,7 +159,8 @@ PetscErrorCode LocalMeshBlendReference(MPI_Comm comm, LocalMesh *lm, double s) {
   const double md[3] = {1.0, 0.0, 0.0};  // the triangles are in their MD frames
   PetscInt bad = -1, bad_global;
   PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < m.num_elements && !m.ref_free.empty(); ++e) {
+  PetscCheck(!m.ref_free.empty(), comm, PETSC_ERR_PLIB, "no stress-free shapes to blend to");
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
     double Y[9] = {0.0};
     for (int a = 0; a < 3; ++a)
       for (int j = 0; j < 2; ++j) Y[3 * a + j] = (1.0 - s) * m.ref_placed[6 * e + 2 * a + j] + s * m.ref_free[6 * e + 2 * a + j];
