@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "etfe/flatten_strip.h"
+#include "etfe/geodesic_cut.h"
 #include "etfe/mesh/mesh_data.h"
 
 namespace etfe {
@@ -50,6 +51,7 @@ struct CutPatternSurfaceOptions {
   std::string mesh_file;     // -mesh_file: Gmsh surface, physical surfaces = strips
   std::string results_path;  // -output_file: the pattern files go beside it, named by its stem
   CutPatternOptions cutpattern;
+  GeodesicCutOptions geodesic;  // -cutpattern_strip_width/_direction: strips cut by geodesics
 };
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o);
 // Reads and checks the mesh on rank 0, then CutPatternRun. Collective.

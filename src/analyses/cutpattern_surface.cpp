@@ -8,6 +8,7 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -168,14 +169,30 @@ bool CutPatternPrepareSurface(MeshData *m, const std::vector<std::string> &only,
 
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o) {
   char mesh_file[PETSC_MAX_PATH_LEN] = "";
-  PetscBool file_set = PETSC_FALSE;
+  PetscBool file_set = PETSC_FALSE, width_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Cutting patterns of a surface mesh (-analysis cutpattern)", "CutPattern");
   PetscCall(PetscOptionsString("-mesh_file",
                                "Gmsh surface mesh whose physical surfaces are the strips (OBJ groups / STL solids: "
                                "convert with scripts/surface2msh)",
                                "", mesh_file, mesh_file, sizeof mesh_file, &file_set));
+  PetscCall(PetscOptionsReal("-cutpattern_strip_width",
+                             "Cut the surface (its one physical surface, or all of it) into strips this wide (mm) "
+                             "by geodesic cutting lines, the first through its middle (default: the physical "
+                             "surfaces are the strips)",
+                             "", o->geodesic.width, &o->geodesic.width, &width_set));
+  static const char *const axes[] = {"x", "y", "z"};
+  PetscInt axis = o->geodesic.direction;
+  PetscCall(PetscOptionsEList("-cutpattern_strip_direction",
+                              "Direction of the geodesic cutting lines at the surface's middle (the strips' long "
+                              "axis), with -cutpattern_strip_width",
+                              "", axes, 3, axes[axis], &axis, nullptr));
+  o->geodesic.direction = (int)axis;
   PetscOptionsEnd();
+  PetscCheck(!width_set || (o->geodesic.width > 0 && std::isfinite(o->geodesic.width)), comm,
+             PETSC_ERR_ARG_OUTOFRANGE,
+             "-cutpattern_strip_width %g: a strip width must be a positive length in mm (leave the option out to "
+             "flatten the physical surfaces as the strips)", (double)o->geodesic.width);
   PetscCall(CutPatternOptionsFromCommandLine(comm, &o->cutpattern));
   o->mesh_file = file_set ? mesh_file : "";
   const std::string stem = file_set ? std::filesystem::path(mesh_file).stem().string() : std::string("surface");
@@ -198,6 +215,7 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0)
     ok = ReadGmshFile(o.mesh_file, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
+         (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err)) &&
          CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err);
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &n : mesh.notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", o.mesh_file.c_str(), n.c_str()));

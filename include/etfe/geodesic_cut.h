@@ -1,0 +1,37 @@
+// Strips of a given width cut by geodesic lines (issue 17, -cutpattern_strip_width): the surface
+// (its one physical surface, or all its triangles when it has none) is cut by straightest
+// geodesics (etfe/kernels/geodesic.h) into strips, which -analysis cutpattern then flattens.
+//
+// The lines: a transverse geodesic is traced through the surface's middle (the interior node
+// nearest its area centroid) across the strip direction, both ways to the boundary; the first
+// cutting line is the geodesic through that node along the strip direction; the others cross the
+// transverse geodesic at arc lengths k W (k = +-1, +-2, ...) from the middle, at right angles to
+// it, while at least W/4 is left to the boundary; each is traced both ways until it leaves the
+// surface. So the strips are W wide on the transverse geodesic (the two edge strips take what is
+// left: W/4 to 5W/4); away from it they widen or narrow as the surface's curvature makes
+// geodesics part or meet (Gaussian curvature K < 0 or > 0; exactly W on a developable surface).
+// The lines are inserted into the mesh (edge splits, snapped to a node within `snap` of an
+// edge's length), the pieces between them are the strips <name>_01, <name>_02, ... in order
+// across, and the edges two strips share become cut_<a>_<b> in CutPatternPrepareSurface.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "etfe/mesh/mesh_data.h"
+
+namespace etfe {
+
+struct GeodesicCutOptions {
+  double width = 0.0;  // W, mm; 0 = off (strips from the physical groups)
+  int direction = 0;   // the cutting lines' direction at the middle: 0 x, 1 y, 2 z
+  double snap = 0.1;   // crossings within this fraction of an edge's length go to its node
+};
+
+// Replaces *mesh by the cut mesh with one element set per strip. False with a message naming
+// the option for: several physical surfaces, a width below the mean edge length or wider than
+// the surface, a direction normal to the surface, a line that does not reach the boundary
+// (a closed or winding surface), lines that meet or cross.
+bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
+                       std::string *err);
+
+} // namespace etfe

@@ -1,0 +1,353 @@
+// Strips of width W cut by geodesics (see etfe/geodesic_cut.h): the middle, the transverse
+// geodesic, the cutting lines traced and inserted one after another (each traced on the mesh as
+// the lines before it left it: the split triangles lie in their parents' planes, so the geometry
+// is the same), then the strips by flood fill, named in order across.
+#include "etfe/geodesic_cut.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "etfe/cutpattern.h"
+#include "etfe/kernels/geodesic.h"
+
+namespace etfe {
+
+namespace {
+
+const char *const kAxis[] = {"x", "y", "z"};
+
+std::string Fmt(const char *f, double a, double b = 0, double c = 0, double d = 0) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, f, a, b, c, d);
+  return buf;
+}
+
+void TriNormal(const TriSurface &s, int e, double n[3]) {
+  const double *a = &s.coords[3 * s.tris[3 * e]], *b = &s.coords[3 * s.tris[3 * e + 1]],
+               *c = &s.coords[3 * s.tris[3 * e + 2]];
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+// Barycentric coordinates of the point q (in the plane of triangle e) in e.
+void Barycentric(const TriSurface &s, int e, const double q[3], double l[3]) {
+  double n[3];
+  TriNormal(s, e, n);
+  const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  for (int k = 0; k < 3; ++k) {
+    const double *a = &s.coords[3 * s.tris[3 * e + (k + 1) % 3]], *b = &s.coords[3 * s.tris[3 * e + (k + 2) % 3]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, w[3] = {q[0] - a[0], q[1] - a[1], q[2] - a[2]};
+    const double c[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+    l[k] = (c[0] * n[0] + c[1] * n[1] + c[2] * n[2]) / nn;
+  }
+}
+
+// The triangle of s holding q (a child of the input triangle `parent` first, then any triangle
+// whose plane q lies in: a point on an edge of the input mesh is in the triangles on both
+// sides), with d not leaving it through an edge q lies on; -1 if none.
+int Locate(const TriSurface &s, int parent, const double q[3], const double d[3], double l[3]) {
+  const double tol = 1e-9;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int e = 0; e < s.NumTris(); ++e) {
+      if ((pass == 0) != (s.parent[e] == parent)) continue;
+      Barycentric(s, e, q, l);
+      if (std::min({l[0], l[1], l[2]}) < -tol) continue;
+      double n[3], off = 0;
+      TriNormal(s, e, n);
+      const double *a = &s.coords[3 * s.tris[3 * e]];
+      for (int i = 0; i < 3; ++i) off += (q[i] - a[i]) * n[i];
+      if (std::fabs(off) > tol * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])) continue;  // |n| ~ area ~ h^2
+      bool inward = true;
+      for (int k = 0; k < 3; ++k) {
+        if (l[k] > tol) continue;
+        // q on the edge opposite node k: d must not decrease l[k].
+        const double qd[3] = {q[0] + d[0], q[1] + d[1], q[2] + d[2]};
+        double m[3];
+        Barycentric(s, e, qd, m);
+        if (m[k] - l[k] < -1e-12) inward = false;
+      }
+      if (inward) return e;
+    }
+  return -1;
+}
+
+struct Trace {
+  bool ok = false;
+  std::vector<SurfacePoint> line;  // boundary to boundary
+  double length = 0.0;
+  int vertices = 0;
+};
+
+// Both halves of the geodesic through q (in triangle tri, or at node v when v >= 0) along +-d.
+bool TraceBothWays(const TriSurface &s, int v, int parent, const double q[3], const double d[3], int max_steps,
+                   Trace *out, std::string *err) {
+  GeodesicPath f, b;
+  int tf = -1, tb = -1;
+  double df[3], db[3], l[3];
+  const double md[3] = {-d[0], -d[1], -d[2]};
+  SurfacePoint mid;
+  bool mid_is_point = false;
+  if (v >= 0) {
+    if (!GeodesicStartAtVertex(s, v, d, &tf, df) || !GeodesicOppositeAtVertex(s, v, tf, df, &tb, db)) {
+      *err = "no direction through the middle node";
+      return false;
+    }
+    mid.a = v, mid_is_point = true;
+  } else {
+    // A point at a node of the mesh starts there (the theta/2 rule gives the way back).
+    const int e = Locate(s, parent, q, d, l);
+    for (int k = 0; k < 3 && e >= 0; ++k)
+      if (l[k] > 1 - 1e-9) return TraceBothWays(s, s.tris[3 * e + k], parent, q, d, max_steps, out, err);
+    tf = Locate(s, parent, q, d, l), tb = Locate(s, parent, q, md, l);
+    if (tf < 0 || tb < 0) {
+      *err = "the point on the transverse geodesic is not found in the mesh";
+      return false;
+    }
+    for (int i = 0; i < 3; ++i) df[i] = d[i], db[i] = md[i];
+    Barycentric(s, tf, q, l);
+    for (int k = 0; k < 3; ++k)
+      if (l[k] < 1e-9) {  // on the edge opposite node k
+        const int a = s.tris[3 * tf + (k + 1) % 3], c = s.tris[3 * tf + (k + 2) % 3];
+        mid.a = std::min(a, c), mid.b = std::max(a, c);
+        mid.t = a < c ? l[(k + 2) % 3] : l[(k + 1) % 3];
+        mid_is_point = true;
+      }
+  }
+  const double *start = v >= 0 ? &s.coords[3 * (size_t)v] : q;
+  if (!GeodesicTrace(s, tf, start, df, max_steps, &f, err) || !GeodesicTrace(s, tb, start, db, max_steps, &b, err))
+    return false;
+  out->ok = f.reached_boundary && b.reached_boundary;
+  out->line.assign(b.points.rbegin(), b.points.rend());
+  if (mid_is_point) out->line.push_back(mid);
+  out->line.insert(out->line.end(), f.points.begin(), f.points.end());
+  out->length = f.length + b.length;
+  out->vertices = f.vertices_passed + b.vertices_passed;
+  return true;
+}
+
+} // namespace
+
+bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
+                       std::string *err) {
+  const std::string opt = "-cutpattern_strip_width " + Fmt("%g", o.width);
+  // 1. The surface: its one physical surface, or every triangle.
+  if (mesh->element_sets.size() > 1) {
+    std::string names;
+    for (const auto &kv : mesh->element_sets) names += (names.empty() ? "" : ", ") + kv.first;
+    *err = opt + " cuts one surface into strips, but " + mesh->source + " has " +
+           std::to_string(mesh->element_sets.size()) + " physical surfaces (" + names +
+           "): give a mesh with one physical surface (or none), or leave out -cutpattern_strip_width to flatten "
+           "those groups as the strips";
+    return false;
+  }
+  std::string base = "strip";
+  std::vector<int> elems;
+  if (mesh->element_sets.size() == 1) {
+    base = mesh->element_sets.begin()->first;
+    elems = mesh->element_sets.begin()->second;
+  } else {
+    for (int e = 0; e < mesh->NumElements(); ++e) elems.push_back(e);
+  }
+  const MeshData sub = ExtractStrip(*mesh, elems, base);
+  TriSurface s;
+  if (!SurfaceFromArrays(sub.coords, sub.triangles, &s, err)) {
+    *err = mesh->source + ": " + *err;
+    return false;
+  }
+  double h = 0, area = 0, centroid[3] = {0, 0, 0};
+  std::set<std::pair<int, int>> edges;
+  for (int e = 0; e < s.NumTris(); ++e) {
+    const double *x[3] = {&s.coords[3 * s.tris[3 * e]], &s.coords[3 * s.tris[3 * e + 1]], &s.coords[3 * s.tris[3 * e + 2]]};
+    const double A = TriangleArea(x[0], x[1], x[2]);
+    area += A;
+    for (int i = 0; i < 3; ++i) centroid[i] += A * (x[0][i] + x[1][i] + x[2][i]) / 3;
+    for (int k = 0; k < 3; ++k) {
+      const int a = s.tris[3 * e + k], b = s.tris[3 * e + (k + 1) % 3];
+      if (edges.insert({std::min(a, b), std::max(a, b)}).second)
+        h += std::sqrt(std::pow(s.coords[3 * a] - s.coords[3 * b], 2) + std::pow(s.coords[3 * a + 1] - s.coords[3 * b + 1], 2) +
+                       std::pow(s.coords[3 * a + 2] - s.coords[3 * b + 2], 2));
+    }
+  }
+  h /= std::max<size_t>(1, edges.size());
+  for (double &c : centroid) c /= area;
+  if (o.width < h) {
+    *err = opt + " mm is narrower than the elements of " + mesh->source + " (mean edge " + Fmt("%.1f", h) +
+           " mm): a strip needs a few elements across; refine the mesh or give a wider strip";
+    return false;
+  }
+  // 2. The middle: the interior node nearest the centroid, and its normal.
+  int vmid = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int n = 0; n < s.NumNodes(); ++n) {
+    const double d2 = std::pow(s.coords[3 * n] - centroid[0], 2) + std::pow(s.coords[3 * n + 1] - centroid[1], 2) +
+                      std::pow(s.coords[3 * n + 2] - centroid[2], 2);
+    if (d2 < best && !SurfaceVertexOnBoundary(s, n)) best = d2, vmid = n;
+  }
+  if (vmid < 0) {
+    *err = opt + ": " + mesh->source + " has no interior node to start the cutting lines from; refine the mesh";
+    return false;
+  }
+  double nv[3] = {0, 0, 0};
+  for (int e = 0; e < s.NumTris(); ++e)
+    if (s.tris[3 * e] == vmid || s.tris[3 * e + 1] == vmid || s.tris[3 * e + 2] == vmid) {
+      double n[3];
+      TriNormal(s, e, n);
+      for (int i = 0; i < 3; ++i) nv[i] += n[i];
+    }
+  double axis[3] = {0, 0, 0};
+  axis[o.direction] = 1;
+  double tr[3] = {nv[1] * axis[2] - nv[2] * axis[1], nv[2] * axis[0] - nv[0] * axis[2], nv[0] * axis[1] - nv[1] * axis[0]};
+  const double nn = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+  const double tn = std::sqrt(tr[0] * tr[0] + tr[1] * tr[1] + tr[2] * tr[2]);
+  const double *pm = &s.coords[3 * vmid];
+  if (!(tn > 0.1 * nn)) {
+    *err = std::string("-cutpattern_strip_direction ") + kAxis[o.direction] +
+           " is (nearly) normal to the surface at its middle " + Fmt("(%.1f, %.1f, %.1f) mm", pm[0], pm[1], pm[2]) +
+           ": choose an axis along the surface";
+    return false;
+  }
+  for (double &c : tr) c /= tn;
+  // 3. The transverse geodesic (on the uncut mesh) and the offsets of the lines on it.
+  const int max_steps = 4 * s.NumTris() + 100;
+  int tf, tb;
+  double df[3], db[3];
+  GeodesicPath fwd, back;
+  if (!GeodesicStartAtVertex(s, vmid, tr, &tf, df) || !GeodesicOppositeAtVertex(s, vmid, tf, df, &tb, db) ||
+      !GeodesicTrace(s, tf, pm, df, max_steps, &fwd, err) || !GeodesicTrace(s, tb, pm, db, max_steps, &back, err)) {
+    *err = opt + ": the transverse geodesic through the middle: " + *err;
+    return false;
+  }
+  if (!fwd.reached_boundary || !back.reached_boundary) {
+    *err = opt + ": the transverse geodesic through the middle " + Fmt("(%.1f, %.1f, %.1f) mm", pm[0], pm[1], pm[2]) +
+           " does not reach the boundary within " + std::to_string(max_steps) +
+           " triangle crossings: a line that never ends inside the surface (is it closed around, a tube or a "
+           "sphere, across -cutpattern_strip_direction?): cut it open into a disc first";
+    return false;
+  }
+  const double across = fwd.length + back.length;
+  if (o.width >= across) {
+    *err = opt + " mm is wider than the surface: " + Fmt("%.1f", across) +
+           " mm across along the geodesic through its middle; give a smaller width";
+    return false;
+  }
+  std::vector<double> offsets{0.0};  // signed arc length from the middle, + along fwd
+  for (int k = 1; k * o.width <= fwd.length - 0.25 * o.width; ++k) offsets.push_back(k * o.width);
+  for (int k = 1; k * o.width <= back.length - 0.25 * o.width; ++k) offsets.push_back(-k * o.width);
+  // 4. Trace and insert the lines one by one.
+  int inserted = 0;
+  for (double off : offsets) {
+    Trace t;
+    std::string why;
+    int parent = -1;
+    double q[3], c[3];
+    if (off == 0) {
+      for (int i = 0; i < 3; ++i) q[i] = pm[i], c[i] = axis[i];
+    } else {
+      const GeodesicPath &g = off > 0 ? fwd : back;
+      double prev[3] = {pm[0], pm[1], pm[2]}, sum = 0;
+      const double want = std::fabs(off);
+      size_t i = 0;
+      for (; i < g.points.size(); ++i) {
+        const double *x = g.points[i].x;
+        const double l = std::sqrt(std::pow(x[0] - prev[0], 2) + std::pow(x[1] - prev[1], 2) + std::pow(x[2] - prev[2], 2));
+        if (sum + l >= want) break;
+        sum += l;
+        for (int j = 0; j < 3; ++j) prev[j] = x[j];
+      }
+      i = std::min(i, g.points.size() - 1);
+      const double *u = &g.segment_dir[3 * i];
+      for (int j = 0; j < 3; ++j) q[j] = prev[j] + (want - sum) * u[j];
+      parent = g.segment_tri[i];
+      double n[3];
+      TriNormal(s, parent, n);  // the transverse trace ran on the uncut mesh: parent ids are its own
+      c[0] = n[1] * u[2] - n[2] * u[1], c[1] = n[2] * u[0] - n[0] * u[2], c[2] = n[0] * u[1] - n[1] * u[0];
+      if (c[0] * axis[0] + c[1] * axis[1] + c[2] * axis[2] < 0)
+        for (double &x : c) x = -x;
+    }
+    std::vector<int> verts;
+    if (!TraceBothWays(s, off == 0 ? vmid : -1, parent, q, c, max_steps, &t, &why) || !t.ok ||
+        !SurfaceInsertLine(&s, t.line, o.snap, &verts, &why)) {
+      if (why.empty()) why = "it does not reach the boundary within " + std::to_string(max_steps) + " crossings (it winds on the surface)";
+      *err = opt + ": the cutting line " + Fmt("%+.1f", off) + " mm from the middle " +
+             Fmt("(%.1f, %.1f, %.1f) mm", q[0], q[1], q[2]) + ": " + why +
+             "; give a larger width or another -cutpattern_strip_direction";
+      return false;
+    }
+    inserted += (int)verts.size();
+    notes->push_back("geodesic line " + Fmt("%+.1f", off) + " mm from the middle: " + Fmt("%.3f", t.length) +
+                     " mm long, " + std::to_string(verts.size()) + " nodes, " + std::to_string(t.vertices) +
+                     " mesh nodes passed");
+  }
+  // 5. The strips: pieces between the lines, in order across (by their centroids along the
+  // transverse direction at the middle).
+  std::vector<int> label;
+  const int count = SurfaceComponents(s, &label);
+  if (count != (int)offsets.size() + 1) {
+    *err = opt + ": " + std::to_string(offsets.size()) + " cutting lines left " + std::to_string(count) +
+           " pieces instead of " + std::to_string(offsets.size() + 1) + "; give another width or direction";
+    return false;
+  }
+  std::vector<double> key(count, 0.0), weight(count, 0.0);
+  for (int e = 0; e < s.NumTris(); ++e) {
+    const double *x[3] = {&s.coords[3 * s.tris[3 * e]], &s.coords[3 * s.tris[3 * e + 1]], &s.coords[3 * s.tris[3 * e + 2]]};
+    const double A = TriangleArea(x[0], x[1], x[2]);
+    for (int i = 0; i < 3; ++i) key[label[e]] += A * tr[i] * ((x[0][i] + x[1][i] + x[2][i]) / 3 - pm[i]);
+    weight[label[e]] += A;
+  }
+  std::vector<int> order(count);
+  for (int k = 0; k < count; ++k) order[k] = k, key[k] /= weight[k];
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
+  std::sort(offsets.begin(), offsets.end());
+  MeshData out;
+  out.source = mesh->source + " cut at " + Fmt("%g", o.width) + " mm";
+  out.coords = s.coords;
+  out.triangles = s.tris;
+  out.notes = mesh->notes;
+  for (int k = 0; k < count; ++k) {
+    char name[64];
+    std::snprintf(name, sizeof name, "%s_%02d", base.c_str(), k + 1);
+    auto &set = out.element_sets[name];
+    for (int e = 0; e < s.NumTris(); ++e)
+      if (label[e] == order[k]) set.push_back(e);
+    const double lo = k == 0 ? -back.length : offsets[k - 1], hi = k == count - 1 ? fwd.length : offsets[k];
+    notes->push_back(std::string("geodesic strip ") + name + ": " + std::to_string(set.size()) +
+                     " triangles, width on the transverse geodesic " + Fmt("%.3f", hi - lo) + " mm");
+  }
+  // Node sets of the file (named curves) keep their lines: a node put on an edge of a set joins it.
+  const int n0 = sub.NumNodes();
+  for (const auto &kv : sub.node_sets) {
+    std::vector<char> in(s.NumNodes(), 0);
+    for (int n : kv.second) in[n] = 1;
+    for (int p = n0; p < s.NumNodes(); ++p) {
+      const auto &ab = s.new_node_edge[p - n0];
+      if (in[ab.first] && in[ab.second]) in[p] = 1;
+    }
+    auto &v = out.node_sets[kv.first];
+    for (int n = 0; n < s.NumNodes(); ++n)
+      if (in[n]) v.push_back(n);
+  }
+  double q0 = 1, q1 = 1;
+  for (int e = 0; e < sub.NumElements(); ++e)
+    q0 = std::min(q0, TriangleQuality(&sub.coords[3 * sub.triangles[3 * e]], &sub.coords[3 * sub.triangles[3 * e + 1]],
+                                      &sub.coords[3 * sub.triangles[3 * e + 2]]));
+  for (int e = 0; e < s.NumTris(); ++e)
+    q1 = std::min(q1, TriangleQuality(&s.coords[3 * s.tris[3 * e]], &s.coords[3 * s.tris[3 * e + 1]],
+                                      &s.coords[3 * s.tris[3 * e + 2]]));
+  notes->insert(notes->begin(),
+                "geodesic strips of " + base + ": width " + Fmt("%g", o.width) + " mm, lines along " +
+                    kAxis[o.direction] + "; the transverse geodesic through the middle node " +
+                    Fmt("(%.1f, %.1f, %.1f) mm", pm[0], pm[1], pm[2]) + " is " +
+                    Fmt("%.3f mm across (%.3f + %.3f)", across, back.length, fwd.length) + "; " +
+                    std::to_string(offsets.size()) + " lines, " + std::to_string(count) + " strips; " +
+                    std::to_string(s.NumNodes() - n0) + " nodes added, " + std::to_string(sub.NumElements()) + " -> " +
+                    std::to_string(s.NumTris()) + " triangles, smallest triangle quality " + Fmt("%.3f", q1) +
+                    " (input " + Fmt("%.3f", q0) + ")");
+  *mesh = out;
+  return true;
+}
+
+} // namespace etfe
