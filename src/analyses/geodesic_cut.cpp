@@ -224,8 +224,8 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
   if (!fwd.reached_boundary || !back.reached_boundary) {
     *err = opt + ": the transverse geodesic through the middle " + Fmt("(%.1f, %.1f, %.1f) mm", pm[0], pm[1], pm[2]) +
            " does not reach the boundary within " + std::to_string(max_steps) +
-           " triangle crossings: a line that never ends inside the surface (is it closed around, a tube or a "
-           "sphere, across -cutpattern_strip_direction?): cut it open into a disc first";
+           " triangle crossings: it winds round the surface without ending (a tube or a closed surface across "
+           "-cutpattern_strip_direction?): cut it open into a disc first, or choose another direction";
     return false;
   }
   const double across = fwd.length + back.length;
