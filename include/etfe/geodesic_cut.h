@@ -24,7 +24,10 @@ namespace etfe {
 struct GeodesicCutOptions {
   double width = 0.0;  // W, mm; 0 = off (strips from the physical groups)
   int direction = 0;   // the cutting lines' direction at the middle: 0 x, 1 y, 2 z
-  double snap = 0.1;   // crossings within this fraction of an edge's length go to its node
+  // Crossings within this fraction of an edge's length go to its node. Measured on saddles
+  // (z = c (x^2 - y^2), 24 and 48 cells across, W 100..200 mm): 0.1 left triangles of quality
+  // 0.08 that folded one strip of six in the flattening, 0.2 kept quality >= 0.17 and none folded.
+  double snap = 0.2;
 };
 
 // Replaces *mesh by the cut mesh with one element set per strip. False with a message naming

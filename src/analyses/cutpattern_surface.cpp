@@ -188,7 +188,14 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
                               "axis), with -cutpattern_strip_width",
                               "", axes, 3, axes[axis], &axis, nullptr));
   o->geodesic.direction = (int)axis;
+  PetscCall(PetscOptionsReal("-cutpattern_strip_snap",
+                             "With -cutpattern_strip_width: a cutting line crossing an edge within this fraction of "
+                             "its length from a node goes through the node (fewer thin triangles, the line off its "
+                             "geodesic by at most this fraction of an edge)",
+                             "", o->geodesic.snap, &o->geodesic.snap, nullptr));
   PetscOptionsEnd();
+  PetscCheck(o->geodesic.snap >= 0 && o->geodesic.snap < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-cutpattern_strip_snap %g: give a fraction of an edge's length in [0, 0.5)", (double)o->geodesic.snap);
   PetscCheck(!width_set || (o->geodesic.width > 0 && std::isfinite(o->geodesic.width)), comm,
              PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_strip_width %g: a strip width must be a positive length in mm (leave the option out to "
@@ -213,16 +220,24 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
              "-analysis cutpattern needs the surface: -mesh_file surface.msh (Gmsh; its physical surfaces are the "
              "strips)");
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0)
-    ok = ReadGmshFile(o.mesh_file, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
-         (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err)) &&
-         CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err);
-  PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
-  for (const std::string &n : mesh.notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", o.mesh_file.c_str(), n.c_str()));
-  for (const std::string &n : notes) PetscCall(PetscPrintf(comm, "cutpattern: %s\n", n.c_str()));
   // The pattern files go beside the results path: <dir>/<stem>_<strip>.{dxf,svg,msh}, <stem>_lines.csv.
   const std::filesystem::path out(o.results_path);
   const std::string dir = out.parent_path().empty() ? "." : out.parent_path().string();
+  // With geodesic strips the cut 3D surface (strips as physical surfaces, cutting lines as point
+  // groups) is written as <stem>_cut.msh, to see the lines on the surface.
+  const std::string cut_file = dir + "/" + out.stem().string() + "_cut.msh";
+  if (rank == 0) {
+    std::error_code ec;
+    if (o.geodesic.width > 0) std::filesystem::create_directories(dir, ec);
+    ok = ReadGmshFile(o.mesh_file, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
+         (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err)) &&
+         CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err) &&
+         (o.geodesic.width <= 0 || WriteGmshFile(cut_file, mesh, &err));
+  }
+  PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
+  for (const std::string &n : mesh.notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", o.mesh_file.c_str(), n.c_str()));
+  for (const std::string &n : notes) PetscCall(PetscPrintf(comm, "cutpattern: %s\n", n.c_str()));
+  if (o.geodesic.width > 0) PetscCall(PetscPrintf(comm, "cutpattern: the cut surface: %s\n", cut_file.c_str()));
   PetscCall(CutPatternRun(comm, mesh, o.cutpattern, dir, out.stem().string()));
   PetscFunctionReturn(0);
 }

@@ -5,6 +5,7 @@
 #include "etfe/geodesic_cut.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -90,6 +91,7 @@ bool TraceBothWays(const TriSurface &s, int v, int parent, const double q[3], co
   double df[3], db[3], l[3];
   const double md[3] = {-d[0], -d[1], -d[2]};
   SurfacePoint mid;
+  for (int i = 0; i < 3; ++i) mid.x[i] = v >= 0 ? s.coords[3 * (size_t)v + i] : q[i];
   bool mid_is_point = false;
   if (v >= 0) {
     if (!GeodesicStartAtVertex(s, v, d, &tf, df) || !GeodesicOppositeAtVertex(s, v, tf, df, &tb, db)) {
@@ -134,6 +136,7 @@ bool TraceBothWays(const TriSurface &s, int v, int parent, const double q[3], co
 bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
                        std::string *err) {
   const std::string opt = "-cutpattern_strip_width " + Fmt("%g", o.width);
+  const auto t0 = std::chrono::steady_clock::now();
   // 1. The surface: its one physical surface, or every triangle.
   if (mesh->element_sets.size() > 1) {
     std::string names;
@@ -269,8 +272,9 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
         for (double &x : c) x = -x;
     }
     std::vector<int> verts;
+    double moved = 0;
     if (!TraceBothWays(s, off == 0 ? vmid : -1, parent, q, c, max_steps, &t, &why) || !t.ok ||
-        !SurfaceInsertLine(&s, t.line, o.snap, &verts, &why)) {
+        !SurfaceInsertLine(&s, t.line, o.snap, &verts, &moved, &why)) {
       if (why.empty()) why = "it does not reach the boundary within " + std::to_string(max_steps) + " crossings (it winds on the surface)";
       *err = opt + ": the cutting line " + Fmt("%+.1f", off) + " mm from the middle " +
              Fmt("(%.1f, %.1f, %.1f) mm", q[0], q[1], q[2]) + ": " + why +
@@ -280,7 +284,7 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
     inserted += (int)verts.size();
     notes->push_back("geodesic line " + Fmt("%+.1f", off) + " mm from the middle: " + Fmt("%.3f", t.length) +
                      " mm long, " + std::to_string(verts.size()) + " nodes, " + std::to_string(t.vertices) +
-                     " mesh nodes passed");
+                     " mesh nodes passed, inserted within " + Fmt("%.3f", moved) + " mm of the traced geodesic");
   }
   // 5. The strips: pieces between the lines, in order across (by their centroids along the
   // transverse direction at the middle).
@@ -345,7 +349,8 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
                     std::to_string(offsets.size()) + " lines, " + std::to_string(count) + " strips; " +
                     std::to_string(s.NumNodes() - n0) + " nodes added, " + std::to_string(sub.NumElements()) + " -> " +
                     std::to_string(s.NumTris()) + " triangles, smallest triangle quality " + Fmt("%.3f", q1) +
-                    " (input " + Fmt("%.3f", q0) + ")");
+                    " (input " + Fmt("%.3f", q0) + "); " +
+                    Fmt("%.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()));
   *mesh = out;
   return true;
 }

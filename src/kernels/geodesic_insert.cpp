@@ -81,7 +81,8 @@ bool SurfaceFromArrays(const std::vector<double> &coords, const std::vector<int>
 }
 
 bool SurfaceInsertLine(TriSurface *s, const std::vector<SurfacePoint> &line, double snap, std::vector<int> *vertices,
-                       std::string *err) {
+                       double *moved, std::string *err) {
+  if (moved) *moved = 0;
   std::vector<char> on_cut(s->NumNodes(), 0);
   for (const auto &c : s->cut) on_cut[c.first] = on_cut[c.second] = 1;
   // Splits made by this line: edge key -> (new node, t along the key's order), so that a point
@@ -111,6 +112,11 @@ bool SurfaceInsertLine(TriSurface *s, const std::vector<SurfacePoint> &line, dou
         on_cut.push_back(0);
         split[Key(a, b)] = {v, t};
       }
+    }
+    if (moved) {
+      double d2 = 0;
+      for (int i = 0; i < 3; ++i) d2 += std::pow(s->coords[3 * (size_t)v + i] - pt.x[i], 2);
+      *moved = std::max(*moved, std::sqrt(d2));
     }
     if (on_cut[v]) {
       *err = "the line meets another cutting line at " + Where(*s, v);

@@ -91,8 +91,9 @@ with scratch_dir() as tmp:
     chk.check(all(abs(l3 - 1000.0) < 1e-9 for _, _, l3, _ in lines),
               "cylinder: every cutting line is a generator, 1000 mm long")
 
-    # Hypar 1000 x 1000 mm, rise 200 mm, 24 x 24 cells (h ~ 42..59 mm): lines along x.
-    W = 200.0
+    # Hypar 1000 x 1000 mm, rise 200 mm, 24 x 24 cells (h ~ 42..59 mm): lines along x (its
+    # straight rulings y = const, which are geodesics; W chosen so no crossing is near a node).
+    W = 220.0
     hyp = pm.hypar(n=24)
     h = 1000.0 / 24 * (1 + math.sqrt(2) + 1) / 3  # mean edge of the grid's cells (sides and diagonal)
     out, secs = cut(tmp, "hyp", hyp, {}, W, "x")
@@ -104,7 +105,7 @@ with scratch_dir() as tmp:
         print("  %s: width on the transverse geodesic %.3f mm, in the pattern %s, link error max %.3e, "
               "outline expansion %.1e %%" % (s, on_tr.get(s, float("nan")),
                                              "%.3f .. %.3f mm" % w if w else "(edge strip)", errs[s], outline[s]))
-    chk.check(len(errs) == 6 and len(wd) == 4, "hypar: lines at 0, +-200, +-400 mm give 6 strips, 4 inner")
+    chk.check(len(errs) == 6 and len(wd) == 4, "hypar: lines at 0, +-220, +-440 mm give 6 strips, 4 inner")
     inner = [on_tr[s] for s in wd]
     chk.check(all(abs(w - W) < 1e-9 for w in inner), "hypar: inner strips W wide on the transverse geodesic")
     chk.check(all(W - h <= lo and hi <= W + h for lo, hi in wd.values()),
@@ -117,6 +118,29 @@ with scratch_dir() as tmp:
     chk.check(len(by_line) == 5 and all(len(v) == 2 and abs(v[0] - v[1]) < 1e-6 for v in by_line.values()),
               "hypar: each of the 5 cutting lines measured alike in both its strips")
     chk.check(all(0 < e < 0.05 for e in errs.values()), "hypar: doubly curved strips flatten with small link errors")
+
+    # A saddle z = 0.4 (x^2 - y^2) / 1000 mm (K < 0, the lines along x are no rulings: they bend
+    # and the insertion snaps crossings near nodes), 24 x 24 cells, W 150 mm.
+    W = 150.0
+    sad = pm.grid(24, 24, lambda u, v: ((u - 0.5) * 1000, (v - 0.5) * 1000, 400 * ((u - 0.5) ** 2 - (v - 0.5) ** 2)))
+    out, secs = cut(tmp, "sad", sad, {"saddle": (2, list(range(len(sad[1]))))}, W, "x")
+    errs, lines, outline, on_tr = report(out)
+    wd = widths(tmp, "sad")
+    m = re.search(r"smallest triangle quality %s \(input %s\)" % (NUM, NUM), out)
+    moved = max(float(x) for x in re.findall(r"inserted within %s mm of the traced geodesic" % NUM, out))
+    print("saddle, W %g mm (%.2f s): smallest triangle quality %s (input %s), lines inserted within %.3f mm of "
+          "the traced geodesics" % (W, secs, m.group(1) if m else "?", m.group(2) if m else "?", moved))
+    for s in sorted(errs):
+        w = wd.get(s)
+        print("  %s: width on the transverse geodesic %.3f mm, in the pattern %s, link error max %.3e" % (
+            s, on_tr.get(s, float("nan")), "%.3f .. %.3f mm" % w if w else "(edge strip)", errs[s]))
+    chk.check(len(errs) == 8 and len(wd) == 6, "saddle: 7 lines, 8 strips (6 inner), all flattened")
+    chk.check(all(W - h <= lo and hi <= W + h for lo, hi in wd.values()),
+              "saddle: every inner pattern W +- one element size wide")
+    chk.check(moved <= 0.2 * 60.0, "saddle: the lines within the snap distance (0.2 x the longest edge)")
+    chk.check(m is not None and float(m.group(1)) >= 0.1, "saddle: no triangle of quality below 0.1 after insertion")
+    chk.check(all(abs(e) < 1e-6 for e in outline.values()) and all(abs(l2 - l3) < 1e-6 * l3 for _, _, l3, l2 in lines),
+              "saddle: outlines and cutting lines keep their 3D lengths")
 
     # Bad input.
     for name, mesh, groups, width, direction, want in (

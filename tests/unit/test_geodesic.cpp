@@ -181,7 +181,7 @@ int main() {
   {
     TriSurface s;
     JitteredPlane(&s);
-    const double A0 = TotalArea(s), q0 = MinQuality(s), snap = 0.1;
+    const double A0 = TotalArea(s), q0 = MinQuality(s), snap = 0.2;
     int lines = 0;
     for (double y : {500.0, 300.0, 700.0, 420.0}) {
       const double P[3] = {500.0, y, 0.0}, d[3] = {std::cos(0.2), std::sin(0.2), 0.0},
@@ -193,7 +193,8 @@ int main() {
       std::vector<SurfacePoint> line(b.points.rbegin(), b.points.rend());
       line.insert(line.end(), f.points.begin(), f.points.end());
       std::vector<int> verts;
-      CHECK(SurfaceInsertLine(&s, line, snap, &verts, &err), "%s", err.c_str());
+      double moved = 0;
+      CHECK(SurfaceInsertLine(&s, line, snap, &verts, &moved, &err), "%s", err.c_str());
       ++lines;
       // The inserted line stays within snap * (edge length) of the traced one.
       double off = 0;
@@ -207,14 +208,16 @@ int main() {
       CHECK(std::fabs(TotalArea(s) - A0) <= 1e-12 * A0, "the area is kept to 1e-12");
       CHECK(MinQuality(s) >= 0.25 * snap * q0, "no triangle below 0.25 snap x the mesh's worst quality (%.3f)",
             MinQuality(s));
-      CHECK(off <= snap * 130.0, "the inserted line is within snap x the longest edge of the traced line");
+      CHECK(off <= moved + 1e-9 && moved <= snap * 130.0,
+            "the inserted line is within the reported snap distance %.2f mm (<= snap x the longest edge) of the "
+            "traced line", moved);
     }
     // A line across them is refused by name.
     const double P[3] = {500.0, 100.0, 0.0}, d[3] = {0.0, 1.0, 0.0};
     GeodesicPath g;
     CHECK(GeodesicTrace(s, Locate2D(s, P), P, d, 1000, &g, &err), "%s", err.c_str());
     std::vector<int> verts;
-    const bool ok = SurfaceInsertLine(&s, g.points, snap, &verts, &err);
+    const bool ok = SurfaceInsertLine(&s, g.points, snap, &verts, nullptr, &err);
     CHECK(!ok && (err.find("crosses another cutting line") != std::string::npos ||
                   err.find("meets another cutting line") != std::string::npos),
           "a crossing line is refused: %s", err.c_str());

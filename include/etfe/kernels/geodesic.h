@@ -84,10 +84,12 @@ double SurfaceVertexAngle(const TriSurface &s, int v);
 
 // Inserts the polyline (consecutive points in one triangle of s, as GeodesicTrace gives them)
 // as cut edges, splitting the edges it crosses (crossings within snap of an edge end moved to
-// that vertex). *vertices: the line as node ids. False with a message when the line crosses or
-// touches an existing cut line, or crosses one triangle twice (the segment is then no edge).
+// that vertex). *vertices: the line as node ids; *moved (may be null): the largest distance, mm,
+// from a traced point to the node that stands for it. False with a message when the line
+// crosses or touches an existing cut line, or crosses one triangle twice (the segment is then
+// no edge).
 bool SurfaceInsertLine(TriSurface *s, const std::vector<SurfacePoint> &line, double snap,
-                       std::vector<int> *vertices, std::string *err);
+                       std::vector<int> *vertices, double *moved, std::string *err);
 
 // Pieces of the surface between cut edges (flood fill across the other edges): label per
 // triangle, 0..count-1; returns count. Needs the neighbours.
