@@ -8,6 +8,7 @@ surface.msh -cutpattern_strip_width W. Meshes are made here (pattern_meshes.py).
     wide; in the flattened pattern its width stays within one element size h of W (the measured
     range is printed); the outline and every cutting line keep their 3D length, and both strips
     of a cutting line measure it alike, as for strips named by physical groups;
+  * the cut surface <stem>_cut.msh reads back as physical-group strips with the same lines;
   * bad input: W <= 0, W wider than the surface, W below the element size, a surface with two
     physical groups, a tube (the transverse line never ends): refused naming the option."""
 import math
@@ -47,7 +48,7 @@ def widths(tmp, name):
     out = {}
     for f in sorted(os.listdir(tmp)):
         m = re.match(r"%s_(\w+)\.msh$" % name, f)
-        if not m:
+        if not m or m.group(1) == "cut":  # <stem>_cut.msh is the cut 3D surface
             continue
         groups = pm.msh41_point_groups(os.path.join(tmp, f))
         cuts = sorted(g for g in groups if g.startswith("cut_"))
@@ -90,6 +91,11 @@ with scratch_dir() as tmp:
     chk.check(errs and max(errs.values()) < 1e-10, "cylinder: developable, every link keeps its length (1e-10)")
     chk.check(all(abs(l3 - 1000.0) < 1e-9 for _, _, l3, _ in lines),
               "cylinder: every cutting line is a generator, 1000 mm long")
+    # The cut surface written beside the patterns reads back as physical-group strips, same lines.
+    again = run(etfe, ["-analysis", "cutpattern", "-mesh_file", os.path.join(tmp, "cyl_cut.msh"),
+                       "-output_file", os.path.join(tmp, "again.h5")])[1]
+    chk.check(sorted(report(again)[1]) == sorted(lines),
+              "cylinder: cyl_cut.msh (strips as physical surfaces) flattens to the same cutting lines")
 
     # Hypar 1000 x 1000 mm, rise 200 mm, 24 x 24 cells (h ~ 42..59 mm): lines along x (its
     # straight rulings y = const, which are geodesics; W chosen so no crossing is near a node).
