@@ -61,7 +61,8 @@ int Locate(const TriSurface &s, int parent, const double q[3], const double d[3]
       TriNormal(s, e, n);
       const double *a = &s.coords[3 * s.tris[3 * e]];
       for (int i = 0; i < 3; ++i) off += (q[i] - a[i]) * n[i];
-      if (std::fabs(off) > tol * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])) continue;  // |n| ~ area ~ h^2
+      const double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);  // twice the area ~ h^2
+      if (std::fabs(off) > tol * nl * std::sqrt(nl)) continue;  // q off the plane by more than ~tol h
       bool inward = true;
       for (int k = 0; k < 3; ++k) {
         if (l[k] > tol) continue;
