@@ -19,6 +19,9 @@ PetscErrorCode ProblemUpdateReactions(Problem *problem, Vec U);
 
 PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
+// The film's internal nodal forces at U with the committed history (the membrane part of the
+// residual, constrained DOFs included): its work along an increment is the work done on the film.
+PetscErrorCode FormInternalForce(Problem *problem, Vec U, Vec F);
 // Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
 // collapse. Collective; *ok false names the element in problem->bad_element.
 PetscErrorCode CheckStep(Problem *problem, Vec X, Vec W, PetscBool *ok);

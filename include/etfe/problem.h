@@ -48,6 +48,15 @@ struct Problem {
   double tangent_shift = 0.0;  // N/mm added to the tangent's diagonal (-membrane_tangent_shift x E h)
   PetscBool tangent_shift_adaptive = PETSC_FALSE;  // shift x |F_k|/|F_0| (vanishes at convergence)
   double shift_fnorm0 = 0.0;
+  // The shift as a pseudo-transient (proximal) term: the diagonal of the last assembled tangent
+  // (N/mm, 0 without a shift) and, over the Newton iterations of the last solve, the energy that
+  // term would dissipate, sum_k shift_k |x_{k+1} - x_k|^2 over all DOFs (N mm; the load stepper
+  // reports it per increment next to the increment's work, issue 13).
+  double shift_applied = 0.0;
+  double shift_work = 0.0;
+  // Of the last converged increment: the work done on the film by the prescribed boundary,
+  // pressure, loads and contact (= its internal work, trapezoid rule) and the shift work (N mm).
+  double increment_work = 0.0, increment_shift_work = 0.0;
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
   PetscBool near_null_space = PETSC_FALSE;  // rigid-body modes attached to J (AMG preconditioners)

@@ -211,6 +211,35 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscFunctionReturn(0);
 }
 
+// The element loop of FormResidual alone (committed history): no loads, contact or constraint
+// rows, and no side effects on the reactions or the force scale.
+PetscErrorCode FormInternalForce(Problem *P, Vec U, Vec Fout) {
+  const LocalMesh &m = P->mesh;
+  Vec Ul, Fl;
+  const PetscScalar *u;
+  PetscScalar *f;
+  PetscFunctionBeginUser;
+  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
+  PetscCall(VecGhostGetLocalForm(P->F_work, &Fl));
+  PetscCall(VecZeroEntries(Fl));
+  PetscCall(VecGetArray(Fl, &f));
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double x[9], F[6], E[3], S[3], D[9], fe[9];
+    GatherCoordinates(m, e, u, x);
+    if (MembraneElement(P, e, x, S, D, F, E) != KERNEL_OK) continue;  // a converged state has none
+    MembraneForce(m.ref[e], P->thickness, F, S, nullptr, fe, nullptr);
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] += fe[3 * a + i];
+  }
+  PetscCall(VecRestoreArray(Fl, &f));
+  PetscCall(VecGhostRestoreLocalForm(P->F_work, &Fl));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
+  PetscCall(VecGhostUpdateBegin(P->F_work, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGhostUpdateEnd(P->F_work, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecCopy(P->F_work, Fout));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   Problem *P = (Problem *)ctx;
   const LocalMesh &m = P->mesh;
@@ -288,6 +317,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
       if (P->shift_fnorm0 > 0) shift *= std::min(1.0, (double)(fnorm / P->shift_fnorm0));
     }
     PetscCall(MatShift(Pmat, shift));
+    P->shift_applied = shift;
   }
   if (J != Pmat) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));

@@ -113,7 +113,7 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
     std::string header = "step,time,A_Exx,A_Eyy,A_Exy,A_mises,B_Exx,B_Eyy,B_Exy,B_mises,I_smin,I_emin,II_smin,II_emin";
     for (size_t k = 0; k < c->slide_nodes.size(); ++k)
       header += ",slide" + std::to_string(k + 1) + "_X,slide" + std::to_string(k + 1) + "_Y";
-    header += ",pairs_open,pairs_stick,pairs_slip";
+    header += ",pairs_open,pairs_stick,pairs_slip,work,shift_work";
     FILE *out = CsvHistoryOpen(path, step, header.c_str());
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
     std::fprintf(out, "%lld,%.10g", (long long)step, t);
@@ -121,7 +121,9 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
     for (double x : v.b) std::fprintf(out, ",%.8e", x);
     std::fprintf(out, ",%.8e,%.8e,%.8e,%.8e", v.i_smin, v.i_emin, v.ii_smin, v.ii_emin);
     for (double x : v.slide) std::fprintf(out, ",%.8e", x);
-    std::fprintf(out, ",%lld,%lld,%lld\n", (long long)status_all[0], (long long)status_all[1], (long long)status_all[2]);
+    std::fprintf(out, ",%lld,%lld,%lld", (long long)status_all[0], (long long)status_all[1], (long long)status_all[2]);
+    // The increment's work on the film and what the tangent shift would dissipate (N mm, issue 13).
+    std::fprintf(out, ",%.8e,%.8e\n", P->increment_work, P->increment_shift_work);
     std::fclose(out);
   }
   PetscFunctionReturn(0);

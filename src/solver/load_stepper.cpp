@@ -126,6 +126,45 @@ PetscErrorCode DestroyForceTest(void *ctx) {
   return 0;
 }
 
+// The tangent shift read as a pseudo-transient (proximal-point) term: Newton's step from x_k
+// solves (K + s_k I) dx = -R, the step of a system with a viscous force s_k (x - x_k) that is
+// gone at convergence. The energy it would dissipate in a solve is sum_k s_k |x_{k+1} - x_k|^2,
+// with s_k the diagonal of the tangent the step was solved with and x_{k+1} the iterate the line
+// search accepted (all DOFs; the constrained ones do not move in a solve). The predictor's extra
+// shift is not in it: the predictor only chooses where Newton starts.
+struct ShiftWorkMonitor {
+  Problem *problem;
+  Vec x_prev = nullptr;
+};
+
+PetscErrorCode ShiftWorkMonitorCall(SNES snes, PetscInt it, PetscReal, void *ctx) {
+  auto *m = (ShiftWorkMonitor *)ctx;
+  Problem *P = m->problem;
+  Vec X;
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetSolution(snes, &X));
+  if (!m->x_prev) PetscCall(VecDuplicate(X, &m->x_prev));
+  if (it == 0) {
+    P->shift_work = 0.0;
+  } else if (P->shift_applied > 0) {
+    PetscReal dx;
+    PetscCall(VecAXPY(m->x_prev, -1.0, X));
+    PetscCall(VecNorm(m->x_prev, NORM_2, &dx));
+    P->shift_work += P->shift_applied * dx * dx;
+  }
+  PetscCall(VecCopy(X, m->x_prev));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DestroyShiftWorkMonitor(void **ctx) {
+  auto *m = (ShiftWorkMonitor *)*ctx;
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&m->x_prev));
+  delete m;
+  *ctx = nullptr;
+  PetscFunctionReturn(0);
+}
+
 // U = U_n + dU_c + d with K(U_n) d = -dR/de, where dR/de is the change of the residual when the
 // prescribed values and loads move from t to t_new with the free DOFs held (a one-sided
 // difference with a small fraction e of the increment: K_fc dU_c plus the load change). The
@@ -239,6 +278,14 @@ PetscErrorCode PrintProgress(Problem *P, PetscInt step, PetscInt nominal, double
   }
   char cut[48] = "";
   if (cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)cutbacks);
+  // With a tangent shift: the increment's work on the film and what the shift would dissipate.
+  if (P->tangent_shift > 0) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "  work %.3e N mm shift %.1e (%.1e of it)", P->increment_work,
+                  P->increment_shift_work,
+                  P->increment_work != 0 ? P->increment_shift_work / std::fabs(P->increment_work) : 0.0);
+    contact += buf;
+  }
   PetscCall(PetscPrintf(P->comm,
                         "step %5" PetscInt_FMT "/%" PetscInt_FMT " %5.1f%%  t %.5f  stage %d/%d %s  newton %2" PetscInt_FMT
                         "  |R| %.2e%s%s  %.2f s  elapsed %s  ETA %s\n",
@@ -254,6 +301,7 @@ PetscErrorCode LoadStepperSetConvergenceTest(Problem *P, SNES snes, const LoadSt
   PetscFunctionBeginUser;
   PetscCall(SNESSetConvergenceTest(snes, ConvergedForceBalance, new ForceTest{P, o.force_rtol, o.force_roundoff},
                                    DestroyForceTest));
+  PetscCall(SNESMonitorSet(snes, ShiftWorkMonitorCall, new ShiftWorkMonitor{P}, DestroyShiftWorkMonitor));
   PetscFunctionReturn(0);
 }
 
@@ -267,7 +315,8 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   // Extrapolate only from converged states: a scene's initial guess is not one.
   PetscInt converged_states = P->scene.initial_guess.empty() ? 1 : 0;
   PetscInt step = 0, easy = 0, cutbacks_printed = 0, lifted_since_print = 0;
-  Vec U_committed, U_previous, F;
+  Vec U_committed, U_previous, F, Fint, Fint_committed, dU;
+  double work_total = 0.0, shift_work_total = 0.0;
   PetscLogDouble t0, t_inc;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
@@ -291,6 +340,13 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     PetscCall(PetscPrintf(P->comm, "restart: from %s at increment %" PetscInt_FMT ", load time %g\n", ck.restart,
                           step, t));
   }
+  // The film's internal forces at the committed state (committed history): the work of an
+  // increment is the trapezoid of them along its displacement (a restart recomputes them bit for
+  // bit from the checkpoint's U and history).
+  PetscCall(VecDuplicate(P->U, &Fint));
+  PetscCall(VecDuplicate(P->U, &Fint_committed));
+  PetscCall(VecDuplicate(P->U, &dU));
+  PetscCall(FormInternalForce(P, U_committed, Fint_committed));
   auto checkpoint = [&]() -> PetscErrorCode {
     StepperState st;
     st.t = t, st.dt = dt, st.dt_last = dt_last, st.step = step, st.converged_states = converged_states;
@@ -326,6 +382,18 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     res->newton_iterations += its;
     if (reason > 0) {
       PetscCall(CommitHistory(P, P->U));
+      {
+        PetscScalar w;
+        PetscCall(FormInternalForce(P, P->U, Fint));
+        PetscCall(VecAXPY(Fint_committed, 1.0, Fint));
+        PetscCall(VecWAXPY(dU, -1.0, U_committed, P->U));
+        PetscCall(VecDot(Fint_committed, dU, &w));
+        P->increment_work = 0.5 * PetscRealPart(w);
+        P->increment_shift_work = P->shift_work;
+        work_total += P->increment_work;
+        shift_work_total += P->shift_work;
+        PetscCall(VecCopy(Fint, Fint_committed));
+      }
       PetscInt contact_counts[4] = {0, 0, 0, 0};
       if (P->contact) PetscCall(ContactCommit(P, contact_counts));
       // Pairs that lift off between two printed lines are counted, not each printed.
@@ -418,6 +486,15 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   PetscLogDouble t1;
   PetscCall(PetscTime(&t1));
   res->wall = t1 - t0;
+  if (o.monitor > 0 && P->tangent_shift > 0)
+    PetscCall(PetscPrintf(P->comm,
+                          "etfe: work done on the film %.6e N mm; the tangent shift as a pseudo-transient term would "
+                          "dissipate %.3e N mm (%.2e of it, sum over Newton iterations of shift |dx|^2)%s\n",
+                          work_total, shift_work_total, work_total != 0 ? shift_work_total / std::fabs(work_total) : 0.0,
+                          ck.restart[0] ? " since the restart" : ""));
+  PetscCall(VecDestroy(&Fint));
+  PetscCall(VecDestroy(&Fint_committed));
+  PetscCall(VecDestroy(&dU));
   PetscCall(VecDestroy(&U_committed));
   PetscCall(VecDestroy(&U_previous));
   PetscFunctionReturn(0);
