@@ -156,6 +156,9 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
   } else {
     for (int e = 0; e < mesh->NumElements(); ++e) elems.push_back(e);
   }
+  if ((int)elems.size() < mesh->NumElements())
+    notes->push_back(std::to_string(mesh->NumElements() - (int)elems.size()) +
+                     " triangles outside the physical surface " + base + " are left out");
   const MeshData sub = ExtractStrip(*mesh, elems, base);
   TriSurface s;
   if (!SurfaceFromArrays(sub.coords, sub.triangles, &s, err)) {
@@ -277,9 +280,13 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
     if (!TraceBothWays(s, off == 0 ? vmid : -1, parent, q, c, max_steps, &t, &why) || !t.ok ||
         !SurfaceInsertLine(&s, t.line, o.snap, &verts, &moved, &why)) {
       if (why.empty()) why = "it does not reach the boundary within " + std::to_string(max_steps) + " crossings (it winds on the surface)";
+      const bool meets = why.find("another cutting line") != std::string::npos;
       *err = opt + ": the cutting line " + Fmt("%+.1f", off) + " mm from the middle " +
              Fmt("(%.1f, %.1f, %.1f) mm", q[0], q[1], q[2]) + ": " + why +
-             "; give a larger width or another -cutpattern_strip_direction";
+             (meets ? " (geodesics started W apart converge where the surface curves like a sphere, K > 0, or "
+                      "meet at a node when W is near the element size): split the surface into shorter pieces, "
+                      "choose another -cutpattern_strip_direction or refine the mesh"
+                    : "; give a larger width or another -cutpattern_strip_direction");
       return false;
     }
     inserted += (int)verts.size();

@@ -10,7 +10,8 @@ surface.msh -cutpattern_strip_width W. Meshes are made here (pattern_meshes.py).
     of a cutting line measure it alike, as for strips named by physical groups;
   * the cut surface <stem>_cut.msh reads back as physical-group strips with the same lines;
   * bad input: W <= 0, W wider than the surface, W below the element size, a surface with two
-    physical groups, a tube (the transverse line never ends): refused naming the option."""
+    physical groups, a tube (the transverse line never ends), a sphere band whose lines meet:
+    refused naming the option."""
 import math
 import os
 import re
@@ -155,7 +156,10 @@ with scratch_dir() as tmp:
             ("thin", hyp, {}, 10, "x", "is narrower than the elements"),
             ("two", cyl, {"a": (2, list(range(10))), "b": (2, list(range(10, len(cyl[1]))))}, 100, "z",
              "has 2 physical surfaces (a, b)"),
-            ("tube", pm.tube(n=24, ny=6), {}, 300, "z", "does not reach the boundary")):
+            ("tube", pm.tube(n=24, ny=6), {}, 300, "z", "does not reach the boundary"),
+            # A sphere band 3400 mm long (R 1000 mm): the lines along it, great circles, meet 1571 mm out.
+            ("band", pm.sphere_strip(length=3400.0, width=1000.0, nx=34, ny=10), {}, 250, "y",
+             "meets another cutting line")):
         out, _ = cut(tmp, name, mesh, groups, width, direction, expect_fail=True)
         chk.check(want in out and "-cutpattern_strip_width" in out, "%s: refused with \"%s\"" % (name, want))
 chk.finish()
