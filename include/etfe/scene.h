@@ -2,6 +2,7 @@
 // types): the scenes layer fills it (scene_registry.h), the layers below read it (the problem's
 // constraints and loads, the contact pairs' supports, the progress lines' schedules).
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,9 @@ struct SceneSpec {
   // at load time t: a lay-on stage ramps it, so the misfit is loaded gradually.
   ScheduledValue reference_blend;
   std::string initial_guess_note;        // printed in the header when a guess is used
+  // Per-stage option arrays as the builder resolved them, defaults included (name without '-'):
+  // the drawing planner's start and staging (-analysis plan).
+  std::map<std::string, std::vector<double>> stage_options;
 
   int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }
   int AddSchedule(const Schedule &s) {

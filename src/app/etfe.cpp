@@ -28,6 +28,7 @@ static const char help[] =
 #include "etfe/load_stepper.h"
 #include "etfe/material.h"
 #include "etfe/output.h"
+#include "etfe/plan.h"
 #include "etfe/problem.h"
 #include "etfe/scene_registry.h"
 
@@ -95,6 +96,92 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(SNESSetFromOptions(*snes));
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchEtfeSetProblem(ls, P));
+  PetscFunctionReturn(0);
+}
+
+// The analysis's material (stretch: from -material_*; formfind: the prescribed stress) and the
+// membrane options, then the distributed problem with the scene's observer and contact set, the
+// solver and the load-stepping options: what every run of a case needs (the app's one run, and
+// each of the drawing planner's).
+PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const SceneObserver &observer,
+                          FormFindOptions *ffo, Problem **problem, SNES *snes, LoadStepperOptions *lso) {
+  std::unique_ptr<Material> material;
+  PetscFunctionBeginUser;
+  if (formfind) {
+    PetscCall(FormFindOptionsFromCommandLine(comm, ffo));
+    material = MaterialCreatePrescribedStress(ffo->ratio * ffo->stress, ffo->stress);
+  } else {
+    PetscCall(MaterialCreateFromOptions(comm, &material));
+  }
+  auto *P = new Problem();
+  *problem = P;
+  P->thickness = scene.thickness;
+  PetscCall(ReadMembraneOptions(comm, P));
+  PetscCheck(!(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
+             "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
+             "prescribes the stress: drop the option for -analysis formfind");
+  if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
+  PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), P));
+  P->observer = observer;
+  if (P->scene.contact.active) {
+    ContactSet *contact;
+    PetscCall(ContactCreate(P, &contact));
+    PetscCall(ProblemSetContact(P, contact));
+  }
+  {
+    double young, nu;
+    P->material->ElasticConstants(&young, &nu);
+    P->tangent_shift *= young * P->thickness;  // relative -> N/mm
+  }
+  PetscCall(CreateSolver(P, snes));
+  PetscCall(LoadStepperOptionsFromCommandLine(comm, lso));
+  PetscCall(LoadStepperSetConvergenceTest(P, *snes, *lso));
+  PetscFunctionReturn(0);
+}
+
+// A stretch case built from the options database: the drawing planner checks it once, then runs
+// it once per evaluation. P stays null when no scene is named.
+struct StretchCase {
+  Problem *P = nullptr;
+  SNES snes = nullptr;
+  LoadStepperOptions lso;
+};
+
+PetscErrorCode StretchCaseCreate(MPI_Comm comm, StretchCase *c) {
+  SceneSpec scene;
+  SceneObserver observer;
+  FormFindOptions ffo;
+  PetscFunctionBeginUser;
+  PetscCall(SceneCreateFromOptions(comm, &scene, &observer));
+  if (scene.name.empty()) PetscFunctionReturn(0);
+  PetscCall(CreateCase(comm, false, std::move(scene), observer, &ffo, &c->P, &c->snes, &c->lso));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StretchCaseDestroy(StretchCase *c) {
+  PetscFunctionBeginUser;
+  PetscCall(SNESDestroy(&c->snes));
+  if (c->P) PetscCall(ProblemDestroy(c->P));
+  delete c->P;
+  c->P = nullptr;
+  PetscFunctionReturn(0);
+}
+
+// One stretch run of the case under the current options, for the drawing planner: no results
+// file, no monitor, the per-element criteria fields gathered on every rank.
+PetscErrorCode PlanStretchOnce(MPI_Comm comm, void *, PlanRunFields *fields) {
+  StretchCase c;
+  LoadStepperResult res;
+  PetscFunctionBeginUser;
+  PetscCall(StretchCaseCreate(comm, &c));
+  c.lso.monitor = 0;
+  PetscCall(LoadStepperRun(c.P, c.snes, nullptr, c.lso, CheckpointOptions(), &res));
+  fields->completed = res.completed && !res.stopped;
+  fields->failure = res.stopped ? "stopped by -load_stop_after" : res.failure;
+  fields->newton = res.newton_iterations;
+  fields->wall = res.wall;
+  if (fields->completed) PetscCall(PlanGatherFields(c.P, fields));
+  PetscCall(StretchCaseDestroy(&c));
   PetscFunctionReturn(0);
 }
 
@@ -208,20 +295,47 @@ PetscErrorCode ConciseErrorHandler(MPI_Comm comm, int line, const char *fun, con
   return n;
 }
 
-// -analysis: stretch (load stepping, the default), formfind, or cutpattern (the strips of a
-// surface mesh, no scene); *formfind / *cutpattern true for the latter two.
-PetscErrorCode AnalysisFromOptions(MPI_Comm comm, PetscBool *formfind, PetscBool *cutpattern) {
-  static const char *const kinds[] = {"stretch", "formfind", "cutpattern"};
+// -analysis: stretch (load stepping, the default), formfind, cutpattern (the strips of a surface
+// mesh, no scene) or plan (the drawing planner over stretch runs of the case).
+enum class Analysis { stretch = 0, formfind = 1, cutpattern = 2, plan = 3 };
+
+PetscErrorCode AnalysisFromOptions(MPI_Comm comm, Analysis *analysis) {
+  static const char *const kinds[] = {"stretch", "formfind", "cutpattern", "plan"};
   PetscInt kind = 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Analysis", "Analysis");
   PetscCall(PetscOptionsEList("-analysis",
-                              "stretch (load stepping), formfind (prescribed-stress shape) or cutpattern (flatten "
-                              "the physical surfaces of -mesh_file, no scene)",
-                              "", kinds, 3, kinds[0], &kind, nullptr));
+                              "stretch (load stepping), formfind (prescribed-stress shape), cutpattern (flatten "
+                              "the physical surfaces of -mesh_file, no scene) or plan (search the drawing schedule "
+                              "of a stretch case, -plan_*)",
+                              "", kinds, 4, kinds[0], &kind, nullptr));
   PetscOptionsEnd();
-  *formfind = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
-  *cutpattern = kind == 2 ? PETSC_TRUE : PETSC_FALSE;
+  *analysis = (Analysis)kind;
+  PetscFunctionReturn(0);
+}
+
+// -analysis plan: the case is built once to check it and its options (and to print what it is),
+// then the planner runs it as often as its search needs.
+PetscErrorCode RunPlan(MPI_Comm comm, PetscBool help_only) {
+  StretchCase c;
+  OutputOptions oo;
+  PlanOptions po;
+  PetscFunctionBeginUser;
+  PetscCall(StretchCaseCreate(comm, &c));
+  PetscCheck(c.P || help_only, comm, PETSC_ERR_USER_INPUT,
+             "-analysis plan needs a stretch case: -options_file options/saddle/dd1511.opts -analysis plan");
+  if (!c.P) PetscFunctionReturn(0);
+  PetscCall(OutputOptionsFromCommandLine(comm, c.P->scene.name.c_str(), &oo));
+  PetscCall(PlanOptionsFromCommandLine(comm, std::filesystem::path(oo.path).replace_extension("").string(), &po));
+  po.case_arrays = c.P->scene.stage_options;
+  if (!help_only) {
+    PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
+    PetscCall(PrintHeader(c.P, c.snes));
+  }
+  PetscCall(StretchCaseDestroy(&c));
+  if (help_only) PetscFunctionReturn(0);
+  PetscCall(PlanRun(comm, po, PlanStretchOnce, nullptr));
+  PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -253,9 +367,13 @@ PetscErrorCode Run() {
 
   // 2. The scene: mesh, supports, loads, schedule.
   // The analysis first: a scene that offers both builds the one asked for.
-  PetscBool formfind_flag = PETSC_FALSE, cutpattern_flag = PETSC_FALSE;
-  PetscCall(AnalysisFromOptions(comm, &formfind_flag, &cutpattern_flag));
-  if (cutpattern_flag && !list) {
+  Analysis analysis;
+  PetscCall(AnalysisFromOptions(comm, &analysis));
+  if (analysis == Analysis::plan && !list) {
+    PetscCall(RunPlan(comm, help_only));
+    PetscFunctionReturn(0);
+  }
+  if (analysis == Analysis::cutpattern && !list) {
     // Cutting patterns of a surface mesh: no scene, problem or solver.
     CutPatternSurfaceOptions cso;
     PetscCall(CutPatternSurfaceOptionsFromCommandLine(comm, &cso));
@@ -265,7 +383,7 @@ PetscErrorCode Run() {
     PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
     PetscFunctionReturn(0);
   }
-  const bool formfind = formfind_flag;
+  const bool formfind = analysis == Analysis::formfind;
   SceneSpec scene;
   scene.form_finding = formfind;
   SceneObserver observer;
@@ -304,42 +422,12 @@ PetscErrorCode Run() {
     PetscFunctionReturn(0);
   }
 
-  // 3. The analysis's material (stretch: from -material_*; formfind: the prescribed stress) and the
-  //    membrane options, then the distributed problem, the scene's observer and contact set.
+  // 3-4. Material, membrane, problem, contact, solver and load-stepping options.
   FormFindOptions ffo;
-  std::unique_ptr<Material> material;
-  if (formfind) {
-    PetscCall(FormFindOptionsFromCommandLine(comm, &ffo));
-    material = MaterialCreatePrescribedStress(ffo.ratio * ffo.stress, ffo.stress);
-  } else {
-    PetscCall(MaterialCreateFromOptions(comm, &material));
-  }
-  auto *P = new Problem();
-  P->thickness = scene.thickness;
-  PetscCall(ReadMembraneOptions(comm, P));
-  PetscCheck(!(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
-             "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
-             "prescribes the stress: drop the option for -analysis formfind");
-  if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
-  PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), P));
-  P->observer = observer;
-  if (P->scene.contact.active) {
-    ContactSet *contact;
-    PetscCall(ContactCreate(P, &contact));
-    PetscCall(ProblemSetContact(P, contact));
-  }
-  {
-    double young, nu;
-    P->material->ElasticConstants(&young, &nu);
-    P->tangent_shift *= young * P->thickness;  // relative -> N/mm
-  }
-
-  // 4. Solver, load stepping and output options.
+  Problem *P;
   SNES snes;
-  PetscCall(CreateSolver(P, &snes));
   LoadStepperOptions lso;
-  PetscCall(LoadStepperOptionsFromCommandLine(comm, &lso));
-  PetscCall(LoadStepperSetConvergenceTest(P, snes, lso));
+  PetscCall(CreateCase(comm, formfind, std::move(scene), observer, &ffo, &P, &snes, &lso));
   OutputOptions oo;
   PetscCall(OutputOptionsFromCommandLine(comm, P->scene.name.c_str(), &oo));
   CheckpointOptions cko;

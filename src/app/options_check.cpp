@@ -15,7 +15,7 @@ const char *const kKnown[] = {
 };
 
 // The project's option prefixes: a name equal to one, or starting with it and '_'.
-const char *const kPrefixes[] = {"scene", "analysis", "mesh", "material", "membrane", "contact", "load",
+const char *const kPrefixes[] = {"scene", "analysis", "mesh", "material", "membrane", "contact", "load", "plan",
                                  "output", "checkpoint", "restart", "formfind", "cutpattern", "saddle",
                                  "hencky", "patch", "capstan", "catenoid", "etfe", "snes_linesearch_etfe"};
 

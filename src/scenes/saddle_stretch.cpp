@@ -259,6 +259,7 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   c->part_b = {part_b[0], part_b[1], part_b[2], part_b[3]};
   if (reference == 1) PetscCall(SaddlePatternReference(comm, m, &scene->element_reference));
   c->drawing_stages = (PetscInt)ns;
+  scene->stage_options = {{"saddle_draw_a", da}, {"saddle_draw_b", db}, {"saddle_draw_c", dc}, {"saddle_draw_d", dd}};
 
   // Schedules: drawing stages, then the pressure cycle with the drawing held.
   const size_t np = pressure.size(), stages = ns + np;

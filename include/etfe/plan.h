@@ -1,0 +1,56 @@
+// The drawing planner (-analysis plan, issue 17): searches a stretch case's drawing schedule with
+// PETSc's TAO so that the drawn film meets the fabrication criteria (kernels/plan_criteria.h) with
+// the least drawing, and writes the schedule as an options file ready to run.
+//
+// The unknowns are the final values of the options named by -plan_variables (by default the
+// saddle's -saddle_draw_a,b,c,d); every earlier stage keeps the case's own proportion to the final
+// value (Table 5.5's staging for the thesis cases), so a plan changes how far the frame is drawn,
+// not how the drawing is split into stages. Each evaluation is a whole stretch run from the
+// stress-free start: with proportional stages no stage is shared between two evaluations, so
+// nothing can be restarted from a checkpoint.
+#pragma once
+#include <petscsys.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "etfe/kernels/plan_criteria.h"
+
+namespace etfe {
+
+struct PlanOptions {
+  std::vector<std::string> variables;  // option names without '-', each a per-stage array
+  double lower = 0.0, upper = 80.0;    // bounds of every final value (the frame's 80 mm, L721)
+  PlanCriteria criteria;
+  double draw_weight = 0.01;  // weight of the mean drawing (relative to upper) in the objective
+  PetscInt max_runs = 40;     // stretch runs the search may spend
+  double round = 0.1;         // resolution of the written values (a frame's screw) [mm]
+  std::string output;         // the options file written
+  // The case's per-stage arrays where the options database has none (SceneSpec::stage_options).
+  std::map<std::string, std::vector<double>> case_arrays;
+};
+
+// What one stretch run leaves for the planner: per element (gathered over the ranks, same order
+// on every rank) the PK2 Mises stress, the minor principal GL strain and the equivalent plastic
+// strain; whether the run completed; its Newton iterations and wall time.
+struct PlanRunFields {
+  bool completed = false;
+  std::string failure;
+  PetscInt newton = 0;
+  double wall = 0.0;
+  std::vector<double> mises, emin, eq;
+};
+
+struct Problem;
+// The fields of the problem's current state, gathered (collective).
+PetscErrorCode PlanGatherFields(Problem *problem, PlanRunFields *fields);
+
+// Runs the case under the current options database (collective) and fills the fields.
+typedef PetscErrorCode (*PlanStretchRun)(MPI_Comm comm, void *ctx, PlanRunFields *fields);
+
+// results_stem: the case's results file without extension (the plan goes beside it).
+PetscErrorCode PlanOptionsFromCommandLine(MPI_Comm comm, const std::string &results_stem, PlanOptions *o);
+PetscErrorCode PlanRun(MPI_Comm comm, const PlanOptions &o, PlanStretchRun run, void *ctx);
+
+} // namespace etfe

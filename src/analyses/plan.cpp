@@ -1,0 +1,376 @@
+// The drawing planner (see plan.h): TAO searches the final drawing values; each evaluation is a
+// whole stretch run, scored per element by the fabrication criteria (kernels/plan_criteria.h).
+#include "etfe/plan.h"
+
+#include <petsctao.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "etfe/assembly.h"
+#include "etfe/kernels/status.h"
+#include "etfe/problem.h"
+
+namespace etfe {
+
+namespace {
+
+// One stretch run as the planner sees it.
+struct Evaluation {
+  std::vector<double> x;         // final values of the variables [mm]
+  std::vector<double> residual;  // per element (mises, strain, eq) / sqrt(N), then the drawing term
+  double objective = 0.0;        // |residual|^2
+  bool completed = false;
+  std::string failure;
+  PetscInt newton = 0;
+  double wall = 0.0;
+  // The criteria in numbers: elements below/above the band, with emin below the limit, with the
+  // equivalent strain at or above its limit, and the extremes.
+  int below = 0, above = 0, wrinkled = 0, eq_over = 0, elements = 0;
+  double mises_min = 0, mises_max = 0, emin_min = 0, eq_max = 0;
+  bool Met() const { return completed && below + above + wrinkled + eq_over == 0; }
+};
+
+struct Planner {
+  MPI_Comm comm;
+  const PlanOptions *o;
+  PlanStretchRun run;
+  void *ctx;
+  std::vector<std::vector<double>> shape;  // per variable: the case's stages / its final value
+  std::vector<Evaluation> evals;
+  PetscInt elements = -1;
+  double wall = 0.0;
+};
+
+std::string Stages(const std::vector<double> &shape, double final_value) {
+  std::ostringstream s;
+  s.precision(10);
+  for (size_t k = 0; k < shape.size(); ++k) s << (k ? "," : "") << shape[k] * final_value;
+  return s.str();
+}
+
+std::string Values(const std::vector<double> &x) {
+  std::ostringstream s;
+  s.precision(4);
+  s << std::fixed;
+  for (size_t k = 0; k < x.size(); ++k) s << (k ? ", " : "") << x[k];
+  return s.str();
+}
+
+void Score(const PlanOptions &o, const PlanRunFields &f, Evaluation *e) {
+  const size_t n = f.mises.size();
+  e->elements = (int)n;
+  e->mises_min = n ? *std::min_element(f.mises.begin(), f.mises.end()) : 0;
+  e->mises_max = n ? *std::max_element(f.mises.begin(), f.mises.end()) : 0;
+  e->emin_min = n ? *std::min_element(f.emin.begin(), f.emin.end()) : 0;
+  e->eq_max = n ? *std::max_element(f.eq.begin(), f.eq.end()) : 0;
+  e->residual.assign(3 * n + 1, 0.0);
+  const double scale = 1.0 / std::sqrt((double)std::max<size_t>(1, n));
+  for (size_t i = 0; i < n; ++i) {
+    double v[3];
+    if (PlanElementViolations(o.criteria, f.mises[i], f.emin[i], f.eq[i], v) != KERNEL_OK) v[0] = v[1] = v[2] = 1e3;
+    const double half = o.criteria.mises_band * o.criteria.mises_target;
+    e->below += f.mises[i] < o.criteria.mises_target - half;
+    e->above += f.mises[i] > o.criteria.mises_target + half;
+    e->wrinkled += f.emin[i] < o.criteria.min_strain;
+    e->eq_over += f.eq[i] >= o.criteria.max_eq_strain;
+    for (int k = 0; k < 3; ++k) e->residual[3 * i + k] = v[k] * scale;
+  }
+  double mean = 0.0;
+  for (double xi : e->x) mean += xi / (o.upper * e->x.size());
+  e->residual.back() = std::sqrt(o.draw_weight) * mean;
+  e->objective = 0.0;
+  for (double r : e->residual) e->objective += r * r;
+}
+
+PetscErrorCode PrintEvaluation(const Planner &p, const char *what, const Evaluation &e) {
+  PetscFunctionBeginUser;
+  if (!e.completed) {
+    PetscCall(PetscPrintf(p.comm, "plan: %s %s: the stretch run failed (%s)\n", what, Values(e.x).c_str(),
+                          e.failure.c_str()));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PetscPrintf(p.comm,
+                        "plan: %s %s: objective %.6e; Mises %.4f..%.4f MPa (%d below, %d above the band), emin "
+                        "%.3e (%d below %g), eq. plastic strain %.4f (%d at or above %g); %s; %" PetscInt_FMT
+                        " Newton, %.1f s\n",
+                        what, Values(e.x).c_str(), e.objective, e.mises_min, e.mises_max, e.below, e.above,
+                        e.emin_min, e.wrinkled, p.o->criteria.min_strain, e.eq_max, e.eq_over,
+                        p.o->criteria.max_eq_strain, e.Met() ? "criteria met" : "criteria NOT met", e.newton, e.wall));
+  PetscFunctionReturn(0);
+}
+
+// The stretch run at final values x (memoised: TAO revisits points, and the rounded plan often is
+// one already run).
+PetscErrorCode Evaluate(Planner &p, const std::vector<double> &x, size_t *index) {
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < p.evals.size(); ++k)
+    if (p.evals[k].x == x) {
+      *index = k;
+      PetscFunctionReturn(0);
+    }
+  for (size_t v = 0; v < x.size(); ++v) {
+    const std::string name = "-" + p.o->variables[v];
+    PetscCall(PetscOptionsSetValue(nullptr, name.c_str(), Stages(p.shape[v], x[v]).c_str()));
+  }
+  PlanRunFields f;
+  PetscCall(p.run(p.comm, p.ctx, &f));
+  Evaluation e;
+  e.x = x;
+  e.completed = f.completed;
+  e.failure = f.failure;
+  e.newton = f.newton;
+  e.wall = f.wall;
+  p.wall += f.wall;
+  if (p.elements < 0) {
+    PetscCheck(f.completed, p.comm, PETSC_ERR_NOT_CONVERGED,
+               "plan: the case's own schedule (%s) does not run (%s): the planner starts from it, so make it "
+               "run first", Values(x).c_str(), f.failure.c_str());
+    p.elements = (PetscInt)f.mises.size();
+  }
+  if (f.completed) {
+    Score(*p.o, f, &e);
+  } else {
+    // A failed run is scored as every element far outside every criterion, so the search retreats.
+    e.residual.assign(3 * p.elements + 1, 10.0 / std::sqrt((double)p.elements));
+    e.objective = 300.0;
+  }
+  p.evals.push_back(e);
+  *index = p.evals.size() - 1;
+  char what[32];
+  std::snprintf(what, sizeof what, "run %zu", p.evals.size());
+  PetscCall(PrintEvaluation(p, what, e));
+  PetscFunctionReturn(0);
+}
+
+std::vector<double> FromScaled(const Planner &p, Vec z) {
+  const PetscScalar *a;
+  PetscInt n;
+  VecGetLocalSize(z, &n);
+  VecGetArrayRead(z, &a);
+  std::vector<double> x(n);
+  for (PetscInt i = 0; i < n; ++i) x[i] = std::clamp((double)a[i] * p.o->upper, p.o->lower, p.o->upper);
+  VecRestoreArrayRead(z, &a);
+  return x;
+}
+
+PetscErrorCode TaoResidual(Tao, Vec z, Vec r, void *ctx) {
+  auto *p = (Planner *)ctx;
+  size_t k;
+  PetscFunctionBeginUser;
+  PetscCall(Evaluate(*p, FromScaled(*p, z), &k));
+  PetscScalar *a;
+  PetscCall(VecGetArray(r, &a));
+  for (size_t i = 0; i < p->evals[k].residual.size(); ++i) a[i] = p->evals[k].residual[i];
+  PetscCall(VecRestoreArray(r, &a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode TaoObjective(Tao, Vec z, PetscReal *f, void *ctx) {
+  auto *p = (Planner *)ctx;
+  size_t k;
+  PetscFunctionBeginUser;
+  PetscCall(Evaluate(*p, FromScaled(*p, z), &k));
+  *f = p->evals[k].objective;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode WritePlan(const Planner &p, const Evaluation &start, const Evaluation &plan, const char *tao_type) {
+  PetscMPIInt rank;
+  int ok = 1;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(p.comm, &rank));
+  if (rank == 0) {
+    const std::filesystem::path path(p.o->output);
+    std::error_code ec;
+    if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+    std::ofstream out(path);
+    const PlanCriteria &c = p.o->criteria;
+    out << "# Drawing schedule planned by etfe -analysis plan (TAO " << tao_type << ", " << p.evals.size()
+        << " stretch runs, " << std::fixed;
+    out.precision(1);
+    out << p.wall << " s).\n# Criteria: Mises (PK2) within " << c.mises_target << " MPa +- " << 100 * c.mises_band
+        << " %, minor principal strain >= " << c.min_strain << ", equivalent plastic strain < " << c.max_eq_strain
+        << ";\n# then the least drawing. " << (plan.Met() ? "Met" : "NOT met") << " by this schedule: Mises ";
+    out.precision(3);
+    out << plan.mises_min << ".." << plan.mises_max << " MPa (" << plan.below << " below, " << plan.above
+        << " above the band), emin " << plan.emin_min << " (" << plan.wrinkled << " elements below), eq. "
+        << plan.eq_max << " (" << plan.eq_over << " at or above), of " << plan.elements << " elements.\n"
+        << "# The case's own schedule (final " << Values(start.x) << "): Mises " << start.mises_min << ".."
+        << start.mises_max << " (" << start.below << " below, " << start.above << " above), emin " << start.emin_min
+        << " (" << start.wrinkled << " below), eq. " << start.eq_max << " (" << start.eq_over << ").\n"
+        << "# Use after the case: etfe -options_file <case>.opts -options_file " << p.o->output << "\n";
+    out.precision(6);
+    out.unsetf(std::ios::fixed);
+    for (size_t v = 0; v < p.o->variables.size(); ++v)
+      out << "-" << p.o->variables[v] << " " << Stages(p.shape[v], plan.x[v]) << "\n";
+    ok = out.good() ? 1 : 0;
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, p.comm));
+  PetscCheck(ok, p.comm, PETSC_ERR_FILE_WRITE, "plan: cannot write %s (-plan_output)", p.o->output.c_str());
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode PlanGatherFields(Problem *P, PlanRunFields *fields) {
+  CellFields f;
+  PetscFunctionBeginUser;
+  PetscCall(ComputeCellFields(P, P->U, &f, false));
+  const int n = (int)f.mises.size();
+  if (f.ep_bar.empty()) f.ep_bar.assign(n, 0.0);  // an elastic film: no plastic strain
+  std::vector<int> counts(P->size), displs(P->size, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
+  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  const int N = displs[P->size - 1] + counts[P->size - 1];
+  for (auto [mine, all] : {std::make_pair(&f.mises, &fields->mises), std::make_pair(&f.emin, &fields->emin),
+                           std::make_pair(&f.ep_bar, &fields->eq)}) {
+    all->resize(N);
+    PetscCallMPI(MPI_Allgatherv(mine->data(), n, MPI_DOUBLE, all->data(), counts.data(), displs.data(), MPI_DOUBLE,
+                                P->comm));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PlanOptionsFromCommandLine(MPI_Comm comm, const std::string &results_stem, PlanOptions *o) {
+  char *name_ptrs[16];
+  PetscInt nnames = 16;
+  PetscBool set = PETSC_FALSE;
+  PetscReal bounds[2] = {o->lower, o->upper};
+  PetscInt nbounds = 2;
+  PetscBool bounds_set = PETSC_FALSE;
+  char output[PETSC_MAX_PATH_LEN] = "";
+  PetscFunctionBeginUser;
+  PlanCriteria &c = o->criteria;
+  PetscOptionsBegin(comm, nullptr, "Drawing planner (-analysis plan)", "Plan");
+  PetscCall(PetscOptionsStringArray("-plan_variables",
+                                    "Per-stage options whose final values are searched (default saddle_draw_a,b,c,d)",
+                                    "", name_ptrs, &nnames, &set));
+  PetscCall(PetscOptionsRealArray("-plan_bounds", "Lower,upper bound of every final value [mm] (frame limit 80, L721)",
+                                  "", bounds, &nbounds, &bounds_set));
+  PetscCall(PetscOptionsReal("-plan_mises_target", "Mises stress the film should reach [MPa] (first yield S_y1)", "",
+                             c.mises_target, &c.mises_target, nullptr));
+  PetscCall(PetscOptionsReal("-plan_mises_band", "Relative half-width of the Mises band", "", c.mises_band,
+                             &c.mises_band, nullptr));
+  PetscCall(PetscOptionsReal("-plan_min_strain", "Smallest minor principal GL strain allowed (0: no wrinkle)", "",
+                             c.min_strain, &c.min_strain, nullptr));
+  PetscCall(PetscOptionsReal("-plan_max_eq_strain", "Equivalent plastic strain must stay below this", "",
+                             c.max_eq_strain, &c.max_eq_strain, nullptr));
+  PetscCall(PetscOptionsReal("-plan_draw_weight", "Weight of the mean drawing in the objective (least drawing)", "",
+                             o->draw_weight, &o->draw_weight, nullptr));
+  PetscCall(PetscOptionsInt("-plan_max_runs", "Stretch runs the search may spend", "", o->max_runs, &o->max_runs,
+                            nullptr));
+  PetscCall(PetscOptionsReal("-plan_round", "Resolution of the written drawing values [mm]", "", o->round, &o->round,
+                             nullptr));
+  PetscCall(PetscOptionsString("-plan_output", "Options file the schedule is written to (default <results>_plan.opts)",
+                               "", output, output, sizeof output, nullptr));
+  PetscOptionsEnd();
+  o->variables.clear();
+  if (set) {
+    for (PetscInt i = 0; i < nnames; ++i) {
+      o->variables.push_back(name_ptrs[i][0] == '-' ? name_ptrs[i] + 1 : name_ptrs[i]);
+      PetscCall(PetscFree(name_ptrs[i]));
+    }
+  } else {
+    o->variables = {"saddle_draw_a", "saddle_draw_b", "saddle_draw_c", "saddle_draw_d"};
+  }
+  PetscCheck((!bounds_set || nbounds == 2) && bounds[0] >= 0 && bounds[1] > bounds[0], comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-plan_bounds needs two values 0 <= lower < upper (mm)");
+  o->lower = bounds[0], o->upper = bounds[1];
+  PetscCheck(c.mises_target > 0 && c.mises_band > 0 && c.mises_band < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-plan_mises_target must be > 0 and -plan_mises_band in (0, 1)");
+  PetscCheck(c.max_eq_strain > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-plan_max_eq_strain must be > 0");
+  PetscCheck(o->draw_weight >= 0 && o->max_runs >= 1 && o->round >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-plan_draw_weight and -plan_round must be >= 0, -plan_max_runs >= 1");
+  o->output = output[0] ? std::string(output) : results_stem + "_plan.opts";
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PlanRun(MPI_Comm comm, const PlanOptions &o, PlanStretchRun run, void *ctx) {
+  Planner p{comm, &o, run, ctx, {}, {}, -1, 0.0};
+  const PetscInt n = (PetscInt)o.variables.size();
+  std::vector<double> x0(n);
+  PetscFunctionBeginUser;
+  // The case's schedule gives the staging and the start.
+  for (PetscInt v = 0; v < n; ++v) {
+    PetscReal buf[64];
+    PetscInt ns = 64;
+    PetscBool found = PETSC_FALSE;
+    const std::string name = "-" + o.variables[v];
+    PetscCall(PetscOptionsGetRealArray(nullptr, nullptr, name.c_str(), buf, &ns, &found));
+    std::vector<double> stages(buf, buf + (found ? ns : 0));
+    if (!found && o.case_arrays.count(o.variables[v])) stages = o.case_arrays.at(o.variables[v]);
+    PetscCheck(!stages.empty() && stages.back() > 0, comm, PETSC_ERR_USER_INPUT,
+               "plan: the case must give %s with a positive final stage: the planner keeps its stages' proportions "
+               "and searches the final value (-plan_variables names the options)", name.c_str());
+    p.shape.emplace_back();
+    for (double s : stages) p.shape.back().push_back(s / stages.back());
+    x0[v] = std::clamp(stages.back(), o.lower, o.upper);
+  }
+  PetscCall(PetscPrintf(comm, "plan: %" PetscInt_FMT " variables, bounds [%g, %g] mm; Mises %g MPa +- %g %%, emin >= %g, "
+                        "eq. plastic strain < %g, drawing weight %g; at most %" PetscInt_FMT " stretch runs\n",
+                        n, o.lower, o.upper, o.criteria.mises_target, 100 * o.criteria.mises_band,
+                        o.criteria.min_strain, o.criteria.max_eq_strain, o.draw_weight, o.max_runs));
+  size_t start;
+  PetscCall(Evaluate(p, x0, &start));
+
+  // TAO on every rank alike (the stretch runs are collective; every rank sees the same gathered
+  // fields, so every rank's search takes the same steps). Unknowns scaled by the upper bound.
+  Tao tao;
+  Vec z, lb, ub, r;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &z));
+  PetscCall(VecDuplicate(z, &lb));
+  PetscCall(VecDuplicate(z, &ub));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * p.elements + 1, &r));
+  for (PetscInt v = 0; v < n; ++v) PetscCall(VecSetValue(z, v, x0[v] / o.upper, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(z));
+  PetscCall(VecAssemblyEnd(z));
+  PetscCall(VecSet(lb, o.lower / o.upper));
+  PetscCall(VecSet(ub, 1.0));
+  PetscCall(TaoCreate(PETSC_COMM_SELF, &tao));
+  PetscCall(TaoSetOptionsPrefix(tao, "plan_"));
+  PetscCall(TaoSetType(tao, TAOPOUNDERS));
+  PetscCall(TaoSetSolution(tao, z));
+  PetscCall(TaoSetVariableBounds(tao, lb, ub));
+  PetscCall(TaoSetResidualRoutine(tao, r, TaoResidual, &p));
+  PetscCall(TaoSetObjective(tao, TaoObjective, &p));
+  PetscCall(TaoSetGradient(tao, nullptr, TaoDefaultComputeGradient, &p));
+  PetscCall(TaoSetMaximumFunctionEvaluations(tao, o.max_runs));
+  PetscCall(TaoSetFromOptions(tao));
+  TaoType tao_type;
+  PetscCall(TaoGetType(tao, &tao_type));
+  const std::string type = tao_type;  // TAO owns the name
+  PetscCall(TaoSolve(tao));
+  TaoConvergedReason reason;
+  PetscCall(TaoGetConvergedReason(tao, &reason));
+  PetscCall(PetscPrintf(comm, "plan: TAO %s stopped: %s\n", type.c_str(), TaoConvergedReasons[reason]));
+  PetscCall(TaoDestroy(&tao));
+  PetscCall(VecDestroy(&z));
+  PetscCall(VecDestroy(&lb));
+  PetscCall(VecDestroy(&ub));
+  PetscCall(VecDestroy(&r));
+
+  // The best run, rounded to what a frame can be set to, run once more if rounding moved it.
+  size_t best = start;
+  for (size_t k = 0; k < p.evals.size(); ++k)
+    if (p.evals[k].completed && p.evals[k].objective < p.evals[best].objective) best = k;
+  std::vector<double> xr = p.evals[best].x;
+  if (o.round > 0)
+    for (double &xi : xr) xi = std::clamp(std::round(xi / o.round) * o.round, o.lower, o.upper);
+  size_t plan;
+  PetscCall(Evaluate(p, xr, &plan));
+  const std::string header = "plan: " + std::to_string(p.evals.size()) + " stretch runs";
+  PetscCall(PetscPrintf(comm, "%s, %.1f s (%.1f s per run)\n", header.c_str(), p.wall, p.wall / p.evals.size()));
+  PetscCall(PrintEvaluation(p, "case's own schedule, final", p.evals[start]));
+  PetscCall(PrintEvaluation(p, "planned schedule, final", p.evals[plan]));
+  PetscCall(WritePlan(p, p.evals[start], p.evals[plan], type.c_str()));
+  PetscCall(PetscPrintf(comm, "plan: schedule written to %s; run it after the case: -options_file %s\n",
+                        o.output.c_str(), o.output.c_str()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
