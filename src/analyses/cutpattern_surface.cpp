@@ -169,7 +169,7 @@ bool CutPatternPrepareSurface(MeshData *m, const std::vector<std::string> &only,
 
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o) {
   char mesh_file[PETSC_MAX_PATH_LEN] = "";
-  PetscBool file_set = PETSC_FALSE, width_set = PETSC_FALSE;
+  PetscBool file_set = PETSC_FALSE, width_set = PETSC_FALSE, direction_set = PETSC_FALSE, snap_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Cutting patterns of a surface mesh (-analysis cutpattern)", "CutPattern");
   PetscCall(PetscOptionsString("-mesh_file",
@@ -186,14 +186,18 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
   PetscCall(PetscOptionsEList("-cutpattern_strip_direction",
                               "Direction of the geodesic cutting lines at the surface's middle (the strips' long "
                               "axis), with -cutpattern_strip_width",
-                              "", axes, 3, axes[axis], &axis, nullptr));
+                              "", axes, 3, axes[axis], &axis, &direction_set));
   o->geodesic.direction = (int)axis;
   PetscCall(PetscOptionsReal("-cutpattern_strip_snap",
                              "With -cutpattern_strip_width: a cutting line crossing an edge within this fraction of "
                              "its length from a node goes through the node (fewer thin triangles, the line off its "
                              "geodesic by at most this fraction of an edge)",
-                             "", o->geodesic.snap, &o->geodesic.snap, nullptr));
+                             "", o->geodesic.snap, &o->geodesic.snap, &snap_set));
   PetscOptionsEnd();
+  // Without a width nothing is cut: a direction or snap alone would be silently ignored.
+  PetscCheck(width_set || !(direction_set || snap_set), comm, PETSC_ERR_ARG_INCOMP,
+             "%s only shapes geodesic strips: give -cutpattern_strip_width W too, or leave it out to flatten the "
+             "physical surfaces as the strips", direction_set ? "-cutpattern_strip_direction" : "-cutpattern_strip_snap");
   PetscCheck(o->geodesic.snap >= 0 && o->geodesic.snap < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_strip_snap %g: give a fraction of an edge's length in [0, 0.5)", (double)o->geodesic.snap);
   PetscCheck(!width_set || (o->geodesic.width > 0 && std::isfinite(o->geodesic.width)), comm,

@@ -162,4 +162,11 @@ with scratch_dir() as tmp:
              "meets another cutting line")):
         out, _ = cut(tmp, name, mesh, groups, width, direction, expect_fail=True)
         chk.check(want in out and "-cutpattern_strip_width" in out, "%s: refused with \"%s\"" % (name, want))
+    # A direction without a width would cut nothing: refused instead of silently ignored.
+    path = os.path.join(tmp, "nowidth.msh")
+    pm.write_msh(path, hyp[0], hyp[1], {})
+    out = run(etfe, ["-analysis", "cutpattern", "-mesh_file", path, "-output_file", os.path.join(tmp, "nw.h5"),
+                     "-cutpattern_strip_direction", "y"], expect_fail=True)[1]
+    chk.check("-cutpattern_strip_direction only shapes geodesic strips" in out,
+              "a direction without -cutpattern_strip_width is refused naming it")
 chk.finish()
