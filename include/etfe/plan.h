@@ -23,6 +23,10 @@ struct PlanOptions {
   std::vector<std::string> variables;  // option names without '-', each a per-stage array
   double lower = 0.0, upper = 80.0;    // bounds of every final value (the frame's 80 mm, L721)
   PlanCriteria criteria;
+  // The wrinkle test: the minor principal strain (the thesis's eps_min, default) or the minor
+  // principal stress (the tension-field model's taut test: a film in tension does not wrinkle
+  // however its Poisson contraction makes eps_min negative).
+  bool wrinkle_stress = false;
   double draw_weight = 0.01;  // weight of the mean drawing (relative to upper) in the objective
   PetscInt max_runs = 40;     // stretch runs the search may spend
   double round = 0.1;         // resolution of the written values (a frame's screw) [mm]
@@ -32,14 +36,16 @@ struct PlanOptions {
 };
 
 // What one stretch run leaves for the planner: per element (gathered over the ranks, same order
-// on every rank) the PK2 Mises stress, the minor principal GL strain and the equivalent plastic
-// strain; whether the run completed; its Newton iterations and wall time.
+// on every rank) the PK2 Mises stress, the minor principal GL strain (or PK2 stress when
+// minor_is_stress, set by the planner before the run) and the equivalent plastic strain; whether
+// the run completed; its Newton iterations and wall time.
 struct PlanRunFields {
   bool completed = false;
   std::string failure;
   PetscInt newton = 0;
   double wall = 0.0;
-  std::vector<double> mises, emin, eq;
+  bool minor_is_stress = false;
+  std::vector<double> mises, minor, eq;
 };
 
 struct Problem;

@@ -31,7 +31,7 @@ struct Evaluation {
   // The criteria in numbers: elements below/above the band, with emin below the limit, with the
   // equivalent strain at or above its limit, and the extremes.
   int below = 0, above = 0, wrinkled = 0, eq_over = 0, elements = 0;
-  double mises_min = 0, mises_max = 0, emin_min = 0, eq_max = 0;
+  double mises_min = 0, mises_max = 0, minor_min = 0, eq_max = 0;
   bool Met() const { return completed && below + above + wrinkled + eq_over == 0; }
 };
 
@@ -66,17 +66,17 @@ void Score(const PlanOptions &o, const PlanRunFields &f, Evaluation *e) {
   e->elements = (int)n;
   e->mises_min = n ? *std::min_element(f.mises.begin(), f.mises.end()) : 0;
   e->mises_max = n ? *std::max_element(f.mises.begin(), f.mises.end()) : 0;
-  e->emin_min = n ? *std::min_element(f.emin.begin(), f.emin.end()) : 0;
+  e->minor_min = n ? *std::min_element(f.minor.begin(), f.minor.end()) : 0;
   e->eq_max = n ? *std::max_element(f.eq.begin(), f.eq.end()) : 0;
   e->residual.assign(3 * n + 1, 0.0);
   const double scale = 1.0 / std::sqrt((double)std::max<size_t>(1, n));
   for (size_t i = 0; i < n; ++i) {
     double v[3];
-    if (PlanElementViolations(o.criteria, f.mises[i], f.emin[i], f.eq[i], v) != KERNEL_OK) v[0] = v[1] = v[2] = 1e3;
+    if (PlanElementViolations(o.criteria, f.mises[i], f.minor[i], f.eq[i], v) != KERNEL_OK) v[0] = v[1] = v[2] = 1e3;
     const double half = o.criteria.mises_band * o.criteria.mises_target;
     e->below += f.mises[i] < o.criteria.mises_target - half;
     e->above += f.mises[i] > o.criteria.mises_target + half;
-    e->wrinkled += f.emin[i] < o.criteria.min_strain;
+    e->wrinkled += f.minor[i] < o.criteria.minor_limit;
     e->eq_over += f.eq[i] >= o.criteria.max_eq_strain;
     for (int k = 0; k < 3; ++k) e->residual[3 * i + k] = v[k] * scale;
   }
@@ -95,11 +95,12 @@ PetscErrorCode PrintEvaluation(const Planner &p, const char *what, const Evaluat
     PetscFunctionReturn(0);
   }
   PetscCall(PetscPrintf(p.comm,
-                        "plan: %s %s: objective %.6e; Mises %.4f..%.4f MPa (%d below, %d above the band), emin "
+                        "plan: %s %s: objective %.6e; Mises %.4f..%.4f MPa (%d below, %d above the band), %s "
                         "%.3e (%d below %g), eq. plastic strain %.4f (%d at or above %g); %s; %" PetscInt_FMT
                         " Newton, %.1f s\n",
                         what, Values(e.x).c_str(), e.objective, e.mises_min, e.mises_max, e.below, e.above,
-                        e.emin_min, e.wrinkled, p.o->criteria.min_strain, e.eq_max, e.eq_over,
+                        p.o->wrinkle_stress ? "smin" : "emin", e.minor_min, e.wrinkled, p.o->criteria.minor_limit,
+                        e.eq_max, e.eq_over,
                         p.o->criteria.max_eq_strain, e.Met() ? "criteria met" : "criteria NOT met", e.newton, e.wall));
   PetscFunctionReturn(0);
 }
@@ -118,6 +119,7 @@ PetscErrorCode Evaluate(Planner &p, const std::vector<double> &x, size_t *index)
     PetscCall(PetscOptionsSetValue(nullptr, name.c_str(), Stages(p.shape[v], x[v]).c_str()));
   }
   PlanRunFields f;
+  f.minor_is_stress = p.o->wrinkle_stress;
   PetscCall(p.run(p.comm, p.ctx, &f));
   Evaluation e;
   e.x = x;
@@ -190,22 +192,26 @@ PetscErrorCode WritePlan(const Planner &p, const Evaluation &start, const Evalua
     if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
     std::ofstream out(path);
     const PlanCriteria &c = p.o->criteria;
-    out << "# Drawing schedule planned by etfe -analysis plan (TAO " << tao_type << ", " << p.evals.size()
-        << " stretch runs, " << std::fixed;
-    out.precision(1);
-    out << p.wall << " s).\n# Criteria: Mises (PK2) within " << c.mises_target << " MPa +- " << 100 * c.mises_band
-        << " %, minor principal strain >= " << c.min_strain << ", equivalent plastic strain < " << c.max_eq_strain
-        << ";\n# then the least drawing. " << (plan.Met() ? "Met" : "NOT met") << " by this schedule: Mises ";
-    out.precision(3);
-    out << plan.mises_min << ".." << plan.mises_max << " MPa (" << plan.below << " below, " << plan.above
-        << " above the band), emin " << plan.emin_min << " (" << plan.wrinkled << " elements below), eq. "
-        << plan.eq_max << " (" << plan.eq_over << " at or above), of " << plan.elements << " elements.\n"
-        << "# The case's own schedule (final " << Values(start.x) << "): Mises " << start.mises_min << ".."
-        << start.mises_max << " (" << start.below << " below, " << start.above << " above), emin " << start.emin_min
-        << " (" << start.wrinkled << " below), eq. " << start.eq_max << " (" << start.eq_over << ").\n"
+    const bool stress = p.o->wrinkle_stress;
+    auto criteria = [stress](const Evaluation &e) {
+      char buf[320];
+      std::snprintf(buf, sizeof buf,
+                    "Mises %.4f..%.4f MPa (%d below, %d above the band), %s %.3e (%d elements below), eq. plastic "
+                    "strain %.4f (%d at or above), of %d elements",
+                    e.mises_min, e.mises_max, e.below, e.above, stress ? "smin" : "emin", e.minor_min, e.wrinkled,
+                    e.eq_max, e.eq_over, e.elements);
+      return std::string(buf);
+    };
+    char head[512];
+    std::snprintf(head, sizeof head,
+                  "# Drawing schedule planned by etfe -analysis plan (TAO %s, %zu stretch runs, %.1f s).\n"
+                  "# Criteria: Mises (PK2) within %g MPa +- %g %%, minor principal %s >= %g, equivalent plastic "
+                  "strain < %g; then the least drawing.\n",
+                  tao_type, p.evals.size(), p.wall, c.mises_target, 100 * c.mises_band, stress ? "stress" : "strain",
+                  c.minor_limit, c.max_eq_strain);
+    out << head << "# " << (plan.Met() ? "Met" : "NOT met") << " by this schedule: " << criteria(plan) << ".\n"
+        << "# The case's own schedule (final " << Values(start.x) << "): " << criteria(start) << ".\n"
         << "# Use after the case: etfe -options_file <case>.opts -options_file " << p.o->output << "\n";
-    out.precision(6);
-    out.unsetf(std::ios::fixed);
     for (size_t v = 0; v < p.o->variables.size(); ++v)
       out << "-" << p.o->variables[v] << " " << Stages(p.shape[v], plan.x[v]) << "\n";
     ok = out.good() ? 1 : 0;
@@ -227,7 +233,8 @@ PetscErrorCode PlanGatherFields(Problem *P, PlanRunFields *fields) {
   PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
   for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
   const int N = displs[P->size - 1] + counts[P->size - 1];
-  for (auto [mine, all] : {std::make_pair(&f.mises, &fields->mises), std::make_pair(&f.emin, &fields->emin),
+  std::vector<double> *minor = fields->minor_is_stress ? &f.smin : &f.emin;
+  for (auto [mine, all] : {std::make_pair(&f.mises, &fields->mises), std::make_pair(minor, &fields->minor),
                            std::make_pair(&f.ep_bar, &fields->eq)}) {
     all->resize(N);
     PetscCallMPI(MPI_Allgatherv(mine->data(), n, MPI_DOUBLE, all->data(), counts.data(), displs.data(), MPI_DOUBLE,
@@ -257,7 +264,15 @@ PetscErrorCode PlanOptionsFromCommandLine(MPI_Comm comm, const std::string &resu
   PetscCall(PetscOptionsReal("-plan_mises_band", "Relative half-width of the Mises band", "", c.mises_band,
                              &c.mises_band, nullptr));
   PetscCall(PetscOptionsReal("-plan_min_strain", "Smallest minor principal GL strain allowed (0: no wrinkle)", "",
-                             c.min_strain, &c.min_strain, nullptr));
+                             c.minor_limit, &c.minor_limit, nullptr));
+  static const char *const tests[] = {"strain", "stress"};
+  PetscInt test = o->wrinkle_stress ? 1 : 0;
+  PetscCall(PetscOptionsEList("-plan_wrinkle_test",
+                              "Wrinkle criterion: strain (minor principal strain >= -plan_min_strain, the thesis's) or "
+                              "stress (minor principal stress >= 0, the tension-field model's taut test)",
+                              "", tests, 2, tests[test], &test, nullptr));
+  o->wrinkle_stress = test == 1;
+  if (o->wrinkle_stress) c.minor_limit = 0.0, c.minor_unit = 0.1;  // MPa
   PetscCall(PetscOptionsReal("-plan_max_eq_strain", "Equivalent plastic strain must stay below this", "",
                              c.max_eq_strain, &c.max_eq_strain, nullptr));
   PetscCall(PetscOptionsReal("-plan_draw_weight", "Weight of the mean drawing in the objective (least drawing)", "",
@@ -311,10 +326,11 @@ PetscErrorCode PlanRun(MPI_Comm comm, const PlanOptions &o, PlanStretchRun run, 
     for (double s : stages) p.shape.back().push_back(s / stages.back());
     x0[v] = std::clamp(stages.back(), o.lower, o.upper);
   }
-  PetscCall(PetscPrintf(comm, "plan: %" PetscInt_FMT " variables, bounds [%g, %g] mm; Mises %g MPa +- %g %%, emin >= %g, "
+  PetscCall(PetscPrintf(comm, "plan: %" PetscInt_FMT " variables, bounds [%g, %g] mm; Mises %g MPa +- %g %%, %s >= %g, "
                         "eq. plastic strain < %g, drawing weight %g; at most %" PetscInt_FMT " stretch runs\n",
                         n, o.lower, o.upper, o.criteria.mises_target, 100 * o.criteria.mises_band,
-                        o.criteria.min_strain, o.criteria.max_eq_strain, o.draw_weight, o.max_runs));
+                        o.wrinkle_stress ? "smin" : "emin", o.criteria.minor_limit, o.criteria.max_eq_strain,
+                        o.draw_weight, o.max_runs));
   size_t start;
   PetscCall(Evaluate(p, x0, &start));
 

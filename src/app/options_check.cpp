@@ -20,6 +20,8 @@ const char *const kPrefixes[] = {"scene", "analysis", "mesh", "material", "membr
                                  "hencky", "patch", "capstan", "catenoid", "etfe", "snes_linesearch_etfe"};
 
 bool IsOurs(const std::string &name) {
+  // The planner's TAO reads PETSc's own options under our prefix (-plan_tao_type, ...), late.
+  if (name.compare(0, 9, "plan_tao_") == 0) return false;
   for (const char *p : kPrefixes) {
     const size_t n = std::strlen(p);
     if (name.compare(0, n, p) == 0 && (name.size() == n || name[n] == '_')) return true;

@@ -18,7 +18,7 @@ TARGET, BAND = 13.28, 0.10
 TABLE_5_5 = {"saddle_draw_a": [10, 20, 30, 40], "saddle_draw_b": [10, 15, 20, 30],
              "saddle_draw_c": [10, 20, 30, 40], "saddle_draw_d": [10, 20, 30, 40]}
 LINE = re.compile(r"plan: (case's own|planned) schedule, final ([^:]+): objective (\S+); Mises (\S+)\.\.(\S+) MPa "
-                  r"\((\d+) below, (\d+) above the band\), emin (\S+) \((\d+) below \S+\), eq\. plastic strain (\S+) "
+                  r"\((\d+) below, (\d+) above the band\), [es]min (\S+) \((\d+) below \S+\), eq\. plastic strain (\S+) "
                   r"\((\d+) at or above \S+\); criteria (met|NOT met)")
 
 
@@ -93,10 +93,22 @@ def test(etfe, chk):
             chk.check(wr == 0, "claimed: no wrinkled element; the run has %d" % wr)
         chk.check(plan["eq_over"] > 0 or eq < 0.10, "claimed eq. strain < 10 %%: the run's %.5f" % eq)
 
+        # The tension-field wrinkle test: the minor principal stress; its count is the report's
+        # stress-based one for the same schedule (the case's own).
+        rc, out4 = run(etfe, case + ["-analysis", "plan", "-plan_max_runs", 1, "-plan_wrinkle_test", "stress",
+                                     "-plan_output", os.path.join(tmp, "plan_s.opts"), "-output", 0])
+        p4 = parse(out4).get("case's own")
+        rc, out5 = run(etfe, case + ["-output", 0])
+        m = re.search(r"strain-based = (\d+), stress-based = (\d+);", out5)
+        chk.check(p4 is not None and "smin" in out4 and m and p4["wrinkled"] == int(m.group(2)),
+                  "-plan_wrinkle_test stress counts the report's stress-based wrinkles (%s vs %s; strain-based %s)"
+                  % (p4 and p4["wrinkled"], m and m.group(2), m and m.group(1)))
+
         # Bad input.
         for extra, words in ((["-plan_bounds", "5"], "-plan_bounds"),
                              (["-plan_variables", "saddle_draw_x"], "-saddle_draw_x"),
-                             (["-plan_mises_band", "0"], "-plan_mises_band")):
+                             (["-plan_mises_band", "0"], "-plan_mises_band"),
+                             (["-plan_wrinkle_test", "shape"], "-plan_wrinkle_test")):
             rc, out3 = run(etfe, case + ["-analysis", "plan", "-output", 0] + extra, expect_fail=True)
             msg = error_message(out3)
             chk.check(rc != 0 and words in msg, "%s: refused naming %s (%s)" % (" ".join(extra), words, msg[:160]))

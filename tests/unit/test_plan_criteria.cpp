@@ -37,7 +37,7 @@ int main() {
   CHECK_CLOSE(b[2] - a[2], 10.0, 1e-9, 0);
   // Other criteria: a wider band and a tolerated small wrinkle.
   PlanCriteria d;
-  d.mises_band = 0.2, d.min_strain = -1e-3;
+  d.mises_band = 0.2, d.minor_limit = -1e-3;
   PlanElementViolations(d, 13.28 * 1.15, -5e-4, 0.0, v);
   CHECK(v[0] == 0 && v[1] == 0, "relaxed: %g %g", v[0], v[1]);
   // Bad input and nonsense criteria.
