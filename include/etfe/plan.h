@@ -27,6 +27,11 @@ struct PlanOptions {
   // principal stress (the tension-field model's taut test: a film in tension does not wrinkle
   // however its Poisson contraction makes eps_min negative).
   bool wrinkle_stress = false;
+  // The search scores against criteria tightened by this fraction (the band's half-width and the
+  // equivalent-strain limit shrunk, the minor limit raised by margin x its unit): the least-drawing
+  // term pulls the optimum onto the edge of what it scores, so the margin keeps the reported,
+  // untightened criteria met after the rounding to -plan_round.
+  double margin = 0.1;
   double draw_weight = 0.01;  // weight of the mean drawing (relative to upper) in the objective
   PetscInt max_runs = 40;     // stretch runs the search may spend
   double round = 0.1;         // resolution of the written values (a frame's screw) [mm]

@@ -69,10 +69,14 @@ void Score(const PlanOptions &o, const PlanRunFields &f, Evaluation *e) {
   e->minor_min = n ? *std::min_element(f.minor.begin(), f.minor.end()) : 0;
   e->eq_max = n ? *std::max_element(f.eq.begin(), f.eq.end()) : 0;
   e->residual.assign(3 * n + 1, 0.0);
+  PlanCriteria search = o.criteria;
+  search.mises_band *= 1.0 - o.margin;
+  search.max_eq_strain *= 1.0 - o.margin;
+  search.minor_limit += o.margin * search.minor_unit;
   const double scale = 1.0 / std::sqrt((double)std::max<size_t>(1, n));
   for (size_t i = 0; i < n; ++i) {
     double v[3];
-    if (PlanElementViolations(o.criteria, f.mises[i], f.minor[i], f.eq[i], v) != KERNEL_OK) v[0] = v[1] = v[2] = 1e3;
+    if (PlanElementViolations(search, f.mises[i], f.minor[i], f.eq[i], v) != KERNEL_OK) v[0] = v[1] = v[2] = 1e3;
     const double half = o.criteria.mises_band * o.criteria.mises_target;
     e->below += f.mises[i] < o.criteria.mises_target - half;
     e->above += f.mises[i] > o.criteria.mises_target + half;
@@ -275,6 +279,9 @@ PetscErrorCode PlanOptionsFromCommandLine(MPI_Comm comm, const std::string &resu
   if (o->wrinkle_stress) c.minor_limit = 0.0, c.minor_unit = 0.1;  // MPa
   PetscCall(PetscOptionsReal("-plan_max_eq_strain", "Equivalent plastic strain must stay below this", "",
                              c.max_eq_strain, &c.max_eq_strain, nullptr));
+  PetscCall(PetscOptionsReal("-plan_margin",
+                             "Fraction by which the search tightens the criteria (a safety margin against rounding)", "",
+                             o->margin, &o->margin, nullptr));
   PetscCall(PetscOptionsReal("-plan_draw_weight", "Weight of the mean drawing in the objective (least drawing)", "",
                              o->draw_weight, &o->draw_weight, nullptr));
   PetscCall(PetscOptionsInt("-plan_max_runs", "Stretch runs the search may spend", "", o->max_runs, &o->max_runs,
@@ -299,6 +306,7 @@ PetscErrorCode PlanOptionsFromCommandLine(MPI_Comm comm, const std::string &resu
   PetscCheck(c.mises_target > 0 && c.mises_band > 0 && c.mises_band < 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-plan_mises_target must be > 0 and -plan_mises_band in (0, 1)");
   PetscCheck(c.max_eq_strain > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-plan_max_eq_strain must be > 0");
+  PetscCheck(o->margin >= 0 && o->margin < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-plan_margin must be in [0, 1)");
   PetscCheck(o->draw_weight >= 0 && o->max_runs >= 1 && o->round >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-plan_draw_weight and -plan_round must be >= 0, -plan_max_runs >= 1");
   o->output = output[0] ? std::string(output) : results_stem + "_plan.opts";
