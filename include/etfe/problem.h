@@ -48,6 +48,12 @@ struct Problem {
   double tangent_shift = 0.0;  // N/mm added to the tangent's diagonal (-membrane_tangent_shift x E h)
   PetscBool tangent_shift_adaptive = PETSC_FALSE;  // shift x |F_k|/|F_0| (vanishes at convergence)
   double shift_fnorm0 = 0.0;
+  // E h0 [N/mm]: the film's axial stiffness, the scale relative shifts and penalties are given in.
+  double AxialStiffness() const {
+    double young = 0.0, nu = 0.0;
+    material->ElasticConstants(&young, &nu);
+    return young * thickness;
+  }
   // The shift as a pseudo-transient (proximal) term: the diagonal of the last assembled tangent
   // (N/mm, 0 without a shift) and, over the Newton iterations of the last solve, the energy that
   // term would dissipate, sum_k shift_k |x_{k+1} - x_k|^2 over all DOFs (N mm; the load stepper

@@ -153,22 +153,26 @@ PetscErrorCode Evaluate(Planner &p, const std::vector<double> &x, size_t *index)
   PetscFunctionReturn(0);
 }
 
-std::vector<double> FromScaled(const Planner &p, Vec z) {
+// TAO's scaled unknowns z = x / upper back to drawing values, clamped to the bounds.
+PetscErrorCode FromScaled(const Planner &p, Vec z, std::vector<double> *x) {
   const PetscScalar *a;
   PetscInt n;
-  VecGetLocalSize(z, &n);
-  VecGetArrayRead(z, &a);
-  std::vector<double> x(n);
-  for (PetscInt i = 0; i < n; ++i) x[i] = std::clamp((double)a[i] * p.o->upper, p.o->lower, p.o->upper);
-  VecRestoreArrayRead(z, &a);
-  return x;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(z, &n));
+  PetscCall(VecGetArrayRead(z, &a));
+  x->resize(n);
+  for (PetscInt i = 0; i < n; ++i) (*x)[i] = std::clamp((double)a[i] * p.o->upper, p.o->lower, p.o->upper);
+  PetscCall(VecRestoreArrayRead(z, &a));
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode TaoResidual(Tao, Vec z, Vec r, void *ctx) {
   auto *p = (Planner *)ctx;
+  std::vector<double> x;
   size_t k;
   PetscFunctionBeginUser;
-  PetscCall(Evaluate(*p, FromScaled(*p, z), &k));
+  PetscCall(FromScaled(*p, z, &x));
+  PetscCall(Evaluate(*p, x, &k));
   PetscScalar *a;
   PetscCall(VecGetArray(r, &a));
   for (size_t i = 0; i < p->evals[k].residual.size(); ++i) a[i] = p->evals[k].residual[i];
@@ -178,9 +182,11 @@ PetscErrorCode TaoResidual(Tao, Vec z, Vec r, void *ctx) {
 
 PetscErrorCode TaoObjective(Tao, Vec z, PetscReal *f, void *ctx) {
   auto *p = (Planner *)ctx;
+  std::vector<double> x;
   size_t k;
   PetscFunctionBeginUser;
-  PetscCall(Evaluate(*p, FromScaled(*p, z), &k));
+  PetscCall(FromScaled(*p, z, &x));
+  PetscCall(Evaluate(*p, x, &k));
   *f = p->evals[k].objective;
   PetscFunctionReturn(0);
 }

@@ -128,11 +128,7 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const
     PetscCall(ContactCreate(P, &contact));
     PetscCall(ProblemSetContact(P, contact));
   }
-  {
-    double young, nu;
-    P->material->ElasticConstants(&young, &nu);
-    P->tangent_shift *= young * P->thickness;  // relative -> N/mm
-  }
+  P->tangent_shift *= P->AxialStiffness();  // relative -> N/mm
   PetscCall(CreateSolver(P, snes));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, lso));
   PetscCall(LoadStepperSetConvergenceTest(P, *snes, *lso));

@@ -126,6 +126,48 @@ PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max) {
   PetscFunctionReturn(0);
 }
 
+// The local (ghosted) forms of U and of the zeroed force work vector, for an element loop that
+// adds into f; EndLocalForces sums the ghosts' parts into their owners and copies to Fout.
+static PetscErrorCode BeginLocalForces(Problem *P, Vec U, Vec *Ul, const PetscScalar **u, Vec *Fl,
+                                       PetscScalar **f) {
+  PetscFunctionBeginUser;
+  PetscCall(GetLocalArray(U, P->U_work, Ul, u));
+  PetscCall(VecGhostGetLocalForm(P->F_work, Fl));
+  PetscCall(VecZeroEntries(*Fl));
+  PetscCall(VecGetArray(*Fl, f));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode EndLocalForces(Problem *P, Vec *Ul, const PetscScalar **u, Vec *Fl, PetscScalar **f,
+                                     Vec Fout) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArray(*Fl, f));
+  PetscCall(VecGhostRestoreLocalForm(P->F_work, Fl));
+  PetscCall(RestoreLocalArray(P->U_work, Ul, u));
+  PetscCall(VecGhostUpdateBegin(P->F_work, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecGhostUpdateEnd(P->F_work, ADD_VALUES, SCATTER_REVERSE));
+  PetscCall(VecCopy(P->F_work, Fout));
+  PetscFunctionReturn(0);
+}
+
+// The membrane elements' internal forces (committed history) added into the local array f; an
+// element whose kernel fails is skipped, the worst status and its element kept in *status, *bad.
+static void AddMembraneForces(Problem *P, const PetscScalar *u, PetscScalar *f, int *status, PetscInt *bad) {
+  const LocalMesh &m = P->mesh;
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double x[9], F[6], E[3], S[3], D[9], fe[9];
+    GatherCoordinates(m, e, u, x);
+    const int st = MembraneElement(P, e, x, S, D, F, E);
+    if (st != KERNEL_OK) {
+      if (st > *status) *status = st, *bad = m.element_natural[e];
+      continue;
+    }
+    MembraneForce(m.ref[e], P->thickness, F, S, nullptr, fe, nullptr);
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] += fe[3 * a + i];
+  }
+}
+
 PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   Problem *P = (Problem *)ctx;
   const LocalMesh &m = P->mesh;
@@ -136,22 +178,8 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscInt bad = -1;
   double ext2 = 0.0;  // sum of squares of external nodal loads (an estimate of their norm)
   PetscFunctionBeginUser;
-  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
-  PetscCall(VecGhostGetLocalForm(P->F_work, &Fl));
-  PetscCall(VecZeroEntries(Fl));
-  PetscCall(VecGetArray(Fl, &f));
-  for (PetscInt e = 0; e < m.num_elements; ++e) {
-    double x[9], F[6], E[3], S[3], D[9], fe[9];
-    GatherCoordinates(m, e, u, x);
-    int st = MembraneElement(P, e, x, S, D, F, E);
-    if (st != KERNEL_OK) {
-      if (st > status) status = st, bad = m.element_natural[e];
-      continue;
-    }
-    MembraneForce(m.ref[e], P->thickness, F, S, nullptr, fe, nullptr);
-    for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] += fe[3 * a + i];
-  }
+  PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
+  AddMembraneForces(P, u, f, &status, &bad);
   if (P->has_pressure) {
     const double p = P->pressure_value.At(P->scene.schedules, P->time);
     for (PetscInt e : P->pressure_elements) {
@@ -179,12 +207,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
       for (int i = 0; i < 3; ++i) f[3 * l + i] += fg[i];
     }
   }
-  PetscCall(VecRestoreArray(Fl, &f));
-  PetscCall(VecGhostRestoreLocalForm(P->F_work, &Fl));
-  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
-  PetscCall(VecGhostUpdateBegin(P->F_work, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecGhostUpdateEnd(P->F_work, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecCopy(P->F_work, Fout));
+  PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
 
   // Constrained DOFs: keep the internal force as the reaction, then R = u - u_prescribed.
   {
@@ -214,29 +237,15 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
 // The element loop of FormResidual alone (committed history): no loads, contact or constraint
 // rows, and no side effects on the reactions or the force scale.
 PetscErrorCode FormInternalForce(Problem *P, Vec U, Vec Fout) {
-  const LocalMesh &m = P->mesh;
   Vec Ul, Fl;
   const PetscScalar *u;
   PetscScalar *f;
+  int status = KERNEL_OK;  // a converged state has no failed element
+  PetscInt bad = -1;
   PetscFunctionBeginUser;
-  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
-  PetscCall(VecGhostGetLocalForm(P->F_work, &Fl));
-  PetscCall(VecZeroEntries(Fl));
-  PetscCall(VecGetArray(Fl, &f));
-  for (PetscInt e = 0; e < m.num_elements; ++e) {
-    double x[9], F[6], E[3], S[3], D[9], fe[9];
-    GatherCoordinates(m, e, u, x);
-    if (MembraneElement(P, e, x, S, D, F, E) != KERNEL_OK) continue;  // a converged state has none
-    MembraneForce(m.ref[e], P->thickness, F, S, nullptr, fe, nullptr);
-    for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] += fe[3 * a + i];
-  }
-  PetscCall(VecRestoreArray(Fl, &f));
-  PetscCall(VecGhostRestoreLocalForm(P->F_work, &Fl));
-  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
-  PetscCall(VecGhostUpdateBegin(P->F_work, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecGhostUpdateEnd(P->F_work, ADD_VALUES, SCATTER_REVERSE));
-  PetscCall(VecCopy(P->F_work, Fout));
+  PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
+  AddMembraneForces(P, u, f, &status, &bad);
+  PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
   PetscFunctionReturn(0);
 }
 

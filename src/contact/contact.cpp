@@ -123,12 +123,10 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
 PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   auto *c = new ContactSet();
   const ContactSpec &spec = P->scene.contact;
-  double young, nu;
   ContactOptions o;
   PetscFunctionBeginUser;
-  P->material->ElasticConstants(&young, &nu);
   // Default penalties: three orders above the axial film stiffness E h (the thesis's rule).
-  PetscCall(ContactOptionsFromCommandLine(P->comm, 1e3 * young * P->thickness, spec.search_tol, &o));
+  PetscCall(ContactOptionsFromCommandLine(P->comm, 1e3 * P->AxialStiffness(), spec.search_tol, &o));
   c->params = o.params;
   c->law = o.law;
   c->follow = o.follow;
@@ -200,15 +198,14 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
     // unit force measured 5x (capstan) to 18x (saddle) above 1 / (E h)) that floor is the fraction
     // below of the forces to balance; past kPenaltyFloorMax the test would accept visibly wrong
     // answers (kn 1e15 on the saddle: displacements 20 % off), so refuse before solving.
-    const double k = std::max(c->params.kn, c->params.kt);
-    const double per_k = PenaltyRoundoffFloor(1.0, 10.0 / (young * P->thickness), c->num_global);
+    const double k = std::max(c->params.kn, c->params.kt), eh = P->AxialStiffness();
+    const double per_k = PenaltyRoundoffFloor(1.0, 10.0 / eh, c->num_global);
     PetscCheck(per_k * k <= kPenaltyFloorMax, P->comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-contact_kn %g / -contact_kt %g: the round-off of forces this stiff (~%.2g of the film forces, with "
                "%" PetscInt_FMT " pairs and E h = %g N/mm) would exceed the force tolerance, so a wrong answer could pass "
                "as converged; the largest usable penalty here is ~%.1e N/mm (the default 1e3 E h = %.3g N/mm is "
                "usually right)",
-               c->params.kn, c->params.kt, per_k * k, c->num_global, young * P->thickness, kPenaltyFloorMax / per_k,
-               1e3 * young * P->thickness);
+               c->params.kn, c->params.kt, per_k * k, c->num_global, eh, kPenaltyFloorMax / per_k, 1e3 * eh);
   }
   *out = c;
   PetscFunctionReturn(0);

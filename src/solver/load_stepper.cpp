@@ -76,12 +76,11 @@ struct ForceTest {
 // in 2-norm over n elements. Measured floors of |R| (DD1511 increment 1): 1.1e-8 N at 10^5,
 // 3.5e-8 at 10^6 triangles; this estimate gives 1.4e-8 and 4.4e-8.
 PetscErrorCode MembraneRoundoffFloor(Problem *P, PetscReal *floor) {
-  PetscReal xmax = 0.0, young = 0.0, nu;
+  PetscReal xmax = 0.0;
   PetscFunctionBeginUser;
   for (double x : P->mesh.X) xmax = std::max(xmax, (PetscReal)std::fabs(x));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &xmax, 1, MPIU_REAL, MPIU_MAX, P->comm));
-  P->material->ElasticConstants(&young, &nu);
-  *floor = PETSC_MACHINE_EPSILON * xmax * young * P->thickness * std::sqrt((double)P->mesh.num_elements_global);
+  *floor = PETSC_MACHINE_EPSILON * xmax * P->AxialStiffness() * std::sqrt((double)P->mesh.num_elements_global);
   PetscFunctionReturn(0);
 }
 
@@ -183,11 +182,7 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
   PetscCall(ProblemSetLoadTime(P, t, U));
   PetscCall(FormResidual(nullptr, U, R0, P));
   PetscCall(FormJacobian(snes, U, P->J, P->J, P));
-  if (shift > 0) {
-    double young = 0.0, nu;
-    P->material->ElasticConstants(&young, &nu);
-    PetscCall(MatShift(P->J, shift * young * P->thickness));
-  }
+  if (shift > 0) PetscCall(MatShift(P->J, shift * P->AxialStiffness()));
   PetscCall(ProblemSetLoadTime(P, t + e * (t_new - t), U));
   PetscCall(FormResidual(nullptr, U, R1, P));
   PetscCall(VecAXPY(R1, -1.0, R0));
@@ -439,9 +434,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     double worst = 0.0;
     PetscCall(WorstNode(P, F, &node, &worst));
     char why[512];
-    double young = 0.0, nu;
-    P->material->ElasticConstants(&young, &nu);
-    const bool stiff_penalty = P->contact && P->contact->params.kn > 1e5 * young * P->thickness;
+    const bool stiff_penalty = P->contact && P->contact->params.kn > 1e5 * P->AxialStiffness();
     if (reason == SNES_DIVERGED_LINE_SEARCH && P->bad_status == KERNEL_OK)
       std::snprintf(why, sizeof why, "%s (no step along the Newton direction reduced the residual; "
                     "largest residual %.3e at node %lld%s)",

@@ -229,6 +229,15 @@ def scratch_dir(name="etfe-test"):
             shutil.rmtree(d, ignore_errors=True)
 
 
+def form_found_saddle(etfe, tmp, options="ff_r15_s11_n19.opts", extra=(), name="ff"):
+    """Form-finds a saddle start (options/saddle/<options>) into tmp and returns its .msh: a clean
+    checkout has no results/saddle/, and the stretch cases name that file."""
+    msh = os.path.join(tmp, name + ".msh")
+    run(etfe, ["-options_file", os.path.join(REPO, "options", "saddle", options), "-formfind_monitor", 0,
+               "-formfind_mesh_out", msh, "-output", 0, "-output_file", os.path.join(tmp, name + ".h5")] + list(extra))
+    return msh
+
+
 def read_steps(path):
     """[(step, attrs, {dataset: array})] of a results file, in step order."""
     import h5py

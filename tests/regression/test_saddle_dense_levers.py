@@ -6,7 +6,7 @@ value; the default takes no more Newton iterations than the plain run."""
 import csv
 import os
 
-from etfe_testlib import REPO, increments, main, run, scratch_dir
+from etfe_testlib import REPO, form_found_saddle, increments, main, run, scratch_dir
 
 INCREMENTS = 3
 PLAIN = ["-load_tangent_predictor_shift", "0", "-load_force_roundoff", "0"]
@@ -25,9 +25,7 @@ def history(path):
 
 def test(etfe, chk):
     with scratch_dir() as tmp:
-        msh = os.path.join(tmp, "ff_n50.msh")
-        run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s11.opts"), "-mesh_n", 50,
-                   "-formfind_mesh_out", msh, "-output", 0, "-output_file", os.path.join(tmp, "ff.h5")])
+        msh = form_found_saddle(etfe, tmp, "ff_r15_s11.opts", ["-mesh_n", 50], name="ff_n50")
 
         def case(name, extra):
             _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,

@@ -16,7 +16,7 @@ import re
 import h5py
 import numpy as np
 
-from etfe_testlib import Checker, etfe_path, run, scene_values, scratch_dir, summary, REPO
+from etfe_testlib import Checker, etfe_path, form_found_saddle, run, scene_values, scratch_dir, summary, REPO
 import h5compare
 
 etfe = etfe_path()
@@ -59,9 +59,7 @@ def invariants(ref2d, cur3d):
 
 
 with scratch_dir() as tmp:
-    msh = os.path.join(tmp, "ff.msh")
-    run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s11_n19.opts"), "-formfind_monitor", 0,
-               "-formfind_mesh_out", msh, "-output", 0])
+    msh = form_found_saddle(etfe, tmp)
     base = ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
             "-load_increments", 40, "-load_monitor", 0, "-output_every", 1]
 

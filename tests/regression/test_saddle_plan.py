@@ -12,7 +12,7 @@ history (40 increments) and a small budget of stretch runs:
 import os
 import re
 
-from etfe_testlib import REPO, error_message, main, run, scene_values, scratch_dir
+from etfe_testlib import REPO, error_message, form_found_saddle, main, run, scene_values, scratch_dir
 
 TARGET, BAND = 13.28, 0.10
 TABLE_5_5 = {"saddle_draw_a": [10, 20, 30, 40], "saddle_draw_b": [10, 15, 20, 30],
@@ -34,9 +34,7 @@ def parse(out):
 
 def test(etfe, chk):
     with scratch_dir() as tmp:
-        msh = os.path.join(tmp, "ff.msh")
-        run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s11_n19.opts"), "-formfind_monitor", 0,
-                   "-formfind_mesh_out", msh, "-output", 0, "-output_file", os.path.join(tmp, "ff.h5")])
+        msh = form_found_saddle(etfe, tmp)
         case = ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
                 "-load_increments", 40, "-load_monitor", 0]
         plan_file = os.path.join(tmp, "plan.opts")

@@ -8,7 +8,7 @@ import csv
 import os
 import re
 
-from etfe_testlib import NUMBER, REPO, increments, main, run, scratch_dir
+from etfe_testlib import NUMBER, REPO, form_found_saddle, increments, main, run, scratch_dir
 
 INCREMENTS = 20
 LINE = re.compile(r"^step +(\d+)/.*?  work (%s) N mm shift (%s) \((%s) of it\)" % (NUMBER, NUMBER, NUMBER), re.M)
@@ -18,10 +18,7 @@ TOTAL = re.compile(r"^etfe: work done on the film (%s) N mm; the tangent shift .
 
 def test(etfe, chk):
     with scratch_dir() as tmp:
-        # The form-found start of DD1511 (a clean checkout has no results/saddle/).
-        msh = os.path.join(tmp, "ff.msh")
-        run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s11_n19.opts"), "-formfind_monitor", 0,
-                   "-formfind_mesh_out", msh, "-output", 0, "-output_file", os.path.join(tmp, "ff.h5")])
+        msh = form_found_saddle(etfe, tmp)
 
         def case(name, extra):
             _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
