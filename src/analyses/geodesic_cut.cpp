@@ -27,17 +27,10 @@ std::string Fmt(const char *f, double a, double b = 0, double c = 0, double d = 
   return buf;
 }
 
-void TriNormal(const TriSurface &s, int e, double n[3]) {
-  const double *a = &s.coords[3 * s.tris[3 * e]], *b = &s.coords[3 * s.tris[3 * e + 1]],
-               *c = &s.coords[3 * s.tris[3 * e + 2]];
-  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-  n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
-}
-
 // Barycentric coordinates of the point q (in the plane of triangle e) in e.
 void Barycentric(const TriSurface &s, int e, const double q[3], double l[3]) {
   double n[3];
-  TriNormal(s, e, n);
+  SurfaceTriangleNormal(s, e, n);
   const double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
   for (int k = 0; k < 3; ++k) {
     const double *a = &s.coords[3 * s.tris[3 * e + (k + 1) % 3]], *b = &s.coords[3 * s.tris[3 * e + (k + 2) % 3]];
@@ -58,7 +51,7 @@ int Locate(const TriSurface &s, int parent, const double q[3], const double d[3]
       Barycentric(s, e, q, l);
       if (std::min({l[0], l[1], l[2]}) < -tol) continue;
       double n[3], off = 0;
-      TriNormal(s, e, n);
+      SurfaceTriangleNormal(s, e, n);
       const double *a = &s.coords[3 * s.tris[3 * e]];
       for (int i = 0; i < 3; ++i) off += (q[i] - a[i]) * n[i];
       const double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);  // twice the area ~ h^2
@@ -202,7 +195,7 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
   for (int e = 0; e < s.NumTris(); ++e)
     if (s.tris[3 * e] == vmid || s.tris[3 * e + 1] == vmid || s.tris[3 * e + 2] == vmid) {
       double n[3];
-      TriNormal(s, e, n);
+      SurfaceTriangleNormal(s, e, n);
       for (int i = 0; i < 3; ++i) nv[i] += n[i];
     }
   double axis[3] = {0, 0, 0};
@@ -270,7 +263,7 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
       for (int j = 0; j < 3; ++j) q[j] = prev[j] + (want - sum) * u[j];
       parent = g.segment_tri[i];
       double n[3];
-      TriNormal(s, parent, n);  // the transverse trace ran on the uncut mesh: parent ids are its own
+      SurfaceTriangleNormal(s, parent, n);  // the transverse trace ran on the uncut mesh: parent ids are its own
       c[0] = n[1] * u[2] - n[2] * u[1], c[1] = n[2] * u[0] - n[0] * u[2], c[2] = n[0] * u[1] - n[1] * u[0];
       if (c[0] * axis[0] + c[1] * axis[1] + c[2] * axis[2] < 0)
         for (double &x : c) x = -x;

@@ -30,10 +30,7 @@ const double *X(const TriSurface &s, int n) { return &s.coords[3 * (size_t)n]; }
 
 // Unit normal of triangle t (by its node order); false when degenerate.
 bool Normal(const TriSurface &s, int t, double n[3]) {
-  double e1[3], e2[3];
-  Sub(X(s, s.tris[3 * t + 1]), X(s, s.tris[3 * t]), e1);
-  Sub(X(s, s.tris[3 * t + 2]), X(s, s.tris[3 * t]), e2);
-  Cross(e1, e2, n);
+  SurfaceTriangleNormal(s, t, n);
   return Normalize(n) > 0;
 }
 
@@ -86,6 +83,13 @@ void VertexFan(const TriSurface &s, int v, std::vector<int> *fan, bool *boundary
 }
 
 } // namespace
+
+void SurfaceTriangleNormal(const TriSurface &s, int t, double n[3]) {
+  double e1[3], e2[3];
+  Sub(X(s, s.tris[3 * t + 1]), X(s, s.tris[3 * t]), e1);
+  Sub(X(s, s.tris[3 * t + 2]), X(s, s.tris[3 * t]), e2);
+  Cross(e1, e2, n);
+}
 
 bool SurfaceVertexOnBoundary(const TriSurface &s, int v) {
   std::vector<int> fan;

@@ -98,5 +98,7 @@ int SurfaceComponents(const TriSurface &s, std::vector<int> *label);
 // 4 sqrt(3) A / (l1^2 + l2^2 + l3^2): 1 for an equilateral triangle, 0 for a degenerate one.
 double TriangleQuality(const double *x0, const double *x1, const double *x2);
 double TriangleArea(const double *x0, const double *x1, const double *x2);
+// (x1 - x0) x (x2 - x0) of triangle t by its node order: the normal with length twice the area.
+void SurfaceTriangleNormal(const TriSurface &s, int t, double n[3]);
 
 } // namespace etfe
