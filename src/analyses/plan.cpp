@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <sstream>
 
 #include "etfe/assembly.h"
@@ -75,20 +76,19 @@ void Score(const PlanOptions &o, const PlanRunFields &f, Evaluation *e) {
   search.minor_limit += o.margin * search.minor_unit;
   const double scale = 1.0 / std::sqrt((double)std::max<size_t>(1, n));
   for (size_t i = 0; i < n; ++i) {
-    double v[3];
+    // Scored against the tightened criteria, counted against the real ones (the same kernel).
+    double v[3], real[3];
     if (PlanElementViolations(search, f.mises[i], f.minor[i], f.eq[i], v) != KERNEL_OK) v[0] = v[1] = v[2] = 1e3;
-    const double half = o.criteria.mises_band * o.criteria.mises_target;
-    e->below += f.mises[i] < o.criteria.mises_target - half;
-    e->above += f.mises[i] > o.criteria.mises_target + half;
-    e->wrinkled += f.minor[i] < o.criteria.minor_limit;
-    e->eq_over += f.eq[i] >= o.criteria.max_eq_strain;
+    if (PlanElementViolations(o.criteria, f.mises[i], f.minor[i], f.eq[i], real) != KERNEL_OK)
+      real[0] = real[1] = real[2] = 1.0;
+    if (real[0] > 0) ++(f.mises[i] < o.criteria.mises_target ? e->below : e->above);
+    e->wrinkled += real[1] > 0;
+    e->eq_over += real[2] > 0;
     for (int k = 0; k < 3; ++k) e->residual[3 * i + k] = v[k] * scale;
   }
   double mean = 0.0;
   for (double xi : e->x) mean += xi / (o.upper * e->x.size());
   e->residual.back() = std::sqrt(o.draw_weight) * mean;
-  e->objective = 0.0;
-  for (double r : e->residual) e->objective += r * r;
 }
 
 PetscErrorCode PrintEvaluation(const Planner &p, const char *what, const Evaluation &e) {
@@ -143,8 +143,8 @@ PetscErrorCode Evaluate(Planner &p, const std::vector<double> &x, size_t *index)
   } else {
     // A failed run is scored as every element far outside every criterion, so the search retreats.
     e.residual.assign(3 * p.elements + 1, 10.0 / std::sqrt((double)p.elements));
-    e.objective = 300.0;
   }
+  e.objective = std::inner_product(e.residual.begin(), e.residual.end(), e.residual.begin(), 0.0);
   p.evals.push_back(e);
   *index = p.evals.size() - 1;
   char what[32];
