@@ -154,14 +154,17 @@ PetscErrorCode StretchCaseCreate(MPI_Comm comm, StretchCase *c) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StretchCaseDestroy(StretchCase *c) {
+// What CreateCase made, destroyed (P may be null: no scene was named).
+PetscErrorCode CaseDestroy(SNES *snes, Problem **P) {
   PetscFunctionBeginUser;
-  PetscCall(SNESDestroy(&c->snes));
-  if (c->P) PetscCall(ProblemDestroy(c->P));
-  delete c->P;
-  c->P = nullptr;
+  PetscCall(SNESDestroy(snes));
+  if (*P) PetscCall(ProblemDestroy(*P));
+  delete *P;
+  *P = nullptr;
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode StretchCaseDestroy(StretchCase *c) { return CaseDestroy(&c->snes, &c->P); }
 
 // One stretch run of the case under the current options, for the drawing planner: no results
 // file, no monitor, the per-element criteria fields gathered on every rank.
@@ -432,9 +435,7 @@ PetscErrorCode Run() {
              "checkpoint/restart is for load histories (-analysis stretch); form finding restarts from its "
              "Gmsh output instead");
   if (help_only) {
-    PetscCall(SNESDestroy(&snes));
-    PetscCall(ProblemDestroy(P));
-    delete P;
+    PetscCall(CaseDestroy(&snes, &P));
     PetscFunctionReturn(0);
   }
   PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
@@ -482,9 +483,7 @@ PetscErrorCode Run() {
     PetscCall(OutputClose(&out, status));
     PetscCall(PetscPrintf(comm, "etfe: results in %s (+ .xmf for ParaView)\n", oo.path));
   }
-  PetscCall(SNESDestroy(&snes));
-  PetscCall(ProblemDestroy(P));
-  delete P;
+  PetscCall(CaseDestroy(&snes, &P));
   PetscCheck(res.completed, comm, PETSC_ERR_NOT_CONVERGED, "%s. %s", res.failure.c_str(),
              formfind ? "The last iterate is in the results (status \"failed\")."
                       : "The last converged increment is in the results. Ways out: more "
