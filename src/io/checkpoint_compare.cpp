@@ -3,6 +3,7 @@
 // The rule: an option may change on a restart when it decides how the increments are solved or
 // what is written, never what is computed. Allowed to change:
 //   solvers      -snes_* -ksp_* -pc_* -mat_* (MUMPS, ...) -sub_* -mg_* -redundant_* -fieldsplit_*
+//                -etfe_lu_native_max_dof
 //                -load_force_rtol -load_max_cutbacks -load_grow_after -load_easy_iterations
 //                -load_extrapolate -load_tangent_predictor* (predictors and the cut-back policy)
 //                -load_force_roundoff (the round-off floor of the force test)
@@ -35,7 +36,7 @@ const char *const kMayChange[] = {
     "snes_", "ksp_", "pc_", "mat_", "sub_", "mg_", "redundant_", "fieldsplit_",
     "load_force_rtol", "load_max_cutbacks", "load_grow_after", "load_easy_iterations", "load_extrapolate",
     "load_tangent_predictor", "membrane_tangent_", "formfind_monitor", "load_force_roundoff",
-    "membrane_near_null_space",
+    "membrane_near_null_space", "etfe_lu_native_max_dof",
     "output", "checkpoint_", "restart", "contact_probe_nodes", "saddle_history", "load_monitor", "load_stop_after",
     "log", "info", "malloc", "memory_", "options_", "help", "etfe_traceback", "fp_trap", "on_error", "history",
     "viewer", "objects_", "check_pointer", "checkstack", "no_signal_handler", "debugger", "start_in_debugger",
