@@ -1,0 +1,56 @@
+"""The LU package by size (options/solvers/lu.opts, -etfe_lu_native_max_dof 5000 in the saddle
+cases): DD1511 at the thesis density on one rank is factored with PETSc's own LU, on two ranks and
+with -etfe_lu_native_max_dof 0 or -pc_factor_mat_solver_type mumps with MUMPS; every run takes the
+same Newton iterations and part A/B Mises and the five slides of every increment agree to 1e-9 of
+each quantity's largest value (the packages differ only in round-off)."""
+import csv
+import os
+
+from etfe_testlib import REPO, form_found_saddle, increments, main, run, scratch_dir
+
+COLUMNS = ["A_mises", "B_mises"] + ["slide%d_%s" % (i, c) for i in range(1, 6) for c in "XY"]
+
+
+def history(path):
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def test(etfe, chk):
+    with scratch_dir() as tmp:
+        msh = form_found_saddle(etfe, tmp)
+
+        def case(name, extra, np=1):
+            _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
+                                "-load_increments", 40, "-output", 0,
+                                "-output_file", os.path.join(tmp, name + ".h5"),
+                                "-saddle_history", os.path.join(tmp, name + ".csv")] + extra, np=np)
+            package = "petsc" if "PC lu petsc" in out else "mumps" if "PC lu mumps" in out else "?"
+            its = [i["newton"] for i in increments(out)]
+            print("%-12s ranks %d, package %s, Newton %d" % (name, np, package, sum(its)))
+            return package, its, history(os.path.join(tmp, name + ".csv"))
+
+        pkg0, its0, h0 = case("default", [])
+        chk.check(pkg0 == "petsc", "one rank, 2 340 DOF: PETSc's own LU (got %s)" % pkg0)
+        chk.check(len(h0) == 40, "default: %d history rows of 40" % len(h0))
+        for name, extra, np, want in (("max_dof_0", ["-etfe_lu_native_max_dof", 0], 1, "mumps"),
+                                      ("named_mumps", ["-pc_factor_mat_solver_type", "mumps"], 1, "mumps"),
+                                      ("two_ranks", [], 2, "mumps")):
+            pkg, its, h = case(name, extra, np)
+            chk.check(pkg == want, "%s: package %s (expected %s)" % (name, pkg, want))
+            chk.check(its == its0, "%s: the same Newton iterations per increment (%d vs %d in all)"
+                      % (name, sum(its), sum(its0)))
+            chk.check(len(h) == len(h0), "%s: %d history rows" % (name, len(h)))
+            worst, where = 0.0, None
+            for c in COLUMNS:
+                scale = max(abs(float(r[c])) for r in h0)
+                if scale == 0:
+                    continue
+                for r0, r in zip(h0, h):
+                    d = abs(float(r0[c]) - float(r[c])) / scale
+                    if d > worst:
+                        worst, where = d, (r0["step"], c)
+            chk.less(worst, 1e-9, "%s: largest difference from PETSc's LU (at step/column %s)" % (name, where))
+
+
+main(test)
