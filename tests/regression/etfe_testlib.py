@@ -9,6 +9,7 @@ repository root. It uses:
   chk = Checker("name"); chk.check(cond, msg); ...; chk.finish()
 """
 import contextlib
+import csv
 import math
 import os
 import re
@@ -227,6 +228,27 @@ def scratch_dir(name="etfe-test"):
             print("(scratch files kept in %s)" % d)
         else:
             shutil.rmtree(d, ignore_errors=True)
+
+
+def read_history(path):
+    """Rows of a `<case>_history.csv` (-saddle_history) as dicts of strings."""
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def largest_history_difference(h0, h, columns):
+    """Largest |h - h0| over the rows and columns, relative to each column's largest |h0|,
+    and where it is (step, column); columns that are zero throughout h0 are skipped."""
+    worst, where = 0.0, None
+    for c in columns:
+        scale = max(abs(float(r[c])) for r in h0)
+        if scale == 0:
+            continue
+        for r0, r in zip(h0, h):
+            d = abs(float(r0[c]) - float(r[c])) / scale
+            if d > worst:
+                worst, where = d, (r0["step"], c)
+    return worst, where
 
 
 def form_found_saddle(etfe, tmp, options="ff_r15_s11_n19.opts", extra=(), name="ff"):

@@ -3,10 +3,10 @@ default in options/saddle/stretch_base.opts, and the others tried) do not move t
 on the form-found 1:1 saddle at 10^4 triangles, first 3 of 200 increments, part A/B Mises and the
 five slides of every step agree with the plain run (levers off) to 1e-6 of each quantity's largest
 value; the default takes no more Newton iterations than the plain run."""
-import csv
 import os
 
-from etfe_testlib import REPO, form_found_saddle, increments, main, run, scratch_dir
+from etfe_testlib import (REPO, form_found_saddle, increments, largest_history_difference, main, read_history, run,
+                          scratch_dir)
 
 INCREMENTS = 3
 PLAIN = ["-load_tangent_predictor_shift", "0", "-load_force_roundoff", "0"]
@@ -16,11 +16,6 @@ LEVERS = {
                    "-snes_linesearch_etfe_max_strain_update", "0.05"],
 }
 COLUMNS = ["A_mises", "B_mises"] + ["slide%d_%s" % (i, c) for i in range(1, 6) for c in "XY"]
-
-
-def history(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 def test(etfe, chk):
@@ -34,22 +29,14 @@ def test(etfe, chk):
                                 "-saddle_history", os.path.join(tmp, name + ".csv")] + extra)
             its = [i["newton"] for i in increments(out)]
             print("%-10s Newton per increment %s" % (name, its))
-            return its, history(os.path.join(tmp, name + ".csv"))
+            return its, read_history(os.path.join(tmp, name + ".csv"))
 
         its0, h0 = case("plain", PLAIN)
         chk.check(len(h0) == INCREMENTS, "plain run: %d history rows" % len(h0))
         for name, extra in LEVERS.items():
             its, h = case(name.replace(" ", "_").replace(".", "_"), extra)
             chk.check(len(h) == len(h0), "%s: %d history rows" % (name, len(h)))
-            worst, where = 0.0, None
-            for c in COLUMNS:
-                scale = max(abs(float(r[c])) for r in h0)
-                if scale == 0:
-                    continue
-                for r0, r in zip(h0, h):
-                    d = abs(float(r0[c]) - float(r[c])) / scale
-                    if d > worst:
-                        worst, where = d, (r0["step"], c)
+            worst, where = largest_history_difference(h0, h, COLUMNS)
             chk.less(worst, 1e-6, "%s: largest difference from the plain run (at step/column %s)" % (name, where))
             if name == "default":
                 chk.check(sum(its) <= sum(its0), "default levers: %d Newton iterations <= plain %d" % (sum(its), sum(its0)))

@@ -3,17 +3,12 @@ cases): DD1511 at the thesis density on one rank is factored with PETSc's own LU
 with -etfe_lu_native_max_dof 0 or -pc_factor_mat_solver_type mumps with MUMPS; every run takes the
 same Newton iterations and part A/B Mises and the five slides of every increment agree to 1e-9 of
 each quantity's largest value (the packages differ only in round-off)."""
-import csv
 import os
 
-from etfe_testlib import REPO, form_found_saddle, increments, main, run, scratch_dir
+from etfe_testlib import (REPO, form_found_saddle, increments, largest_history_difference, main, read_history, run,
+                          scratch_dir)
 
 COLUMNS = ["A_mises", "B_mises"] + ["slide%d_%s" % (i, c) for i in range(1, 6) for c in "XY"]
-
-
-def history(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
 
 
 def test(etfe, chk):
@@ -28,7 +23,7 @@ def test(etfe, chk):
             package = "petsc" if "PC lu petsc" in out else "mumps" if "PC lu mumps" in out else "?"
             its = [i["newton"] for i in increments(out)]
             print("%-12s ranks %d, package %s, Newton %d" % (name, np, package, sum(its)))
-            return package, its, history(os.path.join(tmp, name + ".csv"))
+            return package, its, read_history(os.path.join(tmp, name + ".csv"))
 
         pkg0, its0, h0 = case("default", [])
         chk.check(pkg0 == "petsc", "one rank, 2 340 DOF: PETSc's own LU (got %s)" % pkg0)
@@ -41,15 +36,7 @@ def test(etfe, chk):
             chk.check(its == its0, "%s: the same Newton iterations per increment (%d vs %d in all)"
                       % (name, sum(its), sum(its0)))
             chk.check(len(h) == len(h0), "%s: %d history rows" % (name, len(h)))
-            worst, where = 0.0, None
-            for c in COLUMNS:
-                scale = max(abs(float(r[c])) for r in h0)
-                if scale == 0:
-                    continue
-                for r0, r in zip(h0, h):
-                    d = abs(float(r0[c]) - float(r[c])) / scale
-                    if d > worst:
-                        worst, where = d, (r0["step"], c)
+            worst, where = largest_history_difference(h0, h, COLUMNS)
             chk.less(worst, 1e-9, "%s: largest difference from PETSc's LU (at step/column %s)" % (name, where))
 
 
