@@ -80,17 +80,24 @@ PetscErrorCode ReadMembraneOptions(MPI_Comm comm, Problem *P) {
 // 10^4 triangles, 30 k DOF: 35 vs 23 ms. MUMPS's workspace margin (ICNTL(14)) is set here too,
 // unless the options set it: the stiff contact penalties delay pivots and need more than its
 // default 20 %.
-PetscErrorCode ChooseLUPackage(Problem *P, PC pc) {
-  char pkg[64] = "";
-  PetscBool set = PETSC_FALSE, icntl14 = PETSC_FALSE;
-  PetscInt max_dof = 0;
+PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof) {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(P->comm, nullptr, "Linear solver", "PC");
+  *max_dof = 0;
+  PetscOptionsBegin(comm, nullptr, "Linear solver", "PC");
   PetscCall(PetscOptionsInt("-etfe_lu_native_max_dof",
                             "On one rank, systems up to this many DOF are factored with PETSc's own LU (AMD ordering) "
                             "unless -pc_factor_mat_solver_type names a package; 0: always MUMPS",
-                            "", max_dof, &max_dof, nullptr));
+                            "", *max_dof, max_dof, nullptr));
   PetscOptionsEnd();
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ChooseLUPackage(Problem *P, PC pc) {
+  char pkg[64] = "";
+  PetscBool set = PETSC_FALSE, icntl14 = PETSC_FALSE;
+  PetscInt max_dof;
+  PetscFunctionBeginUser;
+  PetscCall(LUNativeMaxDofFromOptions(P->comm, &max_dof));
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_factor_mat_solver_type", pkg, sizeof pkg, &set));
   const bool native = !set && P->size == 1 && 3 * P->mesh.num_nodes_global <= max_dof;
   if (native) {
@@ -467,6 +474,8 @@ PetscErrorCode Run() {
       ContactOptions co;
       PetscCall(ContactOptionsFromCommandLine(comm, 1e3 * young * throwaway.thickness, 1e-6, &co));
     }
+    PetscInt lu_max_dof;
+    PetscCall(LUNativeMaxDofFromOptions(comm, &lu_max_dof));
     PetscCall(SNESCreate(comm, &snes));
     PetscCall(SNESGetLineSearch(snes, &ls));
     PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
