@@ -153,27 +153,27 @@ PetscErrorCode Evaluate(Planner &p, const std::vector<double> &x, size_t *index)
   PetscFunctionReturn(0);
 }
 
-// TAO's scaled unknowns z = x / upper back to drawing values, clamped to the bounds.
-PetscErrorCode FromScaled(const Planner &p, Vec z, std::vector<double> *x) {
+// The stretch run at TAO's scaled unknowns z = x / upper (drawing values clamped to the bounds).
+PetscErrorCode EvaluateScaled(Planner &p, Vec z, size_t *index) {
   const PetscScalar *a;
   PetscInt n;
+  std::vector<double> x;
   PetscFunctionBeginUser;
   PetscCall(VecGetLocalSize(z, &n));
   PetscCall(VecGetArrayRead(z, &a));
-  x->resize(n);
-  for (PetscInt i = 0; i < n; ++i) (*x)[i] = std::clamp((double)a[i] * p.o->upper, p.o->lower, p.o->upper);
+  x.resize(n);
+  for (PetscInt i = 0; i < n; ++i) x[i] = std::clamp((double)a[i] * p.o->upper, p.o->lower, p.o->upper);
   PetscCall(VecRestoreArrayRead(z, &a));
+  PetscCall(Evaluate(p, x, index));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode TaoResidual(Tao, Vec z, Vec r, void *ctx) {
   auto *p = (Planner *)ctx;
-  std::vector<double> x;
   size_t k;
-  PetscFunctionBeginUser;
-  PetscCall(FromScaled(*p, z, &x));
-  PetscCall(Evaluate(*p, x, &k));
   PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(EvaluateScaled(*p, z, &k));
   PetscCall(VecGetArray(r, &a));
   for (size_t i = 0; i < p->evals[k].residual.size(); ++i) a[i] = p->evals[k].residual[i];
   PetscCall(VecRestoreArray(r, &a));
@@ -182,11 +182,9 @@ PetscErrorCode TaoResidual(Tao, Vec z, Vec r, void *ctx) {
 
 PetscErrorCode TaoObjective(Tao, Vec z, PetscReal *f, void *ctx) {
   auto *p = (Planner *)ctx;
-  std::vector<double> x;
   size_t k;
   PetscFunctionBeginUser;
-  PetscCall(FromScaled(*p, z, &x));
-  PetscCall(Evaluate(*p, x, &k));
+  PetscCall(EvaluateScaled(*p, z, &k));
   *f = p->evals[k].objective;
   PetscFunctionReturn(0);
 }

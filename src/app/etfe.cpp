@@ -73,13 +73,6 @@ PetscErrorCode ReadMembraneOptions(MPI_Comm comm, Problem *P) {
   PetscFunctionReturn(0);
 }
 
-// The LU package when the options name none: on one rank and up to -etfe_lu_native_max_dof DOF,
-// PETSc's own LU with an AMD ordering; MUMPS otherwise. Measured (-log_view, MatLUFactorNum per
-// factorization): PD15a, 2 340 DOF: 1.25 ms against MUMPS's ~4.5 ms (its analysis and
-// distribution overheads dominate a small system); Hencky, 5 403 DOF: 15 vs 10 ms; DD1511 on
-// 10^4 triangles, 30 k DOF: 35 vs 23 ms. MUMPS's workspace margin (ICNTL(14)) is set here too,
-// unless the options set it: the stiff contact penalties delay pivots and need more than its
-// default 20 %.
 PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof) {
   PetscFunctionBeginUser;
   *max_dof = 0;
@@ -92,27 +85,30 @@ PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof) {
   PetscFunctionReturn(0);
 }
 
+// The LU package when the options name none: on one rank and up to -etfe_lu_native_max_dof DOF,
+// PETSc's own LU with an AMD ordering; MUMPS otherwise. Measured (-log_view, MatLUFactorNum per
+// factorization): PD15a, 2 340 DOF: 1.25 ms against MUMPS's ~4.5 ms (its analysis and
+// distribution overheads dominate a small system); Hencky, 5 403 DOF: 15 vs 10 ms; DD1511 on
+// 10^4 triangles, 30 k DOF: 35 vs 23 ms. Whenever MUMPS factors, its workspace margin ICNTL(14)
+// defaults to 200 % unless the options set it: the stiff contact penalties delay pivots and need
+// more than MUMPS's own 20 %.
 PetscErrorCode ChooseLUPackage(Problem *P, PC pc) {
-  char pkg[64] = "";
-  PetscBool set = PETSC_FALSE, icntl14 = PETSC_FALSE;
+  char pkg[64] = "", pctype[64] = "";
+  PetscBool pkg_set = PETSC_FALSE, pc_set = PETSC_FALSE, icntl14 = PETSC_FALSE;
   PetscInt max_dof;
   PetscFunctionBeginUser;
   PetscCall(LUNativeMaxDofFromOptions(P->comm, &max_dof));
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_factor_mat_solver_type", pkg, sizeof pkg, &set));
-  const bool native = !set && P->size == 1 && 3 * P->mesh.num_nodes_global <= max_dof;
-  if (native) {
-    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
-    PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGAMD));
-  } else {
-    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  }
-  char pctype[64] = "";
-  PetscBool pc_set = PETSC_FALSE;
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_factor_mat_solver_type", pkg, sizeof pkg, &pkg_set));
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pctype, sizeof pctype, &pc_set));
+  const bool native = P->size == 1 && 3 * P->mesh.num_nodes_global <= max_dof;
+  if (!pkg_set) {
+    PetscCall(PCFactorSetMatSolverType(pc, native ? MATSOLVERPETSC : MATSOLVERMUMPS));
+    if (native) PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGAMD));
+  }
   const bool factor = !pc_set || !std::strcmp(pctype, PCLU) || !std::strcmp(pctype, PCCHOLESKY);
+  const bool mumps = factor && (pkg_set ? !std::strcmp(pkg, MATSOLVERMUMPS) : !native);
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &icntl14));
-  if (factor && !native && (!set || !std::strcmp(pkg, MATSOLVERMUMPS)) && !icntl14)
-    PetscCall(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "200"));
+  if (mumps && !icntl14) PetscCall(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "200"));
   PetscFunctionReturn(0);
 }
 
