@@ -23,6 +23,10 @@ struct LoadStepperOptions {
   // Extra diagonal shift (relative to E h) of the predictor's tangent only: at a stress-free start
   // the film's out-of-plane stiffness is nearly zero and the predictor's solve throws the nodes far.
   PetscReal tangent_predictor_shift = 0.0;
+  // Newton iteration limit of every increment but the history's first (0: -snes_max_it for all).
+  // The slack start needs many capped iterations to let the film sag; a later increment that has
+  // not converged in this many is cut back at once instead of running on to -snes_max_it.
+  PetscInt max_it = 0;
   PetscInt monitor = 1;
   PetscInt stop_after = -1;      // end cleanly after this many increments (-1: never)
   PetscReal force_rtol = 1e-10;  // converged when |R| <= force_rtol * (reactions + loads)

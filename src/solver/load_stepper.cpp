@@ -37,6 +37,10 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                              "Extra tangent-only diagonal shift (relative to E h) in the tangent predictor's solve (a "
                              "slack film's predictor then moves less far; the answer is unchanged)",
                              "", o->tangent_predictor_shift, &o->tangent_predictor_shift, nullptr));
+  PetscCall(PetscOptionsInt("-load_max_it",
+                            "Newton iteration limit of every increment but the history's first, which keeps "
+                            "-snes_max_it for the slack start (0: -snes_max_it for all)",
+                            "", o->max_it, &o->max_it, nullptr));
   PetscCall(PetscOptionsInt("-load_monitor", "Print one line per increment (0: quiet)", "",
                             o->monitor, &o->monitor, nullptr));
   PetscCall(PetscOptionsInt("-load_stop_after", "End the run cleanly after this many increments",
@@ -59,6 +63,8 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
   PetscCheck(o->max_cutbacks >= 0 && o->max_cutbacks <= max_cutbacks, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-load_max_cutbacks %" PetscInt_FMT ": use 0 to %" PetscInt_FMT " (each halves the increment)",
              o->max_cutbacks, max_cutbacks);
+  PetscCheck(o->max_it >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-load_max_it %" PetscInt_FMT ": use a positive limit, or 0 for -snes_max_it", o->max_it);
   PetscFunctionReturn(0);
 }
 
@@ -313,8 +319,11 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   Vec U_committed, U_previous, F, Fint, Fint_committed, dU;
   double work_total = 0.0, shift_work_total = 0.0;
   PetscLogDouble t0, t_inc;
+  PetscReal snes_atol, snes_rtol, snes_stol;
+  PetscInt snes_max_it, snes_max_f;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
+  PetscCall(SNESGetTolerances(snes, &snes_atol, &snes_rtol, &snes_stol, &snes_max_it, &snes_max_f));
   PetscCall(VecDuplicate(P->U, &U_committed));
   PetscCall(VecDuplicate(P->U, &U_previous));
   PetscCall(ProblemSetLoadTime(P, 0.0, P->U));
@@ -367,6 +376,8 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     else if (o.tangent_predictor && converged_states >= 1)
       PetscCall(TangentPredictor(P, snes, U_committed, t, t_new, o.tangent_predictor_shift, P->U));
     PetscCall(ProblemSetLoadTime(P, t_new, P->U));
+    const PetscInt max_it = (step > 0 && o.max_it > 0) ? std::min(o.max_it, snes_max_it) : snes_max_it;
+    PetscCall(SNESSetTolerances(snes, snes_atol, snes_rtol, snes_stol, max_it, snes_max_f));
     PetscCall(SNESSolve(snes, nullptr, P->U));
     SNESConvergedReason reason;
     PetscInt its;
@@ -453,8 +464,10 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                     SNESConvergedReasons[reason], worst, (long long)node);
     else
       std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at "
-                    "node %lld)",
-                    SNESConvergedReasons[reason], (long long)its, worst, (long long)node);
+                    "node %lld%s)",
+                    SNESConvergedReasons[reason], (long long)its, worst, (long long)node,
+                    reason == SNES_DIVERGED_MAX_IT && step > 0 && o.max_it > 0 && o.max_it < snes_max_it
+                        ? "; the limit after the first increment is -load_max_it" : "");
     PetscCall(VecCopy(U_committed, P->U));
     dt = 0.5 * dt_try;
     if (o.monitor)
@@ -485,6 +498,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                           "dissipate %.3e N mm (%.2e of it, sum over Newton iterations of shift |dx|^2)%s\n",
                           work_total, shift_work_total, work_total != 0 ? shift_work_total / std::fabs(work_total) : 0.0,
                           ck.restart[0] ? " since the restart" : ""));
+  PetscCall(SNESSetTolerances(snes, snes_atol, snes_rtol, snes_stol, snes_max_it, snes_max_f));
   PetscCall(VecDestroy(&Fint));
   PetscCall(VecDestroy(&Fint_committed));
   PetscCall(VecDestroy(&dU));
