@@ -10,6 +10,7 @@ static const char help[] =
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -18,6 +19,7 @@ static const char help[] =
 #include <string>
 #include <vector>
 
+#include "heap_policy.h"
 #include "options_check.h"
 #include "options_files.h"
 #include "etfe/assembly.h"
@@ -397,14 +399,23 @@ PetscErrorCode RunPlan(MPI_Comm comm, PetscBool help_only) {
 
 // This program's own switches (read here so that -help lists them).
 PetscErrorCode ProgramOptions(MPI_Comm comm) {
-  PetscBool traceback = PETSC_FALSE, allow = PETSC_FALSE;
+  PetscBool traceback = PETSC_FALSE, allow = PETSC_FALSE, heap_release = PETSC_TRUE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "etfe", "etfe");
   PetscCall(PetscOptionsBool("-etfe_traceback", "Errors with PETSc's full report instead of one line", "", traceback,
                              &traceback, nullptr));
   PetscCall(PetscOptionsBool("-options_allow_unused", "Accept option names this project does not know (typos)", "",
                              allow, &allow, nullptr));
+  PetscCall(PetscOptionsBool("-etfe_heap_release",
+                             "Return freed blocks of 32 MB and more to the system (undoes SuperLU_DIST's "
+                             "mallopt; off: a 10^6-triangle rank's memory grows ~1 GB with MUMPS refactoring)",
+                             "", heap_release, &heap_release, nullptr));
   PetscOptionsEnd();
+  if (heap_release) {
+    const long mmap_threshold = 32L << 20;  // glibc's largest; smaller blocks stay in the heap and are reused
+    PetscCheck(HeapReleaseLargeBlocks(mmap_threshold, 2 * mmap_threshold), comm, PETSC_ERR_SYS,
+               "-etfe_heap_release: the C library refused mallopt (run with -etfe_heap_release 0)");
+  }
   PetscFunctionReturn(0);
 }
 
@@ -572,6 +583,15 @@ int main(int argc, char **argv) {
     if (!rank || std::strcmp(rank, "0") == 0) std::fprintf(stderr, "etfe: %s\n", error.c_str());
     return 2;
   }
+  // Before MPI starts (heap_policy.h): huge pages for the large blocks -etfe_heap_release maps.
+  bool heap_release = true;
+  for (size_t i = 0; i + 1 < expanded.size(); ++i)
+    if (expanded[i] == "-etfe_heap_release") {
+      std::string v = expanded[i + 1];
+      for (char &ch : v) ch = (char)std::tolower((unsigned char)ch);
+      heap_release = !(v == "0" || v == "false" || v == "no" || v == "off");
+    }
+  if (heap_release) HeapRestartWithHugePages(argv);
   std::vector<char *> new_argv{argv[0]};
   for (std::string &a : expanded) new_argv.push_back(a.data());
   new_argv.push_back(nullptr);

@@ -1,0 +1,42 @@
+// See heap_policy.h.
+#include "heap_policy.h"
+
+#include <cstdlib>  // defines __GLIBC__ on glibc
+#include <cstring>
+#include <string>
+#include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+namespace etfe {
+
+bool HeapReleaseLargeBlocks(long mmap_threshold_bytes, long trim_threshold_bytes) {
+#if defined(__GLIBC__)
+  const int glibc_default_mmap_max = 65536;
+  return mallopt(M_MMAP_MAX, glibc_default_mmap_max) == 1 &&
+         mallopt(M_MMAP_THRESHOLD, (int)mmap_threshold_bytes) == 1 &&
+         mallopt(M_TRIM_THRESHOLD, (int)trim_threshold_bytes) == 1;
+#else
+  (void)mmap_threshold_bytes, (void)trim_threshold_bytes;
+  return false;
+#endif
+}
+
+void HeapRestartWithHugePages(char **argv) {
+#if defined(__GLIBC__) && defined(__linux__)
+  const char *guard = "ETFE_NO_REEXEC";
+  if (std::getenv(guard)) return;
+  const char *tunables = std::getenv("GLIBC_TUNABLES");
+  if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return;
+  std::string value = "glibc.malloc.hugetlb=1";
+  if (tunables && *tunables) value = std::string(tunables) + ":" + value;
+  if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0 || setenv(guard, "1", 1) != 0) return;
+  execv("/proc/self/exe", argv);
+  unsetenv(guard);  // exec failed: go on without huge pages
+#else
+  (void)argv;
+#endif
+}
+
+} // namespace etfe
