@@ -19,7 +19,7 @@ bool HeapReleaseLargeBlocks(long mmap_threshold_bytes, long trim_threshold_bytes
          mallopt(M_TRIM_THRESHOLD, (int)trim_threshold_bytes) == 1;
 #else
   (void)mmap_threshold_bytes, (void)trim_threshold_bytes;
-  return false;
+  return true;  // the mallopt this undoes is glibc's
 #endif
 }
 
@@ -29,11 +29,13 @@ void HeapRestartWithHugePages(char **argv) {
   if (std::getenv(guard)) return;
   const char *tunables = std::getenv("GLIBC_TUNABLES");
   if (tunables && std::strstr(tunables, "glibc.malloc.hugetlb")) return;
-  std::string value = "glibc.malloc.hugetlb=1";
-  if (tunables && *tunables) value = std::string(tunables) + ":" + value;
-  if (setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0 || setenv(guard, "1", 1) != 0) return;
-  execv("/proc/self/exe", argv);
-  unsetenv(guard);  // exec failed: go on without huge pages
+  const std::string old = tunables ? tunables : "";
+  const std::string value = old.empty() ? "glibc.malloc.hugetlb=1" : old + ":glibc.malloc.hugetlb=1";
+  if (setenv("GLIBC_TUNABLES", value.c_str(), 1) == 0 && setenv(guard, "1", 1) == 0) execv("/proc/self/exe", argv);
+  // exec failed: go on without huge pages, the environment as it was
+  unsetenv(guard);
+  if (tunables) setenv("GLIBC_TUNABLES", old.c_str(), 1);
+  else unsetenv("GLIBC_TUNABLES");
 #else
   (void)argv;
 #endif

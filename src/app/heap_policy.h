@@ -10,7 +10,8 @@
 namespace etfe {
 
 // Large blocks (>= mmap_threshold_bytes) are mapped and unmapped on their own; the heap top is
-// trimmed above trim_threshold_bytes. Returns false where the C library has no such controls.
+// trimmed above trim_threshold_bytes. Returns false when glibc refuses (other C libraries: true,
+// nothing to undo).
 bool HeapReleaseLargeBlocks(long mmap_threshold_bytes, long trim_threshold_bytes);
 
 // A freshly mapped block is faulted in page by page at each factorization; on a virtual machine a
