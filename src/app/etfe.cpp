@@ -10,7 +10,6 @@ static const char help[] =
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -411,11 +410,8 @@ PetscErrorCode ProgramOptions(MPI_Comm comm) {
                              "mallopt; off: a 10^6-triangle rank's memory grows ~1 GB with MUMPS refactoring)",
                              "", heap_release, &heap_release, nullptr));
   PetscOptionsEnd();
-  if (heap_release) {
-    const long mmap_threshold = 32L << 20;  // glibc's largest; smaller blocks stay in the heap and are reused
-    PetscCheck(HeapReleaseLargeBlocks(mmap_threshold, 2 * mmap_threshold), comm, PETSC_ERR_SYS,
-               "-etfe_heap_release: the C library refused mallopt (run with -etfe_heap_release 0)");
-  }
+  PetscCheck(!heap_release || HeapReleaseLargeBlocks(), comm, PETSC_ERR_SYS,
+             "-etfe_heap_release: the C library refused mallopt (run with -etfe_heap_release 0)");
   PetscFunctionReturn(0);
 }
 
@@ -584,14 +580,7 @@ int main(int argc, char **argv) {
     return 2;
   }
   // Before MPI starts (heap_policy.h): huge pages for the large blocks -etfe_heap_release maps.
-  bool heap_release = true;
-  for (size_t i = 0; i + 1 < expanded.size(); ++i)
-    if (expanded[i] == "-etfe_heap_release") {
-      std::string v = expanded[i + 1];
-      for (char &ch : v) ch = (char)std::tolower((unsigned char)ch);
-      heap_release = !(v == "0" || v == "false" || v == "no" || v == "off");
-    }
-  if (heap_release) HeapRestartWithHugePages(argv);
+  if (HeapReleaseWanted(expanded)) HeapRestartWithHugePages(argv);
   std::vector<char *> new_argv{argv[0]};
   for (std::string &a : expanded) new_argv.push_back(a.data());
   new_argv.push_back(nullptr);

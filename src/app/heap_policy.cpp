@@ -1,6 +1,7 @@
 // See heap_policy.h.
 #include "heap_policy.h"
 
+#include <cctype>
 #include <cstdlib>  // defines __GLIBC__ on glibc
 #include <cstring>
 #include <string>
@@ -11,14 +12,23 @@
 
 namespace etfe {
 
-bool HeapReleaseLargeBlocks(long mmap_threshold_bytes, long trim_threshold_bytes) {
+bool HeapReleaseWanted(const std::vector<std::string> &args) {
+  bool wanted = true;
+  for (size_t i = 0; i + 1 < args.size(); ++i)
+    if (args[i] == "-etfe_heap_release") {
+      std::string v = args[i + 1];
+      for (char &ch : v) ch = (char)std::tolower((unsigned char)ch);
+      wanted = !(v == "0" || v == "false" || v == "no" || v == "off");
+    }
+  return wanted;
+}
+
+bool HeapReleaseLargeBlocks() {
 #if defined(__GLIBC__)
-  const int glibc_default_mmap_max = 65536;
-  return mallopt(M_MMAP_MAX, glibc_default_mmap_max) == 1 &&
-         mallopt(M_MMAP_THRESHOLD, (int)mmap_threshold_bytes) == 1 &&
-         mallopt(M_TRIM_THRESHOLD, (int)trim_threshold_bytes) == 1;
+  const int glibc_default_mmap_max = 65536, mmap_threshold = 32 << 20, trim_threshold = 64 << 20;
+  return mallopt(M_MMAP_MAX, glibc_default_mmap_max) == 1 && mallopt(M_MMAP_THRESHOLD, mmap_threshold) == 1 &&
+         mallopt(M_TRIM_THRESHOLD, trim_threshold) == 1;
 #else
-  (void)mmap_threshold_bytes, (void)trim_threshold_bytes;
   return true;  // the mallopt this undoes is glibc's
 #endif
 }

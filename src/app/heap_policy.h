@@ -6,13 +6,20 @@
 // beyond it, and one rank's resident memory grew by ~1 GB (3.2 GB against the other rank's 2.2).
 // Large blocks mapped on their own are returned at free instead.
 #pragma once
+#include <string>
+#include <vector>
 
 namespace etfe {
 
-// Large blocks (>= mmap_threshold_bytes) are mapped and unmapped on their own; the heap top is
-// trimmed above trim_threshold_bytes. Returns false when glibc refuses (other C libraries: true,
-// nothing to undo).
-bool HeapReleaseLargeBlocks(long mmap_threshold_bytes, long trim_threshold_bytes);
+// Whether the run wants the heap released: -etfe_heap_release among the program's arguments
+// (options files expanded) with 0, false, no or off turns it off, as PETSc reads a bool. Read
+// here because the re-start below happens before PETSc is initialised.
+bool HeapReleaseWanted(const std::vector<std::string> &args);
+
+// Blocks of 32 MB and more (glibc's largest threshold; smaller ones stay in the heap and are
+// reused) are mapped and unmapped on their own; the heap top is trimmed above 64 MB. Returns false
+// when glibc refuses (other C libraries: true, nothing to undo).
+bool HeapReleaseLargeBlocks();
 
 // A freshly mapped block is faulted in page by page at each factorization; on a virtual machine a
 // 4 KB fault cost ~20 us here and made MUMPS's numeric factorization 2.8x slower at 10^5

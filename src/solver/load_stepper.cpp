@@ -466,7 +466,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
       std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at "
                     "node %lld%s)",
                     SNESConvergedReasons[reason], (long long)its, worst, (long long)node,
-                    reason == SNES_DIVERGED_MAX_IT && step > 0 && o.max_it > 0 && o.max_it < snes_max_it
+                    reason == SNES_DIVERGED_MAX_IT && max_it < snes_max_it
                         ? "; the limit after the first increment is -load_max_it" : "");
     PetscCall(VecCopy(U_committed, P->U));
     dt = 0.5 * dt_try;

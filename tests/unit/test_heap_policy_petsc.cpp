@@ -55,7 +55,7 @@ int main(int argc, char **argv) {
               before.resident_kept, before.mapped_while_held,
               before.mapped_while_held < 1 ? " -- a library turned mmap off" : "");
 
-  CHECK(etfe::HeapReleaseLargeBlocks(32L << 20, 64L << 20), "mallopt refused the policy");
+  CHECK(etfe::HeapReleaseLargeBlocks(), "mallopt refused the policy");
   // The block freed above is still at the heap's top: it is reused, and freed again it is trimmed.
   const double r0 = ResidentMB();
   const Cycle reuse = AllocTouchFree(big);
