@@ -35,12 +35,13 @@ PetscInt NaturalOrder::GlobalRows(Layout layout) const {
   return 0;
 }
 
-PetscErrorCode NaturalOrder::Get(Layout layout, int ncomp, Entry **result) {
+MPI_Comm NaturalOrder::Comm() const { return problem_->comm; }
+
+PetscErrorCode NaturalOrder::Get(Layout layout, Entry **result) {
   Problem *P = problem_;
   const LocalMesh &m = P->mesh;
-  auto key = std::make_pair((int)layout, ncomp);
   PetscFunctionBeginUser;
-  auto it = entries_.find(key);
+  auto it = entries_.find((int)layout);
   if (it == entries_.end()) {
     PetscInt nloc = 0, first = 0;
     std::vector<PetscInt> to;
@@ -55,52 +56,57 @@ PetscErrorCode NaturalOrder::Get(Layout layout, int ncomp, Entry **result) {
       for (const ContactPair &pr : P->contact->pairs) to.push_back(pr.id);
     }
     const PetscInt nglob = GlobalRows(layout);
-    std::vector<PetscInt> from(nloc);
-    for (PetscInt i = 0; i < nloc; ++i) from[i] = first + i;
     Entry e;
     IS isf, ist;
     PetscInt n = PETSC_DECIDE, N = nglob;
-    PetscCall(PetscSplitOwnership(P->comm, &n, &N));  // rows stay whole on a rank
-    PetscCall(VecCreateMPI(P->comm, ncomp * nloc, ncomp * nglob, &e.owned));
-    PetscCall(VecCreateMPI(P->comm, ncomp * n, ncomp * nglob, &e.natural));
-    PetscCall(ISCreateBlock(P->comm, ncomp, nloc, from.data(), PETSC_COPY_VALUES, &isf));
-    PetscCall(ISCreateBlock(P->comm, ncomp, nloc, to.data(), PETSC_COPY_VALUES, &ist));
+    PetscCall(PetscSplitOwnership(P->comm, &n, &N));
+    PetscCall(VecCreateMPI(P->comm, nloc, nglob, &e.owned));
+    PetscCall(VecCreateMPI(P->comm, n, nglob, &e.natural));
+    PetscCall(ISCreateStride(P->comm, nloc, first, 1, &isf));
+    PetscCall(ISCreateGeneral(P->comm, nloc, to.data(), PETSC_COPY_VALUES, &ist));
     PetscCall(VecScatterCreate(e.owned, isf, e.natural, ist, &e.scatter));
     PetscCall(ISDestroy(&isf));
     PetscCall(ISDestroy(&ist));
-    it = entries_.emplace(key, e).first;
+    it = entries_.emplace((int)layout, e).first;
   }
   *result = &it->second;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NaturalOrder::RowBlock(Layout layout, int ncomp, PetscInt *row0, PetscInt *nrows) {
+PetscErrorCode NaturalOrder::RowBlock(Layout layout, PetscInt *row0, PetscInt *nrows) {
   Entry *e;
   PetscInt lo, n;
   PetscFunctionBeginUser;
-  PetscCall(Get(layout, ncomp, &e));
+  PetscCall(Get(layout, &e));
   PetscCall(VecGetOwnershipRange(e->natural, &lo, nullptr));
   PetscCall(VecGetLocalSize(e->natural, &n));
-  *row0 = lo / ncomp;
-  *nrows = n / ncomp;
+  *row0 = lo;
+  *nrows = n;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode NaturalOrder::ToNatural(Layout layout, int ncomp, const double *owned, Vec *natural,
+PetscErrorCode NaturalOrder::ToNatural(Layout layout, int ncomp, const double *owned, std::vector<double> *natural,
                                        PetscInt *row0, PetscInt *nrows) {
   Entry *e;
   PetscScalar *a;
-  PetscInt n;
+  const PetscScalar *b;
+  PetscInt n, nn;
   PetscFunctionBeginUser;
-  PetscCall(Get(layout, ncomp, &e));
+  PetscCall(Get(layout, &e));
   PetscCall(VecGetLocalSize(e->owned, &n));
-  PetscCall(VecGetArray(e->owned, &a));
-  for (PetscInt i = 0; i < n; ++i) a[i] = owned[i];
-  PetscCall(VecRestoreArray(e->owned, &a));
-  PetscCall(VecScatterBegin(e->scatter, e->owned, e->natural, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(e->scatter, e->owned, e->natural, INSERT_VALUES, SCATTER_FORWARD));
-  *natural = e->natural;
-  PetscCall(RowBlock(layout, ncomp, row0, nrows));
+  PetscCall(RowBlock(layout, row0, nrows));
+  nn = *nrows;
+  natural->assign((size_t)nn * ncomp, 0.0);
+  for (int c = 0; c < ncomp; ++c) {
+    PetscCall(VecGetArray(e->owned, &a));
+    for (PetscInt i = 0; i < n; ++i) a[i] = owned[(size_t)i * ncomp + c];
+    PetscCall(VecRestoreArray(e->owned, &a));
+    PetscCall(VecScatterBegin(e->scatter, e->owned, e->natural, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(e->scatter, e->owned, e->natural, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(e->natural, &b));
+    for (PetscInt j = 0; j < nn; ++j) (*natural)[(size_t)j * ncomp + c] = b[j];
+    PetscCall(VecRestoreArrayRead(e->natural, &b));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -108,19 +114,21 @@ PetscErrorCode NaturalOrder::FromNatural(Layout layout, int ncomp, const double 
   Entry *e;
   PetscScalar *a;
   const PetscScalar *b;
-  PetscInt n;
+  PetscInt n, nn;
   PetscFunctionBeginUser;
-  PetscCall(Get(layout, ncomp, &e));
-  PetscCall(VecGetLocalSize(e->natural, &n));
-  PetscCall(VecGetArray(e->natural, &a));
-  for (PetscInt i = 0; i < n; ++i) a[i] = natural_rows[i];
-  PetscCall(VecRestoreArray(e->natural, &a));
-  PetscCall(VecScatterBegin(e->scatter, e->natural, e->owned, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(e->scatter, e->natural, e->owned, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(Get(layout, &e));
+  PetscCall(VecGetLocalSize(e->natural, &nn));
   PetscCall(VecGetLocalSize(e->owned, &n));
-  PetscCall(VecGetArrayRead(e->owned, &b));
-  for (PetscInt i = 0; i < n; ++i) owned[i] = b[i];
-  PetscCall(VecRestoreArrayRead(e->owned, &b));
+  for (int c = 0; c < ncomp; ++c) {
+    PetscCall(VecGetArray(e->natural, &a));
+    for (PetscInt j = 0; j < nn; ++j) a[j] = natural_rows[(size_t)j * ncomp + c];
+    PetscCall(VecRestoreArray(e->natural, &a));
+    PetscCall(VecScatterBegin(e->scatter, e->natural, e->owned, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(e->scatter, e->natural, e->owned, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecGetArrayRead(e->owned, &b));
+    for (PetscInt i = 0; i < n; ++i) owned[(size_t)i * ncomp + c] = b[i];
+    PetscCall(VecRestoreArrayRead(e->owned, &b));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -303,21 +311,18 @@ PetscErrorCode DataChecksum(MPI_Comm comm, const char *name, PetscInt row0, Pets
 
 PetscErrorCode H5WriteNatural(const std::string &file, NaturalOrder &order, hid_t group, const char *name,
                               Layout layout, int ncomp, const double *owned, bool as_int, uint64_t *checksum) {
-  Vec nat = nullptr;
+  std::vector<double> a;
   PetscInt row0 = 0, nrows = 0;
-  const PetscScalar *a;
   PetscFunctionBeginUser;
-  PetscCall(order.ToNatural(layout, ncomp, owned, &nat, &row0, &nrows));
+  PetscCall(order.ToNatural(layout, ncomp, owned, &a, &row0, &nrows));
   const hsize_t total = order.GlobalRows(layout);
-  PetscCall(VecGetArrayRead(nat, &a));
-  if (checksum) PetscCall(DataChecksum(PetscObjectComm((PetscObject)nat), name, row0, nrows, ncomp, a, checksum));
+  if (checksum) PetscCall(DataChecksum(order.Comm(), name, row0, nrows, ncomp, a.data(), checksum));
   if (as_int) {
-    std::vector<int> v(a, a + nrows * ncomp);
+    std::vector<int> v(a.begin(), a.end());
     PetscCall(H5WriteRows(file, group, name, H5T_NATIVE_INT, total, ncomp, row0, nrows, v.data()));
   } else {
-    PetscCall(H5WriteRows(file, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a));
+    PetscCall(H5WriteRows(file, group, name, H5T_NATIVE_DOUBLE, total, ncomp, row0, nrows, a.data()));
   }
-  PetscCall(VecRestoreArrayRead(nat, &a));
   PetscFunctionReturn(0);
 }
 
@@ -325,7 +330,7 @@ PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t
                              Layout layout, int ncomp, double *owned) {
   PetscInt row0, nrows;
   PetscFunctionBeginUser;
-  PetscCall(order.RowBlock(layout, ncomp, &row0, &nrows));
+  PetscCall(order.RowBlock(layout, &row0, &nrows));
   std::vector<double> rows((size_t)nrows * ncomp);
   PetscCall(H5ReadRows(file, group, name, H5T_NATIVE_DOUBLE, order.GlobalRows(layout), ncomp, row0, nrows,
                        rows.data()));
