@@ -15,6 +15,7 @@
 #pragma once
 #include <petscvec.h>
 
+#include <cstdint>
 #include <string>
 
 #include "etfe/problem.h"
@@ -43,6 +44,9 @@ PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const 
 // change on a restart (solver, output, monitors: checkpoint_compare.cpp) must agree, and a
 // refusal lists each differing option with both values. Returns the increment and run id.
 PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id);
+// The fingerprint a checkpoint compares the mesh by (coordinates, triangles, node and element
+// sets; the same on every rank): what ProblemReleaseSceneMesh keeps of the global mesh.
+std::uint64_t CheckpointMeshFingerprint(const MeshData &mesh);
 // Refuses (with the reason) a checkpoint of another scene, mesh, material, contact set or
 // physics options, or one whose data do not match its checksum.
 PetscErrorCode CheckpointRead(Problem *problem, const std::string &path, StepperState *state,

@@ -6,6 +6,7 @@
 #pragma once
 #include <petscmat.h>
 
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -40,7 +41,11 @@ void SceneObserverDestroy(SceneObserver *observer);
 struct Problem {
   MPI_Comm comm;
   PetscMPIInt rank = 0, size = 1;
+  // The scene as built. A load history drops its global arrays once set up
+  // (ProblemReleaseSceneMesh): then each rank holds only its part of the mesh (`mesh`).
   SceneSpec scene;
+  bool scene_mesh_released = false;
+  std::uint64_t scene_mesh_fingerprint = 0;  // of the released mesh, for a restart's comparison
   SceneObserver observer;
   LocalMesh mesh;
   double thickness = 0.25;  // mm
@@ -120,6 +125,13 @@ struct Problem {
 // local constraint/pressure/force lists, and puts U at the prescribed values of load time 0.
 PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material,
                              Problem *problem);
+// Frees what only set-up needed on every rank: the scene mesh's coordinates, triangles, Gmsh tags
+// and element sets, and the stress-free element shapes (SceneSpec::element_reference), all of
+// O(global mesh) size; the node sets, the source name and every small field stay. fingerprint
+// stands in for the mesh in a checkpoint's comparison (CheckpointMeshFingerprint). Call after
+// everything that reads the global mesh is set up (the contact set); a form-finding run keeps
+// it (it writes the found shape with the scene's topology).
+PetscErrorCode ProblemReleaseSceneMesh(Problem *problem, std::uint64_t fingerprint);
 // Hands the contact set (ContactCreate) to the problem, which owns it from then on.
 PetscErrorCode ProblemSetContact(Problem *problem, ContactSet *contact);
 PetscErrorCode ProblemDestroy(Problem *problem);

@@ -11,6 +11,7 @@ static const char help[] =
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -169,6 +170,9 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const
     PetscCall(ContactCreate(P, &contact));
     PetscCall(ProblemSetContact(P, contact));
   }
+  // Set up: a load history keeps only each rank's part of the mesh (form finding writes its
+  // shape with the scene's topology and keeps it).
+  if (!formfind) PetscCall(ProblemReleaseSceneMesh(P, CheckpointMeshFingerprint(P->scene.mesh)));
   P->tangent_shift *= P->AxialStiffness();  // relative -> N/mm
   PetscCall(CreateSolver(P, snes));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, lso));
@@ -227,17 +231,28 @@ PetscErrorCode PlanStretchOnce(MPI_Comm comm, void *, PlanRunFields *fields) {
 
 // Peak resident memory of each rank so far (the kernel's high-water mark, set-up included), as
 // max / min over the ranks in MB: what a user sizing a dense run needs, printed after set-up and
-// at the end.
-PetscErrorCode PrintPeakMemory(MPI_Comm comm, const char *when) {
+// at the end; with now, also what each rank holds at this moment (after set-up: without the
+// global mesh a load history has released, ProblemReleaseSceneMesh).
+PetscErrorCode PrintPeakMemory(MPI_Comm comm, const char *when, bool now = false) {
   struct rusage ru;
-  double mb[2], max_mb[2];
+  double mb[4], max_mb[4];
   PetscFunctionBeginUser;
   getrusage(RUSAGE_SELF, &ru);
   mb[0] = ru.ru_maxrss / 1024.0;  // kB on Linux
-  mb[1] = -mb[0];
-  PetscCallMPI(MPI_Allreduce(mb, max_mb, 2, MPI_DOUBLE, MPI_MAX, comm));
-  PetscCall(PetscPrintf(comm, "  peak memory per rank %s: %.0f MB (max), %.0f MB (min)\n", when, max_mb[0],
-                        -max_mb[1]));
+  mb[2] = 0.0;
+  if (FILE *f = std::fopen("/proc/self/statm", "r")) {
+    unsigned long size = 0, resident = 0;
+    if (std::fscanf(f, "%lu %lu", &size, &resident) == 2) mb[2] = resident * (double)sysconf(_SC_PAGESIZE) / 1048576.0;
+    std::fclose(f);
+  }
+  mb[1] = -mb[0], mb[3] = -mb[2];
+  PetscCallMPI(MPI_Allreduce(mb, max_mb, 4, MPI_DOUBLE, MPI_MAX, comm));
+  if (now && max_mb[2] > 0)
+    PetscCall(PetscPrintf(comm, "  peak memory per rank %s: %.0f MB (max), %.0f MB (min); resident now %.0f / %.0f MB\n",
+                          when, max_mb[0], -max_mb[1], max_mb[2], -max_mb[3]));
+  else
+    PetscCall(PetscPrintf(comm, "  peak memory per rank %s: %.0f MB (max), %.0f MB (min)\n", when, max_mb[0],
+                          -max_mb[1]));
   PetscFunctionReturn(0);
 }
 
@@ -279,7 +294,7 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
                         ktype, ptype, stype ? " " : "", stype ? stype : ""));
   if (!P->scene.initial_guess_note.empty())
     PetscCall(PetscPrintf(P->comm, "  initial guess: %s\n", P->scene.initial_guess_note.c_str()));
-  PetscCall(PrintPeakMemory(P->comm, "after set-up"));
+  PetscCall(PrintPeakMemory(P->comm, "after set-up", true));
   PetscFunctionReturn(0);
 }
 

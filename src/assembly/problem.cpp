@@ -5,7 +5,9 @@
 #include <petscsnes.h>
 
 #include <algorithm>
+#include <map>
 #include <numeric>
+#include <string>
 
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
@@ -183,6 +185,21 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
     PetscCall(VecRestoreArray(P->U, &u));
   }
   PetscCall(ProblemSetLoadTime(P, 0.0, P->U));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemReleaseSceneMesh(Problem *P, std::uint64_t fingerprint) {
+  MeshData &gm = P->scene.mesh;
+  PetscFunctionBeginUser;
+  // swap, not clear: clear keeps the capacity.
+  std::vector<double>().swap(gm.coords);
+  std::vector<int>().swap(gm.triangles);
+  std::vector<long long>().swap(gm.node_tags);
+  std::vector<long long>().swap(gm.element_tags);
+  std::map<std::string, std::vector<int>>().swap(gm.element_sets);
+  std::vector<double>().swap(P->scene.element_reference);
+  P->scene_mesh_released = true;
+  P->scene_mesh_fingerprint = fingerprint;
   PetscFunctionReturn(0);
 }
 

@@ -31,6 +31,11 @@ uint64_t FingerprintChecksum(const char *name, uint64_t v) {
   return ValueChecksum(name, (double)(v >> 32)) + 3 * ValueChecksum(name, (double)(v & 0xffffffffULL));
 }
 
+// A load history has dropped the global mesh after set-up and kept its fingerprint.
+uint64_t SceneMeshFingerprint(const Problem *P) {
+  return P->scene_mesh_released ? P->scene_mesh_fingerprint : MeshFingerprint(P->scene.mesh);
+}
+
 // The scene's restart state (a few values, the same on every rank).
 uint64_t SceneStateChecksum(const std::vector<double> &v) {
   uint64_t h = 0;
@@ -177,7 +182,7 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
              tmp.c_str());
   const Shape sh = ProblemShape(P);
   const long long shape[5] = {sh.nodes, sh.elements, sh.pairs, sh.history, sh.stages};
-  const uint64_t mesh = MeshFingerprint(P->scene.mesh), physics = PhysicsFingerprint(P);
+  const uint64_t mesh = SceneMeshFingerprint(P), physics = PhysicsFingerprint(P);
   const double dbl[3] = {st.t, st.dt, st.dt_last};
   const long long ints[5] = {(long long)st.step, (long long)st.converged_states, (long long)st.easy,
                              (long long)st.cutbacks, (long long)st.newton};
@@ -332,7 +337,7 @@ PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
   std::string table = OptionDifferences(options, now);
   const bool same_shape = cp.nodes == sh.nodes && cp.elements == sh.elements && cp.pairs == sh.pairs &&
                           cp.history == sh.history && cp.stages == sh.stages;
-  if (mesh != MeshFingerprint(P->scene.mesh))
+  if (mesh != SceneMeshFingerprint(P))
     table += "\n    mesh: checkpoint " + std::to_string(cp.nodes) + " nodes, " + std::to_string(cp.elements) +
              " triangles; this run " + std::to_string(sh.nodes) + ", " + std::to_string(sh.elements) +
              (cp.nodes == sh.nodes && cp.elements == sh.elements ? " (other coordinates or groups)" : "");
@@ -348,7 +353,7 @@ PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
              "-restart %s: this run's physics differs from the checkpoint's run:%s\n  Nothing was changed. A restart "
              "continues the same history: give the options of that run (stored in the checkpoint: h5dump -a options "
              "%s); only solver, output and monitor options may change (-snes_*, -ksp_*, -pc_*, -mat_*, "
-             "-load_force_rtol, -load_max_cutbacks, -output*, -checkpoint_*, -load_monitor, -load_stop_after, ...)",
+             "-load_force_rtol, -load_max_cutbacks, -load_max_it, -output*, -checkpoint_*, -load_monitor, -load_stop_after, ...)",
              path.c_str(), table.c_str(), path.c_str());
   PetscFunctionReturn(0);
 }
@@ -418,5 +423,7 @@ PetscErrorCode CheckpointRead(Problem *P, const std::string &path, StepperState 
   PetscCall(ierr);
   PetscFunctionReturn(0);
 }
+
+std::uint64_t CheckpointMeshFingerprint(const MeshData &mesh) { return MeshFingerprint(mesh); }
 
 } // namespace etfe

@@ -4,7 +4,7 @@
 // what is written, never what is computed. Allowed to change:
 //   solvers      -snes_* -ksp_* -pc_* -mat_* (MUMPS, ...) -sub_* -mg_* -redundant_* -fieldsplit_*
 //                -etfe_lu_native_max_dof
-//                -load_force_rtol -load_max_cutbacks -load_grow_after -load_easy_iterations
+//                -load_force_rtol -load_max_cutbacks -load_max_it -load_grow_after -load_easy_iterations
 //                -load_extrapolate -load_tangent_predictor* (predictors and the cut-back policy)
 //                -load_force_roundoff (the round-off floor of the force test)
 //                -membrane_tangent_* (shift, adaptive shift, tension only: the Newton path only)
@@ -34,7 +34,7 @@ namespace {
 
 const char *const kMayChange[] = {
     "snes_", "ksp_", "pc_", "mat_", "sub_", "mg_", "redundant_", "fieldsplit_",
-    "load_force_rtol", "load_max_cutbacks", "load_grow_after", "load_easy_iterations", "load_extrapolate",
+    "load_force_rtol", "load_max_cutbacks", "load_max_it", "load_grow_after", "load_easy_iterations", "load_extrapolate",
     "load_tangent_predictor", "membrane_tangent_", "formfind_monitor", "load_force_roundoff",
     "membrane_near_null_space", "etfe_lu_native_max_dof",
     "output", "checkpoint_", "restart", "contact_probe_nodes", "saddle_history", "load_monitor", "load_stop_after",

@@ -500,19 +500,12 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
   hid_t mesh = H5Gcreate2(out->file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   hid_t steps = H5Gcreate2(out->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  const MeshData &gm = P->scene.mesh;
-  PetscInt n = PETSC_DECIDE, N = gm.NumNodes(), lo = 0;
-  PetscCall(PetscSplitOwnership(P->comm, &n, &N));
-  PetscCallMPI(MPI_Exscan(&n, &lo, 1, MPIU_INT, MPI_SUM, P->comm));
-  if (P->rank == 0) lo = 0;
-  PetscCall(H5WriteRows(out->path, mesh, "coordinates", H5T_NATIVE_DOUBLE, N, 3, lo, n,
-                      gm.coords.data() + 3 * lo));
-  PetscInt ne = PETSC_DECIDE, NE = gm.NumElements(), elo = 0;
-  PetscCall(PetscSplitOwnership(P->comm, &ne, &NE));
-  PetscCallMPI(MPI_Exscan(&ne, &elo, 1, MPIU_INT, MPI_SUM, P->comm));
-  if (P->rank == 0) elo = 0;
-  PetscCall(H5WriteRows(out->path, mesh, "triangles", H5T_NATIVE_INT, NE, 3, elo, ne,
-                      gm.triangles.data() + 3 * elo));
+  // From each rank's part, in the scene's order (a load history no longer holds the global mesh).
+  const LocalMesh &m = P->mesh;
+  PetscCall(WriteField(out, mesh, "coordinates", Layout::Nodes, 3, m.X.data()));
+  std::vector<double> tri(3 * (size_t)m.num_elements);  // scene node ids, exact as doubles
+  for (size_t k = 0; k < tri.size(); ++k) tri[k] = (double)m.natural_id[m.tri[k]];
+  PetscCall(WriteField(out, mesh, "triangles", Layout::Cells, 3, tri.data(), true));
   H5Gclose(mesh);
   H5Gclose(steps);
   H5Fflush(out->file, H5F_SCOPE_GLOBAL);
@@ -589,6 +582,8 @@ PetscErrorCode OutputGatherShape(Problem *P, Vec U, MeshData *shape) {
   const PetscScalar *u;
   PetscScalar *a;
   PetscFunctionBeginUser;
+  PetscCheck(!P->scene_mesh_released, P->comm, PETSC_ERR_PLIB,
+             "the shape needs the scene's topology, released after set-up (ProblemReleaseSceneMesh)");
   PetscCall(VecCreateMPI(P->comm, 3 * m.num_owned, 3 * m.num_nodes_global, &src));
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(VecGetArray(src, &a));

@@ -44,6 +44,8 @@ SaddleShapeNodes SaddleShapeNodesOf(const MeshData &m, const SaddleGeometry &g) 
   SaddleShapeNodes n;
   n.centre = SaddleNearestNode(m, 0.0, 0.0);
   n.corner = SaddleNearestNode(m, 0.5 * (g.arch_x + g.half_length), 0.0);
+  n.h1_start = m.coords[3 * n.centre + 2];
+  n.h2_start = m.coords[3 * n.corner + 2];
   auto it = m.node_sets.find("sym_x");
   if (it != m.node_sets.end()) n.cut_line = it->second;
   std::sort(n.cut_line.begin(), n.cut_line.end(),
@@ -74,7 +76,7 @@ PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const Sadd
   if (start) {
     // The initial surface: for the DD cases the form-found (minimal-surface) target of thesis
     // Fig. 5.23, for the PD cases the arch extruded and ruled.
-    const double h1_0 = P->scene.mesh.coords[3 * n.centre + 2], h2_0 = P->scene.mesh.coords[3 * n.corner + 2];
+    const double h1_0 = n.h1_start, h2_0 = n.h2_start;
     PetscCall(PetscPrintf(P->comm,
                           "saddle: initial surface h1_start = %.3f mm, h2_start = %.3f mm; drawn - start: dh1 = %+.3f mm, dh2 = %+.3f mm\n",
                           h1_0, h2_0, xc[2] - h1_0, xk[2] - h2_0));

@@ -36,6 +36,7 @@ int SaddleNearestNode(const MeshData &m, double x, double y);
 struct SaddleShapeNodes {
   int centre = -1, corner = -1;
   std::vector<int> cut_line;
+  double h1_start = 0.0, h2_start = 0.0;  // the initial surface's heights there (the mesh's Z)
 };
 SaddleShapeNodes SaddleShapeNodesOf(const MeshData &m, const SaddleGeometry &g);
 // Prints h1, h2, the middle sag (rise H - h1) and curvature, and the middle cutting line at the

@@ -30,6 +30,7 @@ struct StretchContext {
   Box part_a{0, 0, 400, 400}, part_b{1300, 0, 1700, 400};
   PetscInt elem_i = -1, elem_ii = -1;  // scene element ids
   std::vector<int> slide_nodes;        // arch nodes I..V
+  std::vector<double> slide_y;         // their Y on the initial surface
   std::vector<char> in_a, in_b;        // per scene element
   std::string history;                 // -saddle_history ("": beside the results)
   PetscInt drawing_stages = 0;
@@ -189,7 +190,7 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
   }
   for (size_t k = 0; k < c->slide_nodes.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "saddle: slide_%zu (Y = %.0f) X = %.4f mm, Y = %.4f mm\n", k + 1,
-                          P->scene.mesh.coords[3 * c->slide_nodes[k] + 1], v.slide[2 * k], v.slide[2 * k + 1]));
+                          c->slide_y[k], v.slide[2 * k], v.slide[2 * k + 1]));
   PetscCall(SaddleShapeReport(P, c->g, c->shape, true));  // the saddle heights of thesis L1866-1875
   PetscFunctionReturn(0);
 }
@@ -351,7 +352,10 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   }
   c->elem_i = NearestElement(m, elem_i[0], elem_i[1]);
   c->elem_ii = NearestElement(m, elem_ii[0], elem_ii[1]);
-  for (double y : slides) c->slide_nodes.push_back(SaddleNearestNode(m, A, y));
+  for (double y : slides) {
+    c->slide_nodes.push_back(SaddleNearestNode(m, A, y));
+    c->slide_y.push_back(m.coords[3 * c->slide_nodes.back() + 1]);
+  }
   c->history = history;
   c->shape = SaddleShapeNodesOf(m, g);
   observer->step_monitor = StretchStep;

@@ -84,6 +84,7 @@ with scratch_dir() as tmp:
                   "the refused restart (%s) left the results file unchanged" % " ".join(map(str, args)))
     # Solver and output options may change on a restart.
     rc, out = run(etfe, capstan[:-1] + [os.path.join(tmp, "solver_change.h5"), "-restart", ck_cap,
-                                        "-snes_rtol", "1e-10", "-load_max_cutbacks", 8])
-    chk.check(rc == 0 and "restart: from" in out, "a restart with other solver options (-snes_rtol, -load_max_cutbacks) runs")
+                                        "-snes_rtol", "1e-10", "-load_max_cutbacks", 8, "-load_max_it", 40])
+    chk.check(rc == 0 and "restart: from" in out,
+              "a restart with other solver options (-snes_rtol, -load_max_cutbacks, -load_max_it) runs")
 chk.finish()

@@ -17,6 +17,7 @@ import h5py
 import numpy as np
 
 from etfe_testlib import Checker, etfe_path, run, scene_values, scratch_dir, summary, REPO
+from pattern_meshes import read_msh41_nodes
 import h5compare
 
 etfe = etfe_path()
@@ -71,6 +72,19 @@ with scratch_dir() as tmp:
     v2, out2, f2 = case([], "dd1511_np2", np=2)
     fails = h5compare.compare(f1, f2, step="all", default_rtol=1e-7, default_atol=1e-9)
     chk.check(not fails, "2 ranks agree with 1 rank (rtol 1e-7)%s" % ("" if not fails else ": %s" % fails[:2]))
+    # The results' mesh is written from each rank's part (the global mesh is released after
+    # set-up): the Gmsh file's nodes in its order, and the same triangles on 1 and 2 ranks.
+    nodes = read_msh41_nodes(msh)
+    x_file = np.array([nodes[t] for t in sorted(nodes)])
+    with h5py.File(f1, "r") as a, h5py.File(f2, "r") as b:
+        x1, x2 = a["mesh/coordinates"][()], b["mesh/coordinates"][()]
+        t1, t2 = a["mesh/triangles"][()], b["mesh/triangles"][()]
+    chk.check(x1.shape == x_file.shape and np.array_equal(x1, x_file) and np.array_equal(x2, x_file),
+              "results mesh/coordinates on 1 and 2 ranks = the mesh file's nodes (%d)" % len(x_file))
+    used = np.zeros(len(x_file), bool)
+    used[t1.ravel()] = True
+    chk.check(np.array_equal(t1, t2) and t1.shape == (1444, 3) and used.all() and t1.dtype.kind == "i",
+              "results mesh/triangles: integers, the same on 1 and 2 ranks, every node used (%s)" % (t1.shape,))
 
     vp, outp, fp = case(["-saddle_pressure_cycle", "0.5,0,1,0,1.5,0,2,0", "-load_increments", 120], "pressure")
     with h5py.File(fp, "r") as f:
