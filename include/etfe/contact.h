@@ -37,6 +37,9 @@ struct ContactPair {
   double g0[3];           // gap at t0 (local), the origin of the reported slide
   double X[3];            // reference position of the film node
   double d0;              // distance to the support surface at t0 (round-off: taken as touching)
+  // Its penalties are params.kn, kt times this: 1, or with -contact_penalty_length L0 its
+  // tributary length along the contact line over L0 (a stiffness per unit length).
+  double k_scale = 1.0;
   // Frozen frame: g and f local (contact_law.h). Following frame: g holds the node's
   // displacement and f the force, both global, so they survive the frame's motion.
   ContactState committed;
@@ -68,6 +71,10 @@ struct ContactSet {
   // the start.
   PetscReal frictionless_until = 0.0;
   std::vector<PetscInt> probe_nodes;  // scene node ids whose pair history goes to CSV
+  // -contact_penalty_length L0 [mm]: kn, kt hold for a pair whose tributary length along its
+  // contact line is L0 and scale with it (0: the same penalties for every pair, the thesis's).
+  PetscReal penalty_length = 0.0;
+  PetscReal k_scale_max = 1.0;  // the largest pair's k_scale (round-off floors take the stiffest pair)
 };
 
 // The -contact_* options, read and range-checked once (collective). default_kn: the penalty when
@@ -77,7 +84,7 @@ struct ContactOptions {
   FrictionLaw law = FrictionLaw::Implicit;
   std::vector<FrictionLaw> stage_laws;  // as given (a law per stage when they differ)
   bool follow = false;
-  PetscReal frictionless_until = 0.0, search_tol = 1e-6;
+  PetscReal frictionless_until = 0.0, search_tol = 1e-6, penalty_length = 0.0;
   std::vector<PetscInt> probe_nodes;
 };
 PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,

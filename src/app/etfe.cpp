@@ -292,6 +292,16 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
   PetscCall(P->material->View(P->comm));
   PetscCall(PetscPrintf(P->comm, "  solver: SNES newtonls, line search %s, KSP %s, PC %s%s%s\n", lstype,
                         ktype, ptype, stype ? " " : "", stype ? stype : ""));
+  if (P->contact && P->contact->penalty_length > 0) {
+    double lo = 1e300, lo_all;
+    for (const ContactPair &pr : P->contact->pairs) lo = std::min(lo, pr.k_scale);
+    PetscCallMPI(MPI_Allreduce(&lo, &lo_all, 1, MPI_DOUBLE, MPI_MIN, P->comm));
+    PetscCall(PetscPrintf(P->comm,
+                          "  contact: %" PetscInt_FMT " pairs, penalties per unit length (kn %g, kt %g N/mm at a tributary "
+                          "length of %g mm; pair factors %.3g-%.3g)\n",
+                          P->contact->num_global, P->contact->params.kn, P->contact->params.kt,
+                          P->contact->penalty_length, lo_all, P->contact->k_scale_max));
+  }
   if (!P->scene.initial_guess_note.empty())
     PetscCall(PetscPrintf(P->comm, "  initial guess: %s\n", P->scene.initial_guess_note.c_str()));
   PetscCall(PrintPeakMemory(P->comm, "after set-up", true));

@@ -77,6 +77,11 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
   PetscCall(PetscOptionsReal("-contact_search_tol",
                              "A film node within this distance of a support surface gets a pair [mm]", "",
                              o->search_tol, &o->search_tol, nullptr));
+  PetscCall(PetscOptionsReal("-contact_penalty_length",
+                             "Penalties per unit length of the contact line: kn, kt hold for a pair whose tributary length "
+                             "along its line is this [mm] and scale with it, so refining the mesh keeps the interface's "
+                             "stiffness (0: the same kn, kt for every pair, the thesis's)",
+                             "", o->penalty_length, &o->penalty_length, nullptr));
   PetscCall(PetscOptionsIntArray("-contact_probe_nodes",
                                  "Film node ids whose contact history is written as CSV beside the results (none by default)",
                                  "", probes, &nprobe, nullptr));
@@ -110,6 +115,8 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
              o->params.kn, o->params.kt);
   PetscCheck(o->search_tol > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-contact_search_tol %g must be positive",
              o->search_tol);
+  PetscCheck(o->penalty_length >= 0 && std::isfinite(o->penalty_length), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_penalty_length %g must be >= 0 (mm; 0: the same penalties for every pair)", o->penalty_length);
   const bool any_lagged = o->law == FrictionLaw::Lagged ||
                           std::count(o->stage_laws.begin(), o->stage_laws.end(), FrictionLaw::Lagged) > 0;
   PetscCheck(!(o->follow && any_lagged), comm, PETSC_ERR_SUP,
@@ -117,6 +124,45 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
              "(thesis) law keeps the thesis's frozen frame");
   // A single "none" makes the whole run frictionless; in a list only its stages are (ContactEvaluate).
   if (one_law && o->law == FrictionLaw::None) o->params.mu = 0.0;
+  PetscFunctionReturn(0);
+}
+
+// -contact_penalty_length: a pair's tributary length is half the length of the mesh edges that
+// join it to other pair nodes, found on the scene's global mesh (still held during set-up; every
+// rank scans it once). The pair nodes must form lines (an arch's crown): a node with more than
+// two such edges lies in a contact area, where a length means nothing.
+static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<PetscInt> &pair_nodes, ContactSet *c) {
+  const MeshData &gm = P->scene.mesh;
+  PetscFunctionBeginUser;
+  PetscCheck(!P->scene_mesh_released, P->comm, PETSC_ERR_PLIB, "contact set-up after the global mesh was released");
+  std::vector<std::pair<int, int>> edges;
+  auto is_pair = [&](int v) { return std::binary_search(pair_nodes.begin(), pair_nodes.end(), (PetscInt)v); };
+  for (int e = 0; e < gm.NumElements(); ++e)
+    for (int a = 0; a < 3; ++a) {
+      const int u = gm.triangles[3 * e + a], v = gm.triangles[3 * e + (a + 1) % 3];
+      if (is_pair(u) && is_pair(v)) edges.emplace_back(std::min(u, v), std::max(u, v));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<double> length(pair_nodes.size(), 0.0);
+  std::vector<int> degree(pair_nodes.size(), 0);
+  for (const auto &ed : edges) {
+    const double *x = &gm.coords[3 * ed.first], *y = &gm.coords[3 * ed.second];
+    const double len = std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
+    for (int v : {ed.first, ed.second}) {
+      const size_t k = std::lower_bound(pair_nodes.begin(), pair_nodes.end(), (PetscInt)v) - pair_nodes.begin();
+      length[k] += 0.5 * len;
+      degree[k]++;
+    }
+  }
+  for (size_t k = 0; k < pair_nodes.size(); ++k)
+    PetscCheck(degree[k] >= 1 && degree[k] <= 2, P->comm, PETSC_ERR_ARG_WRONG,
+               "-contact_penalty_length: contact node %" PetscInt_FMT " has %d mesh edges to other contact nodes; "
+               "penalties per unit length need the contact nodes to form lines (1 or 2 such edges each, as on an "
+               "arch's crown line): drop the option for a contact area",
+               pair_nodes[k], degree[k]);
+  for (ContactPair &pr : c->pairs) pr.k_scale = length[pr.id] / c->penalty_length;
+  c->k_scale_max = *std::max_element(length.begin(), length.end()) / c->penalty_length;
   PetscFunctionReturn(0);
 }
 
@@ -143,6 +189,7 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
       PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));
   c->frictionless_until = o.frictionless_until;
   c->probe_nodes = o.probe_nodes;
+  c->penalty_length = o.penalty_length;
   const PetscReal tol = o.search_tol;
   c->supports = spec.supports;
 
@@ -192,13 +239,14 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
              "contact: no film node lies within -contact_search_tol %g mm of a support; check the "
              "support geometry or raise the tolerance",
              tol);
+  if (c->penalty_length > 0) PetscCall(ScalePenaltiesByLength(P, all, c));
   {
     // The force-balance test cannot see below the round-off of the penalty forces, about
     // 1e2 eps k |u| sqrt(pairs) (load_stepper.cpp). Against forces of about E h |u| / 10 (|u| per
     // unit force measured 5x (capstan) to 18x (saddle) above 1 / (E h)) that floor is the fraction
     // below of the forces to balance; past kPenaltyFloorMax the test would accept visibly wrong
     // answers (kn 1e15 on the saddle: displacements 20 % off), so refuse before solving.
-    const double k = std::max(c->params.kn, c->params.kt), eh = P->AxialStiffness();
+    const double k = std::max(c->params.kn, c->params.kt) * c->k_scale_max, eh = P->AxialStiffness();
     const double per_k = PenaltyRoundoffFloor(1.0, 10.0 / eh, c->num_global);
     PetscCheck(per_k * k <= kPenaltyFloorMax, P->comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-contact_kn %g / -contact_kt %g: the round-off of forces this stiff (~%.2g of the film forces, with "
@@ -234,6 +282,7 @@ int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], Fric
   ContactToLocal(pr.R, pr.committed.f, fc);
   ContactState from{{0, 0, 0}, {fc[0], fc[1], fc[2]}, pr.committed.status};
   ContactParameters p = c.params;
+  p.kn *= pr.k_scale, p.kt *= pr.k_scale;
   if (frictionless || law == FrictionLaw::None) p.mu = 0.0;
   int status;
   if (law == FrictionLaw::Fixed) {
@@ -278,6 +327,7 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
   for (int i = 0; i < 3; ++i) g[i] += pr.g0[i];
   int status = pr.committed.status;
   ContactParameters params = c.params;
+  params.kn *= pr.k_scale, params.kt *= pr.k_scale;
   if (law == FrictionLaw::None) params.mu = 0.0;  // a "none" stage of a per-stage list
   if (frictionless && law != FrictionLaw::Fixed) {
     params.mu = 0.0;
@@ -318,8 +368,11 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
     double fg[3];
     ContactEvaluate(c, pr, &u[3 * l], P->time, fg, nullptr);
     const int before = pr.committed.status;
-    if (ContactLawAt(c, P->time) == FrictionLaw::Lagged)
-      ContactLaggedCommit(c.params, pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
+    if (ContactLawAt(c, P->time) == FrictionLaw::Lagged) {
+      ContactParameters params = c.params;
+      params.kn *= pr.k_scale, params.kt *= pr.k_scale;
+      ContactLaggedCommit(params, pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
+    }
     else pr.committed = pr.trial;
     local[pr.committed.status]++;
     if (pr.committed.status == CONTACT_OPEN && before != CONTACT_OPEN) local[3]++;

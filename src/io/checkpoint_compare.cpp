@@ -154,6 +154,8 @@ std::uint64_t PhysicsFingerprint(const Problem *P) {
       h.Add(std::string("stage_laws")), h.Add(c.stage_laws.size());
       for (FrictionLaw l : c.stage_laws) h.Add((int)l);
     }
+    // Penalties per unit length; off adds nothing, so the fingerprint of such runs is unchanged.
+    if (c.penalty_length > 0) h.Add(std::string("penalty_length")), h.Add(c.penalty_length);
   }
   double young = 0.0, nu = 0.0;
   P->material->ElasticConstants(&young, &nu);

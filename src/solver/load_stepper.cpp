@@ -105,7 +105,7 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
     PetscReal umax;
     PetscCall(SNESGetSolution(snes, &X));
     PetscCall(VecNorm(X, NORM_INFINITY, &umax));
-    const double k = std::max(P->contact->params.kn, P->contact->params.kt);
+    const double k = std::max(P->contact->params.kn, P->contact->params.kt) * P->contact->k_scale_max;
     const double floor = PenaltyRoundoffFloor(k, umax, P->contact->num_global);
     // Accepting on a floor that is a visible part of the forces would report a wrong answer as
     // converged; ContactCreate refuses most such penalties up front, this catches the rest.
