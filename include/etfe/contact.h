@@ -74,7 +74,8 @@ struct ContactSet {
   // -contact_penalty_length L0 [mm]: kn, kt hold for a pair whose tributary length along its
   // contact line is L0 and scale with it (0: the same penalties for every pair, the thesis's).
   PetscReal penalty_length = 0.0;
-  PetscReal k_scale_max = 1.0;  // the largest pair's k_scale (round-off floors take the stiffest pair)
+  // The smallest and largest pair's k_scale, over all ranks (round-off floors take the stiffest).
+  PetscReal k_scale_min = 1.0, k_scale_max = 1.0;
 };
 
 // The -contact_* options, read and range-checked once (collective). default_kn: the penalty when

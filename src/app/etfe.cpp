@@ -247,12 +247,10 @@ PetscErrorCode PrintPeakMemory(MPI_Comm comm, const char *when, bool now = false
   }
   mb[1] = -mb[0], mb[3] = -mb[2];
   PetscCallMPI(MPI_Allreduce(mb, max_mb, 4, MPI_DOUBLE, MPI_MAX, comm));
-  if (now && max_mb[2] > 0)
-    PetscCall(PetscPrintf(comm, "  peak memory per rank %s: %.0f MB (max), %.0f MB (min); resident now %.0f / %.0f MB\n",
-                          when, max_mb[0], -max_mb[1], max_mb[2], -max_mb[3]));
-  else
-    PetscCall(PetscPrintf(comm, "  peak memory per rank %s: %.0f MB (max), %.0f MB (min)\n", when, max_mb[0],
-                          -max_mb[1]));
+  char resident[64] = "";
+  if (now && max_mb[2] > 0) std::snprintf(resident, sizeof resident, "; resident now %.0f / %.0f MB", max_mb[2], -max_mb[3]);
+  PetscCall(PetscPrintf(comm, "  peak memory per rank %s: %.0f MB (max), %.0f MB (min)%s\n", when, max_mb[0], -max_mb[1],
+                        resident));
   PetscFunctionReturn(0);
 }
 
@@ -292,16 +290,12 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
   PetscCall(P->material->View(P->comm));
   PetscCall(PetscPrintf(P->comm, "  solver: SNES newtonls, line search %s, KSP %s, PC %s%s%s\n", lstype,
                         ktype, ptype, stype ? " " : "", stype ? stype : ""));
-  if (P->contact && P->contact->penalty_length > 0) {
-    double lo = 1e300, lo_all;
-    for (const ContactPair &pr : P->contact->pairs) lo = std::min(lo, pr.k_scale);
-    PetscCallMPI(MPI_Allreduce(&lo, &lo_all, 1, MPI_DOUBLE, MPI_MIN, P->comm));
+  if (P->contact && P->contact->penalty_length > 0)
     PetscCall(PetscPrintf(P->comm,
                           "  contact: %" PetscInt_FMT " pairs, penalties per unit length (kn %g, kt %g N/mm at a tributary "
                           "length of %g mm; pair factors %.3g-%.3g)\n",
                           P->contact->num_global, P->contact->params.kn, P->contact->params.kt,
-                          P->contact->penalty_length, lo_all, P->contact->k_scale_max));
-  }
+                          P->contact->penalty_length, P->contact->k_scale_min, P->contact->k_scale_max));
   if (!P->scene.initial_guess_note.empty())
     PetscCall(PetscPrintf(P->comm, "  initial guess: %s\n", P->scene.initial_guess_note.c_str()));
   PetscCall(PrintPeakMemory(P->comm, "after set-up", true));

@@ -162,7 +162,9 @@ static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<Petsc
                "arch's crown line): drop the option for a contact area",
                pair_nodes[k], degree[k]);
   for (ContactPair &pr : c->pairs) pr.k_scale = length[pr.id] / c->penalty_length;
-  c->k_scale_max = *std::max_element(length.begin(), length.end()) / c->penalty_length;
+  const auto [shortest, longest] = std::minmax_element(length.begin(), length.end());
+  c->k_scale_min = *shortest / c->penalty_length;
+  c->k_scale_max = *longest / c->penalty_length;
   PetscFunctionReturn(0);
 }
 
@@ -268,12 +270,19 @@ PetscErrorCode ContactDestroy(ContactSet **c) {
 
 namespace {
 
+// A pair's penalties: the set's, scaled by the pair's share of the contact line.
+ContactParameters PairParameters(const ContactSet &c, const ContactPair &pr) {
+  ContactParameters p = c.params;
+  p.kn *= pr.k_scale, p.kt *= pr.k_scale;
+  return p;
+}
+
 // Following frame: the master point is the closest point of the support to the node now. The
 // law sees the slide since the last commit in the current tangent plane and the committed
 // force carried into the current frame; the tangent keeps the frame fixed within an iteration
 // (its rotation contributes O(f / radius), small against the penalties).
-int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], FrictionLaw law, bool frictionless,
-                   double fg[3], double Kg[9]) {
+int EvaluateFollow(const ContactSet &c, ContactPair &pr, ContactParameters p, const double u[3], FrictionLaw law,
+                   bool frictionless, double fg[3], double Kg[9]) {
   double x[3], du[3], g[3], f[3], K[9], fc[3];
   for (int i = 0; i < 3; ++i) x[i] = pr.X[i] + u[i], du[i] = u[i] - pr.committed.g[i];
   const double d = SupportProject(c.supports[pr.support], x, pr.M, pr.R);
@@ -281,8 +290,6 @@ int EvaluateFollow(const ContactSet &c, ContactPair &pr, const double u[3], Fric
   g[2] = d - pr.d0;
   ContactToLocal(pr.R, pr.committed.f, fc);
   ContactState from{{0, 0, 0}, {fc[0], fc[1], fc[2]}, pr.committed.status};
-  ContactParameters p = c.params;
-  p.kn *= pr.k_scale, p.kt *= pr.k_scale;
   if (frictionless || law == FrictionLaw::None) p.mu = 0.0;
   int status;
   if (law == FrictionLaw::Fixed) {
@@ -321,13 +328,12 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
                     double fg[3], double Kg[9]) {
   const bool frictionless = time <= c.frictionless_until + 1e-12;
   const FrictionLaw law = ContactLawAt(c, time);
-  if (c.follow) return EvaluateFollow(c, pr, u, law, frictionless, fg, Kg);
+  ContactParameters params = PairParameters(c, pr);
+  if (c.follow) return EvaluateFollow(c, pr, params, u, law, frictionless, fg, Kg);
   double g[3], f[3], K[9];
   ContactToLocal(pr.R, u, g);
   for (int i = 0; i < 3; ++i) g[i] += pr.g0[i];
   int status = pr.committed.status;
-  ContactParameters params = c.params;
-  params.kn *= pr.k_scale, params.kt *= pr.k_scale;
   if (law == FrictionLaw::None) params.mu = 0.0;  // a "none" stage of a per-stage list
   if (frictionless && law != FrictionLaw::Fixed) {
     params.mu = 0.0;
@@ -368,11 +374,8 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
     double fg[3];
     ContactEvaluate(c, pr, &u[3 * l], P->time, fg, nullptr);
     const int before = pr.committed.status;
-    if (ContactLawAt(c, P->time) == FrictionLaw::Lagged) {
-      ContactParameters params = c.params;
-      params.kn *= pr.k_scale, params.kt *= pr.k_scale;
-      ContactLaggedCommit(params, pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
-    }
+    if (ContactLawAt(c, P->time) == FrictionLaw::Lagged)
+      ContactLaggedCommit(PairParameters(c, pr), pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
     else pr.committed = pr.trial;
     local[pr.committed.status]++;
     if (pr.committed.status == CONTACT_OPEN && before != CONTACT_OPEN) local[3]++;
