@@ -55,8 +55,17 @@ PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields, bo
 // Largest nodal (3-vector) norm of a block-3 vector (collective).
 PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max);
 // Collective look-ups by scene (natural) id, for scene reports and probes: current position
-// X + U, displacement.
+// X + U (U null: the reference position X), displacement.
 PetscErrorCode ProblemGetNodePosition(Problem *problem, Vec U, PetscInt node, double x[3]);
 PetscErrorCode ProblemGetNodeDisplacement(Problem *problem, Vec U, PetscInt node, double u[3]);
+// Collective look-ups on the distributed mesh for a scene observer's setup, in plan (X, Y of the
+// reference coordinates): the scene id of the nearest node, of the element whose centroid is
+// nearest (the lowest id among equals, as a scan of the global mesh finds), and every scene id
+// of a named node set, ascending, on every rank (an unknown name is an error naming it).
+PetscErrorCode ProblemNearestNode(Problem *problem, double x, double y, PetscInt *node);
+PetscErrorCode ProblemNearestElement(Problem *problem, double x, double y, PetscInt *element);
+PetscErrorCode ProblemNodeSetIds(Problem *problem, const char *name, std::vector<PetscInt> *ids);
+// Per local node (owned and ghost): 1 in the named node set, else 0 (not collective).
+PetscErrorCode ProblemNodeSetFlags(Problem *problem, const char *name, std::vector<char> *flags);
 
 } // namespace etfe

@@ -44,9 +44,12 @@ PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const 
 // change on a restart (solver, output, monitors: checkpoint_compare.cpp) must agree, and a
 // refusal lists each differing option with both values. Returns the increment and run id.
 PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id);
-// The fingerprint a checkpoint compares the mesh by (coordinates, triangles, node and element
-// sets; the same on every rank): what ProblemReleaseSceneMesh keeps of the global mesh.
-std::uint64_t CheckpointMeshFingerprint(const MeshData &mesh);
+// Takes the fingerprints a checkpoint compares the scene by from rank 0's global description
+// (the mesh: coordinates, triangles, node and element sets; the physics: schedules, constraints,
+// loads, supports, element data, with the problem's thickness and area ratio) and stores them
+// in the problem on every rank (collective). Call it before ProblemCreate, which may drop the
+// description once distributed.
+PetscErrorCode CheckpointFingerprintScene(MPI_Comm comm, const SceneSpec &scene, Problem *problem);
 // Refuses (with the reason) a checkpoint of another scene, mesh, material, contact set or
 // physics options, or one whose data do not match its checksum.
 PetscErrorCode CheckpointRead(Problem *problem, const std::string &path, StepperState *state,

@@ -23,7 +23,10 @@ struct Problem;
 // a monitor after every converged increment, and monitor state that a restart must restore
 // (rank-independent). The scene's builder fills it (scenes layer), the app hands it to the
 // problem, which owns ctx; the load stepper, the checkpoint and the app call it (collective).
+// The builder sees the global mesh on rank 0 only: what the observer needs of the mesh (probe
+// nodes and elements, node lists) it finds in setup, on the distributed problem.
 struct SceneObserver {
+  PetscErrorCode (*setup)(Problem *, void *ctx) = nullptr;
   PetscErrorCode (*report)(Problem *, void *ctx) = nullptr;
   // print_every: the load stepper's -load_monitor (0: quiet), so a monitor's lines thin alike.
   PetscErrorCode (*step_monitor)(Problem *, void *ctx, PetscInt step, double time, PetscInt print_every) = nullptr;
@@ -41,11 +44,16 @@ void SceneObserverDestroy(SceneObserver *observer);
 struct Problem {
   MPI_Comm comm;
   PetscMPIInt rank = 0, size = 1;
-  // The scene as built. A load history drops its global arrays once set up
-  // (ProblemReleaseSceneMesh): then each rank holds only its part of the mesh (`mesh`).
+  // The scene as built. Its global mesh and lists exist on rank 0 only (the reader), which
+  // sends each rank its share (`mesh` and the lists below); a load history then drops them at
+  // once (ProblemReleaseScene). The small fields (name, schedules, supports, ...) are on every rank.
   SceneSpec scene;
-  bool scene_mesh_released = false;
-  std::uint64_t scene_mesh_fingerprint = 0;  // of the released mesh, for a restart's comparison
+  bool scene_released = false;
+  // Of the global description, the same on every rank (CheckpointFingerprintScene): the mesh,
+  // and the state of the physics hash after the scene's part, for a restart's comparison.
+  std::uint64_t scene_mesh_fingerprint = 0, scene_physics_state = 0;
+  bool has_initial_guess = false;            // the scene gave an initial displacement
+  std::vector<double> element_stress_ratio;  // form finding: MD:TD per local element (empty: uniform)
   SceneObserver observer;
   LocalMesh mesh;
   double thickness = 0.25;  // mm
@@ -121,17 +129,17 @@ struct Problem {
   PetscInt NumDofsLocal() const { return 3 * mesh.NumLocal(); }
 };
 
-// Distributes the scene's mesh (local_mesh.h), builds vectors, the preallocated matrix and the
-// local constraint/pressure/force lists, and puts U at the prescribed values of load time 0.
-PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material,
+// Distributes the scene (rank 0's global description: local_mesh.h, scene_share.h), builds
+// vectors, the preallocated matrix and the local constraint/pressure/force lists, and puts U at
+// the prescribed values of load time 0. Unless keep_scene, rank 0's global description is
+// dropped as soon as it is distributed (ProblemReleaseScene); form finding keeps it.
+PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material, bool keep_scene,
                              Problem *problem);
-// Frees what only set-up needed on every rank: the scene mesh's coordinates, triangles, Gmsh tags
-// and element sets, and the stress-free element shapes (SceneSpec::element_reference), all of
-// O(global mesh) size; the node sets, the source name and every small field stay. fingerprint
-// stands in for the mesh in a checkpoint's comparison (CheckpointMeshFingerprint). Call after
-// everything that reads the global mesh is set up (the contact set); a form-finding run keeps
-// it (it writes the found shape with the scene's topology).
-PetscErrorCode ProblemReleaseSceneMesh(Problem *problem, std::uint64_t fingerprint);
+// Frees the scene's global description on rank 0 (mesh, constraints, forces, pressure elements,
+// initial guess, element ratios and stress-free shapes: O(global mesh)); every small field stays.
+// A form-finding run keeps it (rank 0 writes the found shape with the scene's topology and cuts
+// its patterns).
+PetscErrorCode ProblemReleaseScene(Problem *problem);
 // Hands the contact set (ContactCreate) to the problem, which owns it from then on.
 PetscErrorCode ProblemSetContact(Problem *problem, ContactSet *contact);
 PetscErrorCode ProblemDestroy(Problem *problem);

@@ -52,6 +52,9 @@ struct ContactSpec {
   double search_tol = 1e-6;  // mm, | distance to the support surface | below this makes a pair
 };
 
+// The mesh and every list indexed by its nodes or elements (constraints, nodal forces, pressure
+// elements, element ratios and stress-free shapes, initial guess) are filled on rank 0 only, the
+// reader; the other fields are the same on every rank (scene_registry.h).
 struct SceneSpec {
   std::string name;
   // Set by the app before the builder runs (-analysis formfind): a scene that offers both

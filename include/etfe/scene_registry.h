@@ -19,8 +19,15 @@ PetscErrorCode SceneRegister(const char name[], SceneBuilder builder, const char
 // Builds the scene named by -scene (collective). Unknown names list the registered ones.
 PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer);
 
-// Reads the mesh named by -mesh_file on rank 0 and broadcasts it; used by scenes that accept a
-// Gmsh file instead of their generator.
-PetscErrorCode MeshReadAndBroadcast(MPI_Comm comm, const char path[], MeshData *mesh);
+// The global mesh lives on rank 0 only, the reader: a builder makes or reads it there
+// (SceneHoldsMesh), fills what is indexed by it (sets, constraints, loads, element data) from it
+// there, and decides anything that depends on it there too, reporting to every rank with
+// Rank0Outcome (rank0.h). On the other ranks the mesh stays empty, so loops over it do nothing;
+// ProblemCreate sends each rank its share. What an observer needs of the mesh it finds in its
+// setup, on the distributed problem (SceneObserver::setup).
+bool SceneHoldsMesh(MPI_Comm comm);
+// Reads, orients and checks the Gmsh file on rank 0 (the mesh of the other ranks gets the source
+// name only); used by scenes that accept a file instead of their generator.
+PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh);
 
 } // namespace etfe

@@ -108,15 +108,19 @@ PetscErrorCode ProjectOnNormals(Problem *P, Vec U) {
   PetscFunctionReturn(0);
 }
 
-double ModelSize(const MeshData &mesh) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (int n = 0; n < mesh.NumNodes(); ++n)
+// The diagonal of the mesh's bounding box (collective).
+PetscErrorCode ModelSize(Problem *P, double *size) {
+  double ext[6] = {1e300, 1e300, 1e300, 1e300, 1e300, 1e300}, all[6];  // min X, -max X
+  PetscFunctionBeginUser;
+  for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
     for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], mesh.coords[3 * n + i]);
-      hi[i] = std::max(hi[i], mesh.coords[3 * n + i]);
+      ext[i] = std::min(ext[i], P->mesh.X[3 * l + i]);
+      ext[3 + i] = std::min(ext[3 + i], -P->mesh.X[3 * l + i]);
     }
-  return std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                   (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  PetscCallMPI(MPI_Allreduce(ext, all, 6, MPI_DOUBLE, MPI_MIN, P->comm));
+  *size = std::sqrt((-all[3] - all[0]) * (-all[3] - all[0]) + (-all[4] - all[1]) * (-all[4] - all[1]) +
+                    (-all[5] - all[2]) * (-all[5] - all[2]));
+  PetscFunctionReturn(0);
 }
 
 } // namespace
@@ -129,15 +133,15 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
   PetscCall(PetscTime(&t0));
   PetscCall(VecDuplicate(P->U, &U_total));
   PetscCall(VecZeroEntries(U_total));
-  const double size = ModelSize(P->scene.mesh);
+  double size = 0.0;
+  PetscCall(ModelSize(P, &size));
   const double t_end = P->scene.NumStages();  // boundaries at their final (prescribed) positions
   res->converged = PETSC_FALSE;
   // A scene may give each element its own stress ratio (the saddle: middle 1:1, corners 3:1).
   // The prescribed-stress material keeps (S_MD, S_TD) as its element history.
-  const auto &ratio = P->scene.element_stress_ratio;
+  const auto &ratio = P->element_stress_ratio;
   if (!ratio.empty())
-    for (PetscInt e = 0; e < P->mesh.num_elements; ++e)
-      P->history[2 * e] = ratio[P->mesh.element_natural[e]] * P->history[2 * e + 1];
+    for (PetscInt e = 0; e < P->mesh.num_elements; ++e) P->history[2 * e] = ratio[e] * P->history[2 * e + 1];
   for (PetscInt it = 1; it <= o.max_iterations; ++it) {
     PetscCall(VecZeroEntries(P->U));
     PetscCall(ProblemSetLoadTime(P, t_end, P->U));

@@ -163,16 +163,17 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const
              "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
              "prescribes the stress: drop the option for -analysis formfind");
   if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
-  PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), P));
+  PetscCall(CheckpointFingerprintScene(comm, scene, P));
+  // A load history keeps only each rank's part (form finding keeps the global description on
+  // rank 0, which writes the found shape with the scene's topology).
+  PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), formfind, P));
   P->observer = observer;
   if (P->scene.contact.active) {
     ContactSet *contact;
     PetscCall(ContactCreate(P, &contact));
     PetscCall(ProblemSetContact(P, contact));
   }
-  // Set up: a load history keeps only each rank's part of the mesh (form finding writes its
-  // shape with the scene's topology and keeps it).
-  if (!formfind) PetscCall(ProblemReleaseSceneMesh(P, CheckpointMeshFingerprint(P->scene.mesh)));
+  if (P->observer.setup) PetscCall(P->observer.setup(P, P->observer.ctx));
   P->tangent_shift *= P->AxialStiffness();  // relative -> N/mm
   PetscCall(CreateSolver(P, snes));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, lso));
@@ -232,7 +233,7 @@ PetscErrorCode PlanStretchOnce(MPI_Comm comm, void *, PlanRunFields *fields) {
 // Peak resident memory of each rank so far (the kernel's high-water mark, set-up included), as
 // max / min over the ranks in MB: what a user sizing a dense run needs, printed after set-up and
 // at the end; with now, also what each rank holds at this moment (after set-up: without the
-// global mesh a load history has released, ProblemReleaseSceneMesh).
+// global description rank 0 read and a load history has released, ProblemReleaseScene).
 PetscErrorCode PrintPeakMemory(MPI_Comm comm, const char *when, bool now = false) {
   struct rusage ru;
   double mb[4], max_mb[4];
@@ -278,18 +279,27 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
   PetscCall(PetscPrintf(P->comm, "etfe: scene %s\n", P->scene.name.c_str()));
   PetscCall(PetscPrintf(P->comm, "  mesh: %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT
                         " triangles, %" PetscInt_FMT " DOF\n",
-                        P->scene.mesh.source.c_str(), P->mesh.num_nodes_global,
+                        P->mesh.source.c_str(), P->mesh.num_nodes_global,
                         P->mesh.num_elements_global, 3 * P->mesh.num_nodes_global));
   PetscCall(PetscPrintf(P->comm, "  ranks: %d (METIS), elements per rank %" PetscInt_FMT "-%" PetscInt_FMT
                         ", owned nodes per rank %" PetscInt_FMT "-%" PetscInt_FMT " (imbalance %.3f)\n",
                         P->size, emin, emax, nmin, nmax,
                         emax * (double)P->size / std::max<PetscInt>(1, P->mesh.num_elements_global)));
-  PetscCall(PetscPrintf(P->comm, "  physics: membrane (TL, h0 = %g mm), %s material%s, %zu constrained DOF\n",
-                        P->thickness, P->material->Name(),
-                        P->has_pressure ? ", follower pressure" : "", P->scene.constraints.size()));
+  PetscInt ncon = (PetscInt)P->con_owned_dof.size(), ncon_all;
+  PetscCallMPI(MPI_Allreduce(&ncon, &ncon_all, 1, MPIU_INT, MPI_SUM, P->comm));
+  PetscCall(PetscPrintf(P->comm, "  physics: membrane (TL, h0 = %g mm), %s material%s, %" PetscInt_FMT " constrained DOF\n",
+                        P->thickness, P->material->Name(), P->has_pressure ? ", follower pressure" : "", ncon_all));
   PetscCall(P->material->View(P->comm));
   PetscCall(PetscPrintf(P->comm, "  solver: SNES newtonls, line search %s, KSP %s, PC %s%s%s\n", lstype,
                         ktype, ptype, stype ? " " : "", stype ? stype : ""));
+  {
+    // The streamed set-up: rank 0 alone held the global mesh and description and sent each rank
+    // its share (src/mesh/distribute.cpp).
+    double kb[2] = {P->mesh.share_bytes / 1024.0, -(P->mesh.share_bytes / 1024.0)}, all[2];
+    PetscCallMPI(MPI_Allreduce(kb, all, 2, MPI_DOUBLE, MPI_MAX, P->comm));
+    PetscCall(PetscPrintf(P->comm, "  set-up: rank 0 built the scene and sent each rank its share: %.0f kB (max), %.0f kB (min)\n",
+                          all[0], -all[1]));
+  }
   if (P->contact && P->contact->penalty_length > 0)
     PetscCall(PetscPrintf(P->comm,
                           "  contact: %" PetscInt_FMT " pairs, penalties per unit length (kn %g, kt %g N/mm at a tributary "

@@ -1,50 +1,27 @@
-// The Problem built from a scene description: the local mesh (src/mesh/distribute.cpp), the
-// history the material keeps, the constraints and loads on local DOFs, vectors and the matrix.
-// Preallocation is exact: it is counted on the global mesh, which also sees the elements of
-// other ranks that touch an owned node.
+// The Problem built from a scene description: the local mesh and this rank's share of the
+// scene's lists (scene_share.cpp, sent by rank 0, the only rank that holds the global
+// description), the history the material keeps, the constraints and loads on local DOFs,
+// vectors and the exactly preallocated matrix.
 #include <petscsnes.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <string>
 
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
+#include "scene_share.h"
 
 namespace etfe {
 
-static PetscErrorCode CreateMatrix(Problem *P, const MeshData &gm,
-                                   const std::vector<PetscInt> &petsc_id) {
-  LocalMesh &m = P->mesh;
-  const PetscInt n = m.num_owned, start = m.owned_start;
+static PetscErrorCode CreateMatrix(Problem *P, const std::vector<PetscInt> &d_nnz, const std::vector<PetscInt> &o_nnz) {
+  const PetscInt n = P->mesh.num_owned;
   PetscFunctionBeginUser;
-  // Neighbour lists of owned nodes over all elements of the global mesh.
-  std::vector<PetscInt> count(n + 1, 0);
-  const int ne = gm.NumElements();
-  for (int e = 0; e < ne; ++e)
-    for (int a = 0; a < 3; ++a) {
-      PetscInt row = petsc_id[gm.triangles[3 * e + a]] - start;
-      if (row >= 0 && row < n) count[row + 1] += 3;
-    }
-  std::partial_sum(count.begin(), count.end(), count.begin());
-  std::vector<PetscInt> cols(count[n]), fill(count.begin(), count.end() - 1);
-  for (int e = 0; e < ne; ++e)
-    for (int a = 0; a < 3; ++a) {
-      PetscInt row = petsc_id[gm.triangles[3 * e + a]] - start;
-      if (row < 0 || row >= n) continue;
-      for (int b = 0; b < 3; ++b) cols[fill[row]++] = petsc_id[gm.triangles[3 * e + b]];
-    }
-  std::vector<PetscInt> d_nnz(n), o_nnz(n);
-  for (PetscInt r = 0; r < n; ++r) {
-    auto first = cols.begin() + count[r], last = cols.begin() + count[r + 1];
-    std::sort(first, last);
-    last = std::unique(first, last);
-    PetscInt d = 0, o = 0;
-    for (auto it = first; it != last; ++it) (*it >= start && *it < start + n) ? ++d : ++o;
-    d_nnz[r] = d;
-    o_nnz[r] = o;
-  }
   PetscCall(MatCreate(P->comm, &P->J));
   PetscCall(MatSetSizes(P->J, 3 * n, 3 * n, PETSC_DETERMINE, PETSC_DETERMINE));
   PetscCall(MatSetBlockSize(P->J, 3));
@@ -79,7 +56,7 @@ static PetscErrorCode SetRigidBodyNearNullSpace(Problem *P) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material,
+PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material, bool keep_scene,
                              Problem *P) {
   PetscFunctionBeginUser;
   P->comm = comm;
@@ -87,12 +64,19 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   PetscCallMPI(MPI_Comm_size(comm, &P->size));
   P->scene = std::move(scene);
   P->material = std::move(material);
-  const MeshData &gm = P->scene.mesh;
   LocalMesh &m = P->mesh;
-  const int nn = gm.NumNodes(), ne = gm.NumElements();
-  MeshNumbering numbering;
-  PetscCall(LocalMeshCreate(comm, gm, P->scene.md_axis, P->scene.element_reference, &m, &numbering));
+  SceneShare share;
+  PetscCall(SceneDistribute(comm, P->scene, &m, &share));
+  int guess = P->scene.initial_guess.empty() ? 0 : 1;
+  PetscCallMPI(MPI_Bcast(&guess, 1, MPI_INT, 0, comm));
+  P->has_initial_guess = guess;
+  // From here on each rank works on its share: rank 0's global description goes before the
+  // matrix and the factors are made.
+  if (!keep_scene) PetscCall(ProblemReleaseScene(P));
+  PetscCall(LocalMeshBuildReference(comm, P->scene.md_axis, share.element_reference, &m));
+  std::vector<double>().swap(share.element_reference);
   const PetscInt nl = m.NumLocal();
+  P->element_stress_ratio = std::move(share.element_stress_ratio);
 
   // History only when the material has one.
   const int nh = P->material->HistorySize();
@@ -107,14 +91,8 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
 
   // Constraints: every local DOF (owned or ghost) knows whether it is constrained.
   P->dof_constrained.assign(3 * nl, 0);
-  for (const DofConstraint &c : P->scene.constraints) {
-    PetscCheck(c.node >= 0 && c.node < nn && c.comp >= 0 && c.comp < 3, comm,
-               PETSC_ERR_ARG_OUTOFRANGE,
-               "scene %s: constraint on node %d component %d is outside the mesh (%d nodes)",
-               P->scene.name.c_str(), c.node, c.comp, nn);
-    PetscInt l = numbering.local_of[c.node];
-    if (l < 0) continue;
-    const PetscInt dof = 3 * l + c.comp;
+  for (const DofConstraint &c : share.constraints) {
+    const PetscInt l = c.node, dof = 3 * l + c.comp;
     if (l < m.num_owned && !P->dof_constrained[dof]) {
       P->con_owned_dof.push_back(dof);
       P->con_owned_value.push_back(c.value);
@@ -139,32 +117,17 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   if (P->scene.pressure.active) {
     P->has_pressure = true;
     P->pressure_value = P->scene.pressure.value;
-    std::vector<char> loaded(ne, P->scene.pressure.elements.empty() ? 1 : 0);
-    for (int e : P->scene.pressure.elements) {
-      PetscCheck(e >= 0 && e < ne, comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "scene %s: pressure element %d is outside the mesh (%d elements)",
-                 P->scene.name.c_str(), e, ne);
-      loaded[e] = 1;
-    }
-    for (PetscInt e = 0; e < m.num_elements; ++e)
-      if (loaded[m.element_natural[e]]) P->pressure_elements.push_back(e);
+    P->pressure_elements = std::move(share.pressure_elements);
   }
 
   // Dead nodal forces on owned DOFs.
-  for (const NodalForce &f : P->scene.nodal_forces) {
-    PetscCheck(f.node >= 0 && f.node < nn && f.comp >= 0 && f.comp < 3, comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "scene %s: nodal force on node %d component %d is outside the mesh (%d nodes)",
-               P->scene.name.c_str(), f.node, f.comp, nn);
-    const PetscInt l = numbering.local_of[f.node];
-    if (l >= 0 && l < m.num_owned) {
-      P->force_owned_dof.push_back(3 * l + f.comp);
-      P->force_owned_value.push_back(f.value);
-    }
+  for (const NodalForce &f : share.forces) {
+    P->force_owned_dof.push_back(3 * f.node + f.comp);
+    P->force_owned_value.push_back(f.value);
   }
 
   // Vectors and matrix.
-  std::vector<PetscInt> ghost_ids(m.num_ghost);
-  for (PetscInt g = 0; g < m.num_ghost; ++g) ghost_ids[g] = m.global_id[m.num_owned + g];
+  std::vector<PetscInt> ghost_ids(m.global_id.begin() + m.num_owned, m.global_id.end());
   PetscCall(VecCreateGhostBlock(comm, 3, 3 * m.num_owned, PETSC_DECIDE, m.num_ghost,
                                 ghost_ids.data(), &P->U));
   PetscCall(PetscObjectSetName((PetscObject)P->U, "displacement"));
@@ -173,33 +136,37 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   PetscCall(VecDuplicate(P->U, &P->reaction));
   PetscCall(ISLocalToGlobalMappingCreate(comm, 3, nl, m.global_id.data(), PETSC_COPY_VALUES,
                                          &P->l2g));
-  PetscCall(CreateMatrix(P, gm, numbering.petsc_id));
+  PetscCall(CreateMatrix(P, share.d_nnz, share.o_nnz));
   if (P->near_null_space) PetscCall(SetRigidBodyNearNullSpace(P));
 
   // Initial displacement (scene guess, then the prescribed values at t = 0).
-  if (!P->scene.initial_guess.empty()) {
+  if (!share.initial_guess.empty()) {
     PetscScalar *u;
     PetscCall(VecGetArray(P->U, &u));
-    for (PetscInt l = 0; l < m.num_owned; ++l)
-      for (int i = 0; i < 3; ++i) u[3 * l + i] = P->scene.initial_guess[3 * m.natural_id[l] + i];
+    for (PetscInt i = 0; i < 3 * m.num_owned; ++i) u[i] = share.initial_guess[i];
     PetscCall(VecRestoreArray(P->U, &u));
   }
   PetscCall(ProblemSetLoadTime(P, 0.0, P->U));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ProblemReleaseSceneMesh(Problem *P, std::uint64_t fingerprint) {
-  MeshData &gm = P->scene.mesh;
+PetscErrorCode ProblemReleaseScene(Problem *P) {
+  SceneSpec &s = P->scene;
   PetscFunctionBeginUser;
-  // swap, not clear: clear keeps the capacity.
-  std::vector<double>().swap(gm.coords);
-  std::vector<int>().swap(gm.triangles);
-  std::vector<long long>().swap(gm.node_tags);
-  std::vector<long long>().swap(gm.element_tags);
-  std::map<std::string, std::vector<int>>().swap(gm.element_sets);
-  std::vector<double>().swap(P->scene.element_reference);
-  P->scene_mesh_released = true;
-  P->scene_mesh_fingerprint = fingerprint;
+  // Assigned or swapped empty, not cleared: clear keeps the capacity.
+  s.mesh = MeshData();
+  std::vector<DofConstraint>().swap(s.constraints);
+  std::vector<NodalForce>().swap(s.nodal_forces);
+  std::vector<int>().swap(s.pressure.elements);
+  std::vector<double>().swap(s.initial_guess);
+  std::vector<double>().swap(s.element_reference);
+  std::vector<double>().swap(s.element_stress_ratio);
+#ifdef __GLIBC__
+  // The reader's mesh and its parsing left freed blocks all over the heap (each below the mmap
+  // threshold): hand their pages back before the matrix and the factors are made.
+  if (P->rank == 0) malloc_trim(0);
+#endif
+  P->scene_released = true;
   PetscFunctionReturn(0);
 }
 
@@ -258,14 +225,26 @@ namespace {
 // Collective look-up of one scene node: its displacement, plus its reference position if asked.
 PetscErrorCode NodeValue(Problem *P, Vec U, PetscInt node, bool with_reference, double out[3]) {
   double mine[3] = {0, 0, 0};
-  const PetscScalar *a;
+  const PetscScalar *a = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(VecGetArrayRead(U, &a));
+  if (U) PetscCall(VecGetArrayRead(U, &a));
   for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
     if (P->mesh.natural_id[l] == node)
-      for (int i = 0; i < 3; ++i) mine[i] = a[3 * l + i] + (with_reference ? P->mesh.X[3 * l + i] : 0.0);
-  PetscCall(VecRestoreArrayRead(U, &a));
+      for (int i = 0; i < 3; ++i) mine[i] = (a ? a[3 * l + i] : 0.0) + (with_reference ? P->mesh.X[3 * l + i] : 0.0);
+  if (U) PetscCall(VecRestoreArrayRead(U, &a));
   PetscCallMPI(MPI_Allreduce(mine, out, 3, MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscFunctionReturn(0);
+}
+
+// The lowest (distance, id) over the ranks.
+PetscErrorCode Nearest(MPI_Comm comm, double d, PetscInt id, PetscInt *best) {
+  struct {
+    double d;
+    int id;
+  } mine{d, (int)id}, all;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(&mine, &all, 1, MPI_DOUBLE_INT, MPI_MINLOC, comm));
+  *best = all.id;
   PetscFunctionReturn(0);
 }
 
@@ -277,6 +256,75 @@ PetscErrorCode ProblemGetNodeDisplacement(Problem *P, Vec U, PetscInt node, doub
 
 PetscErrorCode ProblemGetNodePosition(Problem *P, Vec U, PetscInt node, double x[3]) {
   return NodeValue(P, U, node, true, x);
+}
+
+PetscErrorCode ProblemNearestNode(Problem *P, double x, double y, PetscInt *node) {
+  const LocalMesh &m = P->mesh;
+  double d = 1e300;
+  PetscInt best = PETSC_MAX_INT;
+  PetscFunctionBeginUser;
+  for (PetscInt l = 0; l < m.num_owned; ++l) {
+    const double dd = std::hypot(m.X[3 * l] - x, m.X[3 * l + 1] - y);
+    if (dd < d || (dd == d && m.natural_id[l] < best)) d = dd, best = m.natural_id[l];
+  }
+  PetscCall(Nearest(P->comm, d, best, node));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemNearestElement(Problem *P, double x, double y, PetscInt *element) {
+  const LocalMesh &m = P->mesh;
+  double d = 1e300;
+  PetscInt best = PETSC_MAX_INT;
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < m.num_elements; ++e) {  // ascending scene ids
+    double cx = 0, cy = 0;
+    for (int a = 0; a < 3; ++a) cx += m.X[3 * m.tri[3 * e + a]] / 3, cy += m.X[3 * m.tri[3 * e + a] + 1] / 3;
+    const double dd = std::hypot(cx - x, cy - y);
+    if (dd < d) d = dd, best = m.element_natural[e];
+  }
+  PetscCall(Nearest(P->comm, d, best, element));
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+PetscErrorCode FindNodeSet(Problem *P, const char *name, const std::vector<PetscInt> **set) {
+  auto it = P->mesh.node_sets.find(name);
+  PetscFunctionBeginUser;
+  PetscCheck(it != P->mesh.node_sets.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+             "%s has no node set \"%s\" (check its physical groups)", P->mesh.source.c_str(), name);
+  *set = &it->second;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ProblemNodeSetFlags(Problem *P, const char *name, std::vector<char> *flags) {
+  const std::vector<PetscInt> *set;
+  PetscFunctionBeginUser;
+  PetscCall(FindNodeSet(P, name, &set));
+  flags->assign(P->mesh.NumLocal(), 0);
+  for (PetscInt l : *set) (*flags)[l] = 1;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ProblemNodeSetIds(Problem *P, const char *name, std::vector<PetscInt> *ids) {
+  const LocalMesh &m = P->mesh;
+  const std::vector<PetscInt> *set;
+  PetscFunctionBeginUser;
+  PetscCall(FindNodeSet(P, name, &set));
+  std::vector<PetscInt> mine;
+  for (PetscInt l : *set)
+    if (l < m.num_owned) mine.push_back(m.natural_id[l]);
+  PetscMPIInt n = (PetscMPIInt)mine.size(), total;
+  std::vector<PetscMPIInt> counts(P->size), displs(P->size, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
+  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  total = displs[P->size - 1] + counts[P->size - 1];
+  ids->resize(total);
+  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPIU_INT, ids->data(), counts.data(), displs.data(), MPIU_INT, P->comm));
+  std::sort(ids->begin(), ids->end());
+  PetscFunctionReturn(0);
 }
 
 } // namespace etfe

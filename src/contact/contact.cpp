@@ -128,33 +128,45 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
 }
 
 // -contact_penalty_length: a pair's tributary length is half the length of the mesh edges that
-// join it to other pair nodes, found on the scene's global mesh (still held during set-up; every
-// rank scans it once). The pair nodes must form lines (an arch's crown): a node with more than
-// two such edges lies in a contact area, where a length means nothing.
-static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<PetscInt> &pair_nodes, ContactSet *c) {
-  const MeshData &gm = P->scene.mesh;
+// join it to other pair nodes. Each rank finds such edges among its own elements (pair_local
+// flags its local nodes, ghosts included, that make pairs); the edges, a few per pair, are then
+// gathered everywhere and counted once. The pair nodes must form lines (an arch's crown): a node
+// with more than two such edges lies in a contact area, where a length means nothing.
+static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<PetscInt> &pair_nodes,
+                                             const std::vector<char> &pair_local, ContactSet *c) {
+  const LocalMesh &m = P->mesh;
   PetscFunctionBeginUser;
-  PetscCheck(!P->scene_mesh_released, P->comm, PETSC_ERR_PLIB, "contact set-up after the global mesh was released");
-  std::vector<std::pair<int, int>> edges;
-  auto is_pair = [&](int v) { return std::binary_search(pair_nodes.begin(), pair_nodes.end(), (PetscInt)v); };
-  for (int e = 0; e < gm.NumElements(); ++e)
-    for (int a = 0; a < 3; ++a) {
-      const int u = gm.triangles[3 * e + a], v = gm.triangles[3 * e + (a + 1) % 3];
-      if (is_pair(u) && is_pair(v)) edges.emplace_back(std::min(u, v), std::max(u, v));
+  struct Edge {
+    PetscInt a, b;
+    double len;
+  };
+  std::vector<Edge> mine;
+  for (PetscInt e = 0; e < m.num_elements; ++e)
+    for (int k = 0; k < 3; ++k) {
+      const int u = m.tri[3 * e + k], v = m.tri[3 * e + (k + 1) % 3];
+      if (!pair_local[u] || !pair_local[v]) continue;
+      const double *x = &m.X[3 * u], *y = &m.X[3 * v];
+      const double len = std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
+      mine.push_back({std::min(m.natural_id[u], m.natural_id[v]), std::max(m.natural_id[u], m.natural_id[v]), len});
     }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  PetscMPIInt n = (PetscMPIInt)(mine.size() * sizeof(Edge)), total;
+  std::vector<PetscMPIInt> counts(P->size), displs(P->size, 0);
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
+  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+  total = displs[P->size - 1] + counts[P->size - 1];
+  std::vector<Edge> edges(total / sizeof(Edge));
+  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPI_BYTE, edges.data(), counts.data(), displs.data(), MPI_BYTE, P->comm));
+  std::sort(edges.begin(), edges.end(), [](const Edge &x, const Edge &y) { return x.a < y.a || (x.a == y.a && x.b < y.b); });
+  edges.erase(std::unique(edges.begin(), edges.end(), [](const Edge &x, const Edge &y) { return x.a == y.a && x.b == y.b; }),
+              edges.end());
   std::vector<double> length(pair_nodes.size(), 0.0);
   std::vector<int> degree(pair_nodes.size(), 0);
-  for (const auto &ed : edges) {
-    const double *x = &gm.coords[3 * ed.first], *y = &gm.coords[3 * ed.second];
-    const double len = std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
-    for (int v : {ed.first, ed.second}) {
-      const size_t k = std::lower_bound(pair_nodes.begin(), pair_nodes.end(), (PetscInt)v) - pair_nodes.begin();
-      length[k] += 0.5 * len;
+  for (const Edge &ed : edges)
+    for (PetscInt v : {ed.a, ed.b}) {
+      const size_t k = std::lower_bound(pair_nodes.begin(), pair_nodes.end(), v) - pair_nodes.begin();
+      length[k] += 0.5 * ed.len;
       degree[k]++;
     }
-  }
   for (size_t k = 0; k < pair_nodes.size(); ++k)
     PetscCheck(degree[k] >= 1 && degree[k] <= 2, P->comm, PETSC_ERR_ARG_WRONG,
                "-contact_penalty_length: contact node %" PetscInt_FMT " has %d mesh edges to other contact nodes; "
@@ -195,22 +207,25 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   const PetscReal tol = o.search_tol;
   c->supports = spec.supports;
 
-  // Candidates: a node set of the mesh, or every owned node.
+  // Candidates: a node set of the mesh, or every node; pairs are made on owned nodes, and
+  // pair_local also flags the ghosts that make pairs on their owners (the same test).
   const LocalMesh &m = P->mesh;
-  std::vector<char> candidate(m.num_nodes_global, spec.node_set.empty() ? 1 : 0);
+  std::vector<char> candidate(m.NumLocal(), spec.node_set.empty() ? 1 : 0), pair_local(m.NumLocal(), 0);
   if (!spec.node_set.empty()) {
-    auto it = P->scene.mesh.node_sets.find(spec.node_set);
-    PetscCheck(it != P->scene.mesh.node_sets.end(), P->comm, PETSC_ERR_ARG_WRONG,
+    auto it = m.node_sets.find(spec.node_set);
+    PetscCheck(it != m.node_sets.end(), P->comm, PETSC_ERR_ARG_WRONG,
                "contact: the mesh has no node set \"%s\" (check its physical groups)", spec.node_set.c_str());
-    for (int n : it->second) candidate[n] = 1;
+    for (PetscInt l : it->second) candidate[l] = 1;
   }
-  for (PetscInt l = 0; l < m.num_owned; ++l) {
-    if (!candidate[m.natural_id[l]]) continue;
+  for (PetscInt l = 0; l < m.NumLocal(); ++l) {
+    if (!candidate[l]) continue;
     for (size_t s = 0; s < spec.supports.size(); ++s) {
       ContactPair pr{};
       const double *X = &m.X[3 * l];
       const double d = SupportProject(spec.supports[s], X, pr.M, pr.R);
       if (std::fabs(d) > tol) continue;
+      pair_local[l] = 1;
+      if (l >= m.num_owned) break;
       pr.local_node = l;
       pr.d0 = d;
       for (int i = 0; i < 3; ++i) pr.X[i] = X[i];
@@ -241,7 +256,7 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
              "contact: no film node lies within -contact_search_tol %g mm of a support; check the "
              "support geometry or raise the tolerance",
              tol);
-  if (c->penalty_length > 0) PetscCall(ScalePenaltiesByLength(P, all, c));
+  if (c->penalty_length > 0) PetscCall(ScalePenaltiesByLength(P, all, pair_local, c));
   {
     // The force-balance test cannot see below the round-off of the penalty forces, about
     // 1e2 eps k |u| sqrt(pairs) (load_stepper.cpp). Against forces of about E h |u| / 10 (|u| per

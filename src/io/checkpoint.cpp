@@ -31,10 +31,6 @@ uint64_t FingerprintChecksum(const char *name, uint64_t v) {
   return ValueChecksum(name, (double)(v >> 32)) + 3 * ValueChecksum(name, (double)(v & 0xffffffffULL));
 }
 
-// A load history has dropped the global mesh after set-up and kept its fingerprint.
-uint64_t SceneMeshFingerprint(const Problem *P) {
-  return P->scene_mesh_released ? P->scene_mesh_fingerprint : MeshFingerprint(P->scene.mesh);
-}
 
 // The scene's restart state (a few values, the same on every rank).
 uint64_t SceneStateChecksum(const std::vector<double> &v) {
@@ -182,7 +178,7 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
              tmp.c_str());
   const Shape sh = ProblemShape(P);
   const long long shape[5] = {sh.nodes, sh.elements, sh.pairs, sh.history, sh.stages};
-  const uint64_t mesh = SceneMeshFingerprint(P), physics = PhysicsFingerprint(P);
+  const uint64_t mesh = P->scene_mesh_fingerprint, physics = PhysicsFingerprint(P);
   const double dbl[3] = {st.t, st.dt, st.dt_last};
   const long long ints[5] = {(long long)st.step, (long long)st.converged_states, (long long)st.easy,
                              (long long)st.cutbacks, (long long)st.newton};
@@ -337,7 +333,7 @@ PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
   std::string table = OptionDifferences(options, now);
   const bool same_shape = cp.nodes == sh.nodes && cp.elements == sh.elements && cp.pairs == sh.pairs &&
                           cp.history == sh.history && cp.stages == sh.stages;
-  if (mesh != SceneMeshFingerprint(P))
+  if (mesh != P->scene_mesh_fingerprint)
     table += "\n    mesh: checkpoint " + std::to_string(cp.nodes) + " nodes, " + std::to_string(cp.elements) +
              " triangles; this run " + std::to_string(sh.nodes) + ", " + std::to_string(sh.elements) +
              (cp.nodes == sh.nodes && cp.elements == sh.elements ? " (other coordinates or groups)" : "");
@@ -424,6 +420,16 @@ PetscErrorCode CheckpointRead(Problem *P, const std::string &path, StepperState 
   PetscFunctionReturn(0);
 }
 
-std::uint64_t CheckpointMeshFingerprint(const MeshData &mesh) { return MeshFingerprint(mesh); }
+PetscErrorCode CheckpointFingerprintScene(MPI_Comm comm, const SceneSpec &scene, Problem *P) {
+  std::uint64_t v[2] = {0, 0};
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) v[0] = MeshFingerprint(scene.mesh), v[1] = ScenePhysicsState(scene, P->thickness, P->min_area_ratio);
+  PetscCallMPI(MPI_Bcast(v, 2, MPI_UINT64_T, 0, comm));
+  P->scene_mesh_fingerprint = v[0];
+  P->scene_physics_state = v[1];
+  PetscFunctionReturn(0);
+}
 
 } // namespace etfe

@@ -124,14 +124,13 @@ std::uint64_t MeshFingerprint(const MeshData &m) {
   return h.Value();
 }
 
-std::uint64_t PhysicsFingerprint(const Problem *P) {
-  const SceneSpec &s = P->scene;
+std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min_area_ratio) {
   Fnv64 h;
   auto value = [&h](const ScheduledValue &v) { h.Add(v.coef), h.Add(v.schedule); };
   h.Add(s.name);
   h.Add(s.md_axis);
-  h.Add(P->thickness);
-  h.Add(P->min_area_ratio);
+  h.Add(thickness);
+  h.Add(min_area_ratio);
   h.Add(s.schedules.size());
   for (const Schedule &sc : s.schedules) h.Add(sc.name), h.Add(sc.initial), h.Add(sc.values);
   h.Add(s.constraints.size());
@@ -145,6 +144,11 @@ std::uint64_t PhysicsFingerprint(const Problem *P) {
     h.Add(sp.name), h.Add(sp.type), h.Add(sp.centre), h.Add(sp.axis), h.Add(sp.radius);
   h.Add(s.element_stress_ratio);
   h.Add(s.initial_guess);
+  return h.Value();
+}
+
+std::uint64_t PhysicsFingerprint(const Problem *P) {
+  Fnv64 h(P->scene_physics_state);
   if (P->contact) {
     const ContactSet &c = *P->contact;
     h.Add(c.params.kn), h.Add(c.params.kt), h.Add(c.params.mu), h.Add(c.law), h.Add(c.follow);

@@ -14,6 +14,8 @@ namespace etfe {
 // guards against accidents, not adversaries).
 class Fnv64 {
 public:
+  Fnv64() = default;
+  explicit Fnv64(std::uint64_t state) : h_(state) {}  // goes on from a hash's Value()
   void Add(const void *data, size_t n) {
     const unsigned char *p = static_cast<const unsigned char *>(data);
     for (size_t i = 0; i < n; ++i) h_ = (h_ ^ p[i]) * 1099511628211ull;
@@ -36,10 +38,14 @@ private:
 // Options that may differ between a checkpoint's run and its restart: how the increments are
 // solved and what is written, never what is computed (the list: checkpoint_compare.cpp).
 bool CheckpointOptionMayChange(const std::string &option);
-// Coordinates, triangles, node and element sets of the scene's mesh (the same on every rank).
+// Coordinates, triangles, node and element sets of the scene's global mesh (rank 0).
 std::uint64_t MeshFingerprint(const MeshData &mesh);
 // What the options resolve to: schedules, constraints, loads, supports, contact parameters,
 // thickness, material constants. Catches what the option lists cannot (changed defaults).
+// The scene's part is hashed on rank 0's global description at set-up (ScenePhysicsState, kept
+// as Problem::scene_physics_state); PhysicsFingerprint goes on from it with the contact set and
+// the material, so the value is that of one hash over all of it.
+std::uint64_t ScenePhysicsState(const SceneSpec &scene, double thickness, double min_area_ratio);
 std::uint64_t PhysicsFingerprint(const Problem *problem);
 // The options in force, one "-name value" per line, sorted by name.
 PetscErrorCode OptionsAsLines(std::string *lines);

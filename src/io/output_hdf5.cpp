@@ -500,7 +500,8 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
   hid_t mesh = H5Gcreate2(out->file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
   hid_t steps = H5Gcreate2(out->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  // From each rank's part, in the scene's order (a load history no longer holds the global mesh).
+  // From each rank's part, in the scene's order (only rank 0 built the global mesh, and a load
+  // history has dropped it).
   const LocalMesh &m = P->mesh;
   PetscCall(WriteField(out, mesh, "coordinates", Layout::Nodes, 3, m.X.data()));
   std::vector<double> tri(3 * (size_t)m.num_elements);  // scene node ids, exact as doubles
@@ -582,8 +583,8 @@ PetscErrorCode OutputGatherShape(Problem *P, Vec U, MeshData *shape) {
   const PetscScalar *u;
   PetscScalar *a;
   PetscFunctionBeginUser;
-  PetscCheck(!P->scene_mesh_released, P->comm, PETSC_ERR_PLIB,
-             "the shape needs the scene's topology, released after set-up (ProblemReleaseSceneMesh)");
+  PetscCheck(!P->scene_released, P->comm, PETSC_ERR_PLIB,
+             "the shape needs the scene's topology, released after set-up (ProblemReleaseScene)");
   PetscCall(VecCreateMPI(P->comm, 3 * m.num_owned, 3 * m.num_nodes_global, &src));
   PetscCall(VecGetArrayRead(U, &u));
   PetscCall(VecGetArray(src, &a));

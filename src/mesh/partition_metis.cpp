@@ -1,5 +1,5 @@
 // METIS dual-graph partition of the triangles. PETSc 3.18 (Debian) has no METIS partitioner
-// inside, so we call METIS directly on rank 0 and broadcast the result.
+// inside, so rank 0, which alone holds the global mesh, calls METIS directly (distribute.cpp).
 #include <metis.h>
 
 #include <string>

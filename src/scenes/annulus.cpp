@@ -26,8 +26,12 @@ namespace {
 
 struct AnnulusContext {
   double a, b, eps0, phi;
-  std::vector<char> is_hub;  // per scene node
+  std::vector<char> is_hub;  // per local node (setup)
 };
+
+PetscErrorCode AnnulusSetup(Problem *P, void *vctx) {
+  return ProblemNodeSetFlags(P, "hub", &((AnnulusContext *)vctx)->is_hub);
+}
 
 // Rings 0..nr (ring 0 at the hub), nt nodes per ring, alternating diagonals.
 MeshData MakeAnnulusMesh(double a, double b, int nr, int nt) {
@@ -74,7 +78,7 @@ PetscErrorCode AnnulusReport(Problem *P, void *vctx) {
   PetscCall(VecGetArrayRead(P->reaction, &r));
   PetscCall(VecGetArrayRead(P->U, &u));
   for (PetscInt l = 0; l < P->mesh.num_owned; ++l) {
-    if (!c->is_hub[P->mesh.natural_id[l]]) continue;
+    if (!c->is_hub[l]) continue;
     const double x = P->mesh.X[3 * l] + u[3 * l], y = P->mesh.X[3 * l + 1] + u[3 * l + 1];
     loc[2] += x * r[3 * l + 1] - y * r[3 * l];
   }
@@ -144,23 +148,23 @@ PetscErrorCode SceneBuild_Annulus(MPI_Comm comm, SceneSpec *scene, SceneObserver
                "goes slack and the closed form has no partly wrinkled state; use a smaller rotation", phi,
                phi / AnnulusOnsetRotation(p));
   }
-  scene->mesh = MakeAnnulusMesh(a, b, (int)nr, (int)nt);
+  if (SceneHoldsMesh(comm)) scene->mesh = MakeAnnulusMesh(a, b, (int)nr, (int)nt);
   const int pre = scene->AddSchedule(Schedule{"pretension", 0.0, {1.0, 1.0}});
   const int rot = scene->AddSchedule(Schedule{"rotation", 0.0, {0.0, 1.0}, "rad", phi});
-  const auto &sets = scene->mesh.node_sets;
+  auto &sets = scene->mesh.node_sets;
   const double cs = std::cos(phi), sn = std::sin(phi);
-  auto *ctx = new AnnulusContext{a, b, eps0, phi, std::vector<char>(scene->mesh.NumNodes(), 0)};
-  for (int n : sets.at("all")) scene->constraints.push_back({n, 2, {}});
-  for (int n : sets.at("outer"))
+  auto *ctx = new AnnulusContext{a, b, eps0, phi, {}};
+  for (int n : sets["all"]) scene->constraints.push_back({n, 2, {}});
+  for (int n : sets["outer"])
     for (int i = 0; i < 2; ++i)
       scene->constraints.push_back({n, i, {{eps0 * scene->mesh.coords[3 * n + i], 0.0}, {pre, -1}}});
-  for (int n : sets.at("hub")) {
-    ctx->is_hub[n] = 1;
+  for (int n : sets["hub"]) {
     const double X = scene->mesh.coords[3 * n], Y = scene->mesh.coords[3 * n + 1];
     const double turn[2] = {(1 + eps0) * ((cs - 1) * X - sn * Y), (1 + eps0) * (sn * X + (cs - 1) * Y)};
     for (int i = 0; i < 2; ++i)
       scene->constraints.push_back({n, i, {{eps0 * scene->mesh.coords[3 * n + i], turn[i]}, {pre, rot}}});
   }
+  observer->setup = AnnulusSetup;
   observer->report = AnnulusReport;
   observer->ctx = ctx;
   observer->destroy = [](void *p) { delete (AnnulusContext *)p; };

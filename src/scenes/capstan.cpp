@@ -20,11 +20,14 @@ namespace {
 
 struct CapstanContext {
   double theta, t1, tB[3];
-  std::vector<int> end_b;    // scene node ids of end B
-  std::vector<char> is_b;    // per scene node: on end B
+  std::vector<char> is_b;    // per local node: on end B (setup)
   double t2_onset = -1.0, t2_last = 0.0;
   PetscInt onset_step = -1;
 };
+
+PetscErrorCode CapstanSetup(Problem *P, void *vctx) {
+  return ProblemNodeSetFlags(P, "right", &((CapstanContext *)vctx)->is_b);
+}
 
 PetscErrorCode EndBTension(Problem *P, CapstanContext *c, double *t2) {
   const PetscScalar *r;
@@ -33,7 +36,7 @@ PetscErrorCode EndBTension(Problem *P, CapstanContext *c, double *t2) {
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(P->reaction, &r));
   for (PetscInt l = 0; l < P->mesh.num_owned; ++l)
-    if (is_b[P->mesh.natural_id[l]])
+    if (is_b[l])
       for (int i = 0; i < 3; ++i) mine += r[3 * l + i] * c->tB[i];
   PetscCall(VecRestoreArrayRead(P->reaction, &r));
   PetscCallMPI(MPI_Allreduce(&mine, t2, 1, MPI_DOUBLE, MPI_SUM, P->comm));
@@ -48,7 +51,7 @@ PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t, Pets
   PetscCall(EndBTension(P, c, &t2));
   const std::vector<char> &is_b = c->is_b;
   for (const ContactPair &pr : P->contact->pairs) {
-    if (is_b[pr.natural_node]) continue;  // held by the grip: their slide is prescribed
+    if (is_b[pr.local_node]) continue;  // held by the grip: their slide is prescribed
     local[0] += pr.committed.status != CONTACT_OPEN;
     // Slipping, or sticking at the Coulomb limit: the lagged law commits a slipping pair whose
     // node stopped or turned back within the increment as sticking with its force still on the
@@ -121,34 +124,32 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene, SceneObserver
   nx <<= refine;
   ny <<= refine;
   const double theta = angle * M_PI / 180.0;
-  // Strip laid on the pipe (stress free): arc length s along the wrap, y across.
-  scene->mesh = MakeRectangleMesh(0.0, -0.5 * width, radius * theta, width, (int)nx, (int)ny,
-                                  DiagonalPattern::Alternate, 0.0, 0u);
-  scene->mesh.source = "capstan strip " + std::to_string(nx) + "x" + std::to_string(ny);
-  for (int n = 0; n < scene->mesh.NumNodes(); ++n) {
-    double *x = &scene->mesh.coords[3 * n];
-    const double phi = x[0] / radius - 0.5 * theta;
-    x[0] = radius * std::sin(phi);
-    x[2] = radius * std::cos(phi);
-  }
-  scene->thickness = 0.2;  // the friction-test film (thesis §5.2)
   const int s_t1 = scene->AddSchedule({"tension", 0.0, {1.0, 1.0}});
   const int s_pull = scene->AddSchedule({"pull", 0.0, {0.0, 1.0}});
   const double phiA = -0.5 * theta, phiB = 0.5 * theta;
   const double tA[3] = {std::cos(phiA), 0.0, -std::sin(phiA)};
-  auto *ctx = new CapstanContext{theta, t1, {std::cos(phiB), 0.0, -std::sin(phiB)}, {}, {}};
-  const auto &end_a = scene->mesh.node_sets.at("left");
-  ctx->end_b = scene->mesh.node_sets.at("right");
-  ctx->is_b.assign(scene->mesh.NumNodes(), 0);
-  for (int n : ctx->end_b) ctx->is_b[n] = 1;
-  for (int n : end_a) {
-    const double y = scene->mesh.coords[3 * n + 1];
-    const double share = (std::fabs(std::fabs(y) - 0.5 * width) < 1e-9 * width ? 0.5 : 1.0) / ny;
-    for (int i = 0; i < 3; ++i)
-      if (tA[i] != 0.0) scene->nodal_forces.push_back({n, i, {{-t1 * share * tA[i], 0.0}, {s_t1, -1}}});
+  auto *ctx = new CapstanContext{theta, t1, {std::cos(phiB), 0.0, -std::sin(phiB)}, {}};
+  scene->thickness = 0.2;  // the friction-test film (thesis §5.2)
+  if (SceneHoldsMesh(comm)) {
+    // Strip laid on the pipe (stress free): arc length s along the wrap, y across.
+    MeshData &m = scene->mesh;
+    m = MakeRectangleMesh(0.0, -0.5 * width, radius * theta, width, (int)nx, (int)ny, DiagonalPattern::Alternate, 0.0, 0u);
+    m.source = "capstan strip " + std::to_string(nx) + "x" + std::to_string(ny);
+    for (int n = 0; n < m.NumNodes(); ++n) {
+      double *x = &m.coords[3 * n];
+      const double phi = x[0] / radius - 0.5 * theta;
+      x[0] = radius * std::sin(phi);
+      x[2] = radius * std::cos(phi);
+    }
+    for (int n : m.node_sets.at("left")) {
+      const double y = m.coords[3 * n + 1];
+      const double share = (std::fabs(std::fabs(y) - 0.5 * width) < 1e-9 * width ? 0.5 : 1.0) / ny;
+      for (int i = 0; i < 3; ++i)
+        if (tA[i] != 0.0) scene->nodal_forces.push_back({n, i, {{-t1 * share * tA[i], 0.0}, {s_t1, -1}}});
+    }
+    for (int n : m.node_sets.at("right"))
+      for (int i = 0; i < 3; ++i) scene->constraints.push_back({n, i, {{pull * ctx->tB[i], 0.0}, {s_pull, -1}}});
   }
-  for (int n : ctx->end_b)
-    for (int i = 0; i < 3; ++i) scene->constraints.push_back({n, i, {{pull * ctx->tB[i], 0.0}, {s_pull, -1}}});
   // Every node rests on the pipe. The grip holds end B, so its pairs carry no normal force and
   // the wrap that feels friction is theta minus half a segment: mu_eff converges as O(1/nx).
   scene->contact.active = true;
@@ -158,6 +159,7 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene, SceneObserver
   pipe.type = "cylinder";
   pipe.radius = radius;
   scene->contact.supports.push_back(pipe);
+  observer->setup = CapstanSetup;
   observer->step_monitor = CapstanStep;
   observer->state_get = [](void *c, std::vector<double> *v) {
     auto *x = (CapstanContext *)c;

@@ -35,7 +35,8 @@ double CatenoidNeck(double R, double a) {
 PetscErrorCode CatenoidReport(Problem *P, void *vctx) {
   auto *c = (CatenoidContext *)vctx;
   PetscFunctionBeginUser;
-  const auto &middle = P->scene.mesh.node_sets.at("middle");
+  std::vector<PetscInt> middle;
+  PetscCall(ProblemNodeSetIds(P, "middle", &middle));
   double sum = 0.0;
   for (int n : middle) {
     double x[3];
@@ -74,10 +75,10 @@ PetscErrorCode SceneBuild_Catenoid(MPI_Comm comm, SceneSpec *scene, SceneObserve
   ntheta <<= refine;
   nz <<= refine;
   // Start from the cylinder spanning the rings; the rings stay where they are.
-  scene->mesh = MakeTubeMesh(radius, -0.5 * separation, separation, (int)ntheta, (int)nz);
+  if (SceneHoldsMesh(comm)) scene->mesh = MakeTubeMesh(radius, -0.5 * separation, separation, (int)ntheta, (int)nz);
   scene->AddSchedule({"boundary", 0.0, {1.0}});
   for (const char *set : {"bottom", "top"})
-    for (int n : scene->mesh.node_sets.at(set))
+    for (int n : scene->mesh.node_sets[set])
       for (int c = 0; c < 3; ++c) scene->constraints.push_back({n, c, {}});
   auto *ctx = new CatenoidContext{radius, separation};
   observer->report = CatenoidReport;

@@ -20,7 +20,18 @@ namespace {
 
 struct HenckyContext {
   double radius, pressure;
+  PetscInt centre = -1;  // scene id of the centre node (setup)
 };
+
+PetscErrorCode HenckySetup(Problem *P, void *vctx) {
+  auto *ctx = (HenckyContext *)vctx;
+  std::vector<PetscInt> ids;
+  PetscFunctionBeginUser;
+  PetscCall(ProblemNodeSetIds(P, "centre", &ids));
+  PetscCheck(ids.size() == 1, P->comm, PETSC_ERR_PLIB, "hencky: the disc mesh has %zu centre nodes", ids.size());
+  ctx->centre = ids[0];
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode HenckyReport(Problem *P, void *vctx) {
   auto *ctx = (HenckyContext *)vctx;
@@ -34,14 +45,14 @@ PetscErrorCode HenckyReport(Problem *P, void *vctx) {
   const double a = ctx->radius, p = ctx->pressure, h = P->thickness;
   const double w_ref = c.deflection * a * std::cbrt(p * a / (young * h));
   const double s_ref = c.centre_stress * std::cbrt(young * p * p * a * a / (h * h));
-  PetscCall(ProblemGetNodeDisplacement(P, P->U, P->scene.mesh.node_sets.at("centre")[0], u));
+  PetscCall(ProblemGetNodeDisplacement(P, P->U, ctx->centre, u));
   // Centre stress: mean of (Sxx + Syy)/2 over the elements touching the centre node.
   PetscCall(ComputeCellFields(P, P->U, &cells, false));
   double sum[2] = {0, 0}, tot[2];
   for (PetscInt e = 0; e < P->mesh.num_elements; ++e) {
     const int *t = &P->mesh.tri[3 * e];
     bool at_centre = false;
-    for (int k = 0; k < 3; ++k) at_centre |= P->mesh.natural_id[t[k]] == 0;
+    for (int k = 0; k < 3; ++k) at_centre |= P->mesh.natural_id[t[k]] == ctx->centre;
     if (!at_centre) continue;
     sum[0] += 0.5 * (cells.stress[3 * e] + cells.stress[3 * e + 1]);
     sum[1] += 1.0;
@@ -85,18 +96,20 @@ PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene, SceneObserver 
              "-mesh_rings %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more than the %.3g a "
              "generated mesh may have", rings, refine, GeneratedTriangles(rings, rings, 6, refine), kMaxGeneratedTriangles);
   rings <<= refine;
-  scene->mesh = MakeDiscMesh(radius, (int)rings);
   const int s = scene->AddSchedule({"pressure", 0.0, {1.0}});
   scene->pressure.active = true;
   scene->pressure.value.coef[0] = pressure;
   scene->pressure.value.schedule[0] = s;
-  for (int n : scene->mesh.node_sets.at("rim"))
-    for (int c = 0; c < 3; ++c) scene->constraints.push_back({n, c, {}});
-  const int nn = scene->mesh.NumNodes();
-  scene->initial_guess.assign(3 * nn, 0.0);
-  for (int n = 0; n < nn; ++n) {
-    const double x = scene->mesh.coords[3 * n], y = scene->mesh.coords[3 * n + 1];
-    scene->initial_guess[3 * n + 2] = bulge * std::max(0.0, 1.0 - (x * x + y * y) / (radius * radius));
+  if (SceneHoldsMesh(comm)) {
+    scene->mesh = MakeDiscMesh(radius, (int)rings);
+    for (int n : scene->mesh.node_sets.at("rim"))
+      for (int c = 0; c < 3; ++c) scene->constraints.push_back({n, c, {}});
+    const int nn = scene->mesh.NumNodes();
+    scene->initial_guess.assign(3 * nn, 0.0);
+    for (int n = 0; n < nn; ++n) {
+      const double x = scene->mesh.coords[3 * n], y = scene->mesh.coords[3 * n + 1];
+      scene->initial_guess[3 * n + 2] = bulge * std::max(0.0, 1.0 - (x * x + y * y) / (radius * radius));
+    }
   }
   char note[160];
   std::snprintf(note, sizeof note,
@@ -105,6 +118,7 @@ PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene, SceneObserver 
                 bulge);
   scene->initial_guess_note = note;
   auto *ctx = new HenckyContext{radius, pressure};
+  observer->setup = HenckySetup;
   observer->report = HenckyReport;
   observer->ctx = ctx;
   observer->destroy = [](void *c) { delete (HenckyContext *)c; };

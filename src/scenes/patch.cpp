@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
+#include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
 #include "etfe/verification/patch_closed_form.h"
 
@@ -142,42 +144,54 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *
   nx <<= refine;
   ny <<= refine;
   if (file_set) {
-    PetscCall(MeshReadAndBroadcast(comm, mesh_file, &scene->mesh));
-    for (const char *name : {"left", "right", "bottom", "top"})
-      PetscCheck(scene->mesh.node_sets.count(name), comm, PETSC_ERR_ARG_WRONG,
-                 "%s: the patch scene needs a physical group named \"%s\" (lines of that edge)", mesh_file, name);
-    // The stretch is a strain of the mesh's own size, whatever -patch_lx/-patch_ly (which size
-    // the generated mesh) say: the prescribed displacement is ex times the real length.
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    for (int i = 0; i < scene->mesh.NumNodes(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        lo[c] = std::min(lo[c], scene->mesh.coords[3 * i + c]);
-        hi[c] = std::max(hi[c], scene->mesh.coords[3 * i + c]);
+    PetscCall(SceneReadMesh(comm, mesh_file, &scene->mesh));
+    // Rank 0 holds the mesh: it checks the edges' groups and measures the mesh.
+    std::string err;
+    double ext[3] = {0, 0, 0};
+    if (SceneHoldsMesh(comm)) {
+      for (const char *name : {"left", "right", "bottom", "top"})
+        if (err.empty() && !scene->mesh.node_sets.count(name))
+          err = std::string(mesh_file) + ": the patch scene needs a physical group named \"" + name +
+                "\" (lines of that edge)";
+      // The stretch is a strain of the mesh's own size, whatever -patch_lx/-patch_ly (which size
+      // the generated mesh) say: the prescribed displacement is ex times the real length.
+      double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+      for (int i = 0; i < scene->mesh.NumNodes(); ++i)
+        for (int c = 0; c < 3; ++c) {
+          lo[c] = std::min(lo[c], scene->mesh.coords[3 * i + c]);
+          hi[c] = std::max(hi[c], scene->mesh.coords[3 * i + c]);
+        }
+      for (int c = 0; c < 3; ++c) ext[c] = hi[c] - lo[c];
+      if (err.empty() && !(ext[0] > 0 && ext[1] > 0 && ext[2] <= 1e-9 * std::max(ext[0], ext[1]))) {
+        char buf[PETSC_MAX_PATH_LEN + 160];
+        std::snprintf(buf, sizeof buf, "%s: the patch scene needs a flat mesh in the XY plane; this one spans %g x %g x %g mm",
+                      mesh_file, ext[0], ext[1], ext[2]);
+        err = buf;
       }
-    lx = hi[0] - lo[0];
-    ly = hi[1] - lo[1];
-    PetscCheck(lx > 0 && ly > 0 && hi[2] - lo[2] <= 1e-9 * std::max(lx, ly), comm, PETSC_ERR_ARG_WRONG,
-               "%s: the patch scene needs a flat mesh in the XY plane; this one spans %g x %g x %g mm", mesh_file,
-               lx, ly, hi[2] - lo[2]);
+    }
+    PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+    PetscCallMPI(MPI_Bcast(ext, 3, MPI_DOUBLE, 0, comm));
+    lx = ext[0];
+    ly = ext[1];
     char size[64];  // PETSc's %g writes 10 as "10."
     std::snprintf(size, sizeof size, "%g x %g mm", lx, ly);
     PetscCall(PetscPrintf(comm, "patch: %s spans %s; the strains apply to that size (-patch_lx/-patch_ly size "
                                 "the generated mesh only)\n", mesh_file, size));
     scene->mesh.node_sets["all"].resize(scene->mesh.NumNodes());
     for (int i = 0; i < scene->mesh.NumNodes(); ++i) scene->mesh.node_sets["all"][i] = i;
-  } else {
+  } else if (SceneHoldsMesh(comm)) {
     scene->mesh = MakeRectangleMesh(0.0, 0.0, lx, ly, (int)nx, (int)ny, pat, perturb, 12345u);
   }
   Schedule s{"stretch", 0.0, std::vector<double>(schedule, schedule + nsched)};
   const int is = scene->AddSchedule(s);
-  const auto &sets = scene->mesh.node_sets;
-  for (int n : sets.at("all")) scene->constraints.push_back({n, 2, {}});
+  auto &sets = scene->mesh.node_sets;  // empty but on rank 0 (scene_registry.h)
+  for (int n : sets["all"]) scene->constraints.push_back({n, 2, {}});
   if (pmode == PatchMode::Shear) {
     // Shear panel (pretension ex in X and Y plus the shear g): the homogeneous deformation
     // F = [[1 + ex, g], [0, 1 + ex]] on every edge node, so the whole panel takes it.
     std::vector<char> edge(scene->mesh.NumNodes(), 0);
     for (const char *name : {"left", "right", "bottom", "top"})
-      for (int n : sets.at(name)) edge[n] = 1;
+      for (int n : sets[name]) edge[n] = 1;
     for (int n = 0; n < scene->mesh.NumNodes(); ++n) {
       if (!edge[n]) continue;
       const double X = scene->mesh.coords[3 * n], Y = scene->mesh.coords[3 * n + 1];
@@ -190,18 +204,18 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *
     observer->destroy = [](void *c) { delete (PatchContext *)c; };
     PetscFunctionReturn(0);
   }
-  for (int n : sets.at("left")) scene->constraints.push_back({n, 0, {}});
-  for (int n : sets.at("bottom")) scene->constraints.push_back({n, 1, {}});
-  for (int n : sets.at("right")) scene->constraints.push_back({n, 0, {{ex * lx, 0.0}, {is, -1}}});
+  for (int n : sets["left"]) scene->constraints.push_back({n, 0, {}});
+  for (int n : sets["bottom"]) scene->constraints.push_back({n, 1, {}});
+  for (int n : sets["right"]) scene->constraints.push_back({n, 0, {{ex * lx, 0.0}, {is, -1}}});
   if (pmode == PatchMode::Biaxial)
-    for (int n : sets.at("top")) scene->constraints.push_back({n, 1, {{ey * ly, 0.0}, {is, -1}}});
+    for (int n : sets["top"]) scene->constraints.push_back({n, 1, {{ey * ly, 0.0}, {is, -1}}});
   if (pmode == PatchMode::PureShear) {
     // Eyy = -Exx is not linear in the schedule value, so each stage end gets its own value:
     // a second schedule carries the Y stretch of each stage end, interpolated in between.
     Schedule sy{"stretch_y", 0.0, {}};
     for (PetscInt k = 0; k < nsched; ++k) sy.values.push_back(PureShearStretchY(1.0 + ex * schedule[k]) - 1.0);
     const int iy = scene->AddSchedule(sy);
-    for (int n : sets.at("top")) scene->constraints.push_back({n, 1, {{ly, 0.0}, {iy, -1}}});
+    for (int n : sets["top"]) scene->constraints.push_back({n, 1, {{ly, 0.0}, {iy, -1}}});
   }
   auto *ctx = new PatchContext{ex, ey, pmode, schedule[nsched - 1]};
   observer->report = PatchReport;

@@ -109,68 +109,39 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
                  "scene %s: schedule %s has the value %g at stage %zu; check the options that set it", name,
                  sc.name.c_str(), sc.values[k], k + 1);
   }
-  for (const auto *list : {&scene->constraints})
-    for (const DofConstraint &c : *list)
-      PetscCheck(std::isfinite(c.value.coef[0]) && std::isfinite(c.value.coef[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
-                 "scene %s: the prescribed displacement of node %d is not finite; check the scene's options", name,
-                 c.node);
+  // The lists indexed by the mesh exist on rank 0 only (scene_registry.h).
+  std::string err;
+  for (const DofConstraint &c : scene->constraints)
+    if (err.empty() && !(std::isfinite(c.value.coef[0]) && std::isfinite(c.value.coef[1])))
+      err = "scene " + std::string(name) + ": the prescribed displacement of node " + std::to_string(c.node) +
+            " is not finite; check the scene's options";
   for (const NodalForce &f : scene->nodal_forces)
-    PetscCheck(std::isfinite(f.value.coef[0]) && std::isfinite(f.value.coef[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
-               "scene %s: the force on node %d is not finite; check the scene's options", name, f.node);
+    if (err.empty() && !(std::isfinite(f.value.coef[0]) && std::isfinite(f.value.coef[1])))
+      err = "scene " + std::string(name) + ": the force on node " + std::to_string(f.node) +
+            " is not finite; check the scene's options";
+  PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_OUTOFRANGE));
   PetscCheck(std::isfinite(scene->pressure.value.coef[0]) && std::isfinite(scene->pressure.value.coef[1]), comm,
              PETSC_ERR_ARG_OUTOFRANGE, "scene %s: the pressure is not finite", name);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MeshReadAndBroadcast(MPI_Comm comm, const char path[], MeshData *mesh) {
+PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh) {
   PetscMPIInt rank;
   int ok = 1;
   std::string err;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) {
-    ok = ReadGmshFile(path, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
-  }
+  if (rank == 0) ok = ReadGmshFile(path, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &note : mesh->notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", path, note.c_str()));
-  // Broadcast coordinates, triangles and the named sets.
-  long long sizes[3] = {(long long)mesh->coords.size(), (long long)mesh->triangles.size(),
-                        (long long)mesh->node_sets.size() + (long long)mesh->element_sets.size()};
-  PetscCallMPI(MPI_Bcast(sizes, 3, MPI_LONG_LONG, 0, comm));
-  mesh->coords.resize(sizes[0]);
-  mesh->triangles.resize(sizes[1]);
-  PetscCallMPI(MPI_Bcast(mesh->coords.data(), (int)sizes[0], MPI_DOUBLE, 0, comm));
-  PetscCallMPI(MPI_Bcast(mesh->triangles.data(), (int)sizes[1], MPI_INT, 0, comm));
-  // Sets: serialise as (kind, name length, name, count, ids).
-  std::vector<int> buf;
-  if (rank == 0) {
-    for (int kind = 0; kind < 2; ++kind)
-      for (auto &kv : kind == 0 ? mesh->node_sets : mesh->element_sets) {
-        buf.push_back(kind);
-        buf.push_back((int)kv.first.size());
-        for (char c : kv.first) buf.push_back(c);
-        buf.push_back((int)kv.second.size());
-        buf.insert(buf.end(), kv.second.begin(), kv.second.end());
-      }
-  }
-  long long nbuf = (long long)buf.size();
-  PetscCallMPI(MPI_Bcast(&nbuf, 1, MPI_LONG_LONG, 0, comm));
-  buf.resize(nbuf);
-  PetscCallMPI(MPI_Bcast(buf.data(), (int)nbuf, MPI_INT, 0, comm));
-  if (rank != 0) {
-    size_t k = 0;
-    while (k < buf.size()) {
-      int kind = buf[k++], len = buf[k++];
-      std::string name(buf.begin() + k, buf.begin() + k + len);
-      k += len;
-      int n = buf[k++];
-      std::vector<int> ids(buf.begin() + k, buf.begin() + k + n);
-      k += n;
-      (kind == 0 ? mesh->node_sets : mesh->element_sets)[name] = std::move(ids);
-    }
-  }
   mesh->source = path;
   PetscFunctionReturn(0);
+}
+
+bool SceneHoldsMesh(MPI_Comm comm) {
+  PetscMPIInt rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  return rank == 0;
 }
 
 } // namespace etfe

@@ -13,9 +13,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
+#include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
 #include "saddle_geometry.h"
 
@@ -30,27 +32,25 @@ struct SaddleContext {
 
 } // namespace
 
-int SaddleNearestNode(const MeshData &m, double x, double y) {
-  int best = -1;
-  double d = 1e300;
-  for (int n = 0; n < m.NumNodes(); ++n) {
-    const double dd = std::hypot(m.coords[3 * n] - x, m.coords[3 * n + 1] - y);
-    if (dd < d) d = dd, best = n;
+PetscErrorCode SaddleShapeNodesFind(Problem *P, const SaddleGeometry &g, SaddleShapeNodes *n) {
+  double x[3];
+  PetscFunctionBeginUser;
+  PetscCall(ProblemNearestNode(P, 0.0, 0.0, &n->centre));
+  PetscCall(ProblemNearestNode(P, 0.5 * (g.arch_x + g.half_length), 0.0, &n->corner));
+  PetscCall(ProblemGetNodePosition(P, nullptr, n->centre, x));
+  n->h1_start = x[2];
+  PetscCall(ProblemGetNodePosition(P, nullptr, n->corner, x));
+  n->h2_start = x[2];
+  // The middle cutting line by Y (its nodes are few: one look-up each).
+  PetscCall(ProblemNodeSetIds(P, "sym_x", &n->cut_line));
+  std::vector<std::pair<double, PetscInt>> by_y;
+  for (PetscInt k : n->cut_line) {
+    PetscCall(ProblemGetNodePosition(P, nullptr, k, x));
+    by_y.emplace_back(x[1], k);
   }
-  return best;
-}
-
-SaddleShapeNodes SaddleShapeNodesOf(const MeshData &m, const SaddleGeometry &g) {
-  SaddleShapeNodes n;
-  n.centre = SaddleNearestNode(m, 0.0, 0.0);
-  n.corner = SaddleNearestNode(m, 0.5 * (g.arch_x + g.half_length), 0.0);
-  n.h1_start = m.coords[3 * n.centre + 2];
-  n.h2_start = m.coords[3 * n.corner + 2];
-  auto it = m.node_sets.find("sym_x");
-  if (it != m.node_sets.end()) n.cut_line = it->second;
-  std::sort(n.cut_line.begin(), n.cut_line.end(),
-            [&](int a, int b) { return m.coords[3 * a + 1] < m.coords[3 * b + 1]; });
-  return n;
+  std::sort(by_y.begin(), by_y.end());
+  for (size_t k = 0; k < by_y.size(); ++k) n->cut_line[k] = by_y[k].second;
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const SaddleShapeNodes &n, bool start) {
@@ -85,6 +85,13 @@ PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const Sadd
 }
 
 namespace {
+
+PetscErrorCode SaddleSetup(Problem *P, void *vctx) {
+  auto *c = (SaddleContext *)vctx;
+  PetscFunctionBeginUser;
+  PetscCall(SaddleShapeNodesFind(P, c->g, &c->shape));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode SaddleReport(Problem *P, void *vctx) {
   auto *c = (SaddleContext *)vctx;
@@ -127,8 +134,8 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
   g.rise = ratio_r * 2.0 * g.half_span;
   MeshData &m = scene->mesh;
   if (from_file) {
-    PetscCall(MeshReadAndBroadcast(comm, mesh_file, &m));
-  } else {
+    PetscCall(SceneReadMesh(comm, mesh_file, &m));
+  } else if (SceneHoldsMesh(comm)) {
     m = MakeRectangleMesh(0.0, 0.0, g.half_length, g.half_span, (int)(2 * n), (int)n, DiagonalPattern::Alternate,
                           0.0, 0u);
     m.source = "saddle quarter " + std::to_string(2 * n) + "x" + std::to_string(n) + " (PD initial shape)";
@@ -149,9 +156,14 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
   // Named lines of the cutting pattern: the cutting line on X = 0, the weld line over the arch.
   m.node_sets["cut_middle"] = m.node_sets["sym_x"];
   m.node_sets["weld_arch"] = m.node_sets["arch"];
-  PetscCheck(!m.node_sets["arch"].empty() && !m.node_sets["frame"].empty(), comm, PETSC_ERR_ARG_WRONG,
-             "%s: no nodes on the arch line X = %g or on the frame; the saddle needs the quarter model "
-             "X in [0, %g], Y in [0, %g]", m.source.c_str(), g.arch_x, g.half_length, g.half_span);
+  {
+    char err[256];
+    std::snprintf(err, sizeof err,
+                  "%s: no nodes on the arch line X = %g or on the frame; the saddle needs the quarter model X in "
+                  "[0, %g], Y in [0, %g]", m.source.c_str(), g.arch_x, g.half_length, g.half_span);
+    const bool ok = !SceneHoldsMesh(comm) || (!m.node_sets["arch"].empty() && !m.node_sets["frame"].empty());
+    PetscCall(Rank0Outcome(comm, ok ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+  }
   for (int e = 0; e < m.NumElements(); ++e) {
     double xc = 0;
     for (int a = 0; a < 3; ++a) xc += m.coords[3 * m.triangles[3 * e + a]] / 3.0;
@@ -176,7 +188,7 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
     if (!fixed[k]) scene->constraints.push_back({k, 0, {}});
   for (int k : m.node_sets["sym_y"])
     if (!fixed[k]) scene->constraints.push_back({k, 1, {}});
-  ctx->shape = SaddleShapeNodesOf(m, g);
+  observer->setup = SaddleSetup;
   observer->report = SaddleReport;
   observer->ctx = ctx;
   observer->destroy = [](void *c) { delete (SaddleContext *)c; };

@@ -27,18 +27,17 @@ struct SaddleGeometry {
   }
 };
 
-int SaddleNearestNode(const MeshData &m, double x, double y);
-
 // Where the saddle's shape is measured (thesis L1866, Fig. 5.22, whose drawing is lost; heights
 // above the frame plane z = 0): h1 at the middle part's centre (X = 0, Y = 0), h2 at the corner
 // part's centre (X midway between the arch and the frame, Y = 0), the middle cutting line X = 0
 // (node set sym_x, by Y). Shared by the form-finding and the stretch reports.
 struct SaddleShapeNodes {
-  int centre = -1, corner = -1;
-  std::vector<int> cut_line;
+  PetscInt centre = -1, corner = -1;
+  std::vector<PetscInt> cut_line;
   double h1_start = 0.0, h2_start = 0.0;  // the initial surface's heights there (the mesh's Z)
 };
-SaddleShapeNodes SaddleShapeNodesOf(const MeshData &m, const SaddleGeometry &g);
+// Finds them on the distributed problem (collective; an observer's setup).
+PetscErrorCode SaddleShapeNodesFind(Problem *P, const SaddleGeometry &g, SaddleShapeNodes *n);
 // Prints h1, h2, the middle sag (rise H - h1) and curvature, and the middle cutting line at the
 // current displacement (collective). start: also h1, h2 of the initial surface and the change.
 PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const SaddleShapeNodes &n, bool start);
@@ -47,8 +46,8 @@ PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const Sadd
 // contact, optional pressure cycle, probes and the report. The mesh (PD initial shape or a
 // form-found DD shape) and its node sets are already in scene.
 // -saddle_reference pattern: per element of m (9 each) its triangle in the flat cutting pattern of
-// its strip (element sets middle, corner), for SceneSpec::element_reference. Collective (each
-// rank flattens the same strips).
+// its strip (element sets middle, corner), for SceneSpec::element_reference. Collective: rank 0,
+// which holds the mesh, flattens the strips; a failure is an error on every rank.
 PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vector<double> *element_reference);
 
 PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene, SceneObserver *observer);

@@ -12,30 +12,39 @@
 // finds no equilibrium even at 1/2500 of such a stage, the line search failing at |R| ~ 1e-3 N).
 #include <petscsys.h>
 
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "etfe/cutpattern.h"
 #include "etfe/flatten_strip.h"
+#include "etfe/rank0.h"
 #include "saddle_geometry.h"
 
 namespace etfe {
 
-PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vector<double> *element_reference) {
+namespace {
+
+// Rank 0: the flat pattern of both strips, one report line each, or a message.
+bool FlattenStrips(const MeshData &m, std::vector<double> *element_reference, std::string *lines, std::string *err) {
   static const char *strips[] = {"middle", "corner"};
-  PetscFunctionBeginUser;
   std::vector<int> covered(m.NumElements(), 0);
   element_reference->assign(9 * (size_t)m.NumElements(), 0.0);
   for (const char *name : strips) {
     auto it = m.element_sets.find(name);
-    PetscCheck(it != m.element_sets.end() && !it->second.empty(), comm, PETSC_ERR_ARG_WRONG,
-               "-saddle_reference pattern: %s has no element set \"%s\"; the flat pattern needs the strips of a "
-               "form-found surface (-mesh_file written by options/saddle/ff_*.opts), not the PD start",
-               m.source.c_str(), name);
+    if (it == m.element_sets.end() || it->second.empty()) {
+      *err = "-saddle_reference pattern: " + m.source + " has no element set \"" + name +
+             "\"; the flat pattern needs the strips of a form-found surface (-mesh_file written by "
+             "options/saddle/ff_*.opts), not the PD start";
+      return false;
+    }
     const MeshData strip = ExtractStrip(m, it->second, name);
     FlattenResult r;
-    std::string err;
-    PetscCheck(FlattenStrip(strip, FlattenOptions(), &r, &err), comm, PETSC_ERR_NOT_CONVERGED,
-               "-saddle_reference pattern: flattening strip %s of %s failed: %s", name, m.source.c_str(), err.c_str());
+    std::string why;
+    if (!FlattenStrip(strip, FlattenOptions(), &r, &why)) {
+      *err = "-saddle_reference pattern: flattening strip " + std::string(name) + " of " + m.source + " failed: " + why;
+      return false;
+    }
     for (size_t k = 0; k < it->second.size(); ++k) {
       const int e = it->second[k];
       covered[e]++;
@@ -45,14 +54,31 @@ PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vec
         Y[0] = r.xy[2 * n], Y[1] = r.xy[2 * n + 1], Y[2] = 0.0;
       }
     }
-    PetscCall(PetscPrintf(comm, "saddle: reference = flat pattern of strip %s (%zu elements, outline 3D %.3f mm, "
-                                "2D %.3f mm, largest link error %.2e)\n",
-                          name, it->second.size(), r.outline_length3d, r.outline_length2d, r.max_rel_error));
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "saddle: reference = flat pattern of strip %s (%zu elements, outline 3D %.3f mm, 2D %.3f mm, largest "
+                  "link error %.2e)\n",
+                  name, it->second.size(), r.outline_length3d, r.outline_length2d, r.max_rel_error);
+    *lines += line;
   }
   for (int e = 0; e < m.NumElements(); ++e)
-    PetscCheck(covered[e] == 1, comm, PETSC_ERR_ARG_WRONG,
-               "-saddle_reference pattern: element %d of %s is in %d of the strips middle, corner (must be in one)",
-               e, m.source.c_str(), covered[e]);
+    if (covered[e] != 1) {
+      *err = "-saddle_reference pattern: element " + std::to_string(e) + " of " + m.source + " is in " +
+             std::to_string(covered[e]) + " of the strips middle, corner (must be in one)";
+      return false;
+    }
+  return true;
+}
+
+} // namespace
+
+PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vector<double> *element_reference) {
+  std::string lines, err;
+  int ok = 1;
+  PetscFunctionBeginUser;
+  if (SceneHoldsMesh(comm)) ok = FlattenStrips(m, element_reference, &lines, &err) ? 1 : 0;
+  PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_ARG_WRONG));
+  PetscCall(PetscPrintf(comm, "%s", lines.c_str()));
   PetscFunctionReturn(0);
 }
 

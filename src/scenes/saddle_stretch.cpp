@@ -28,25 +28,45 @@ struct Box {
 struct StretchContext {
   SaddleGeometry g;
   Box part_a{0, 0, 400, 400}, part_b{1300, 0, 1700, 400};
+  double elem_i_at[2] = {200, 200}, elem_ii_at[2] = {500, 700};  // probe positions (plan)
+  std::vector<double> slide_at;        // Y of the slide points I..V on the arch
+  // Found in setup (StretchSetup) on the distributed mesh:
   PetscInt elem_i = -1, elem_ii = -1;  // scene element ids
-  std::vector<int> slide_nodes;        // arch nodes I..V
+  std::vector<PetscInt> slide_nodes;   // arch nodes I..V
   std::vector<double> slide_y;         // their Y on the initial surface
-  std::vector<char> in_a, in_b;        // per scene element
+  std::vector<char> in_a, in_b;        // per local element
   std::string history;                 // -saddle_history ("": beside the results)
   PetscInt drawing_stages = 0;
   SaddleShapeNodes shape;              // heights h1, h2 and the middle cutting line (saddle.cpp)
 };
 
-int NearestElement(const MeshData &m, double x, double y) {
-  int best = -1;
-  double d = 1e300;
-  for (int e = 0; e < m.NumElements(); ++e) {
+// The probes on the distributed mesh: parts A and B (by element centroid), elements I and II
+// (centroid nearest to their positions), the slide nodes (nearest to the arch line's points).
+PetscErrorCode StretchSetup(Problem *P, void *vctx) {
+  auto *c = (StretchContext *)vctx;
+  const LocalMesh &m = P->mesh;
+  PetscFunctionBeginUser;
+  c->in_a.assign(m.num_elements, 0);
+  c->in_b.assign(m.num_elements, 0);
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
     double cx = 0, cy = 0;
-    for (int a = 0; a < 3; ++a) cx += m.coords[3 * m.triangles[3 * e + a]] / 3, cy += m.coords[3 * m.triangles[3 * e + a] + 1] / 3;
-    const double dd = std::hypot(cx - x, cy - y);
-    if (dd < d) d = dd, best = e;
+    for (int a = 0; a < 3; ++a) cx += m.X[3 * m.tri[3 * e + a]] / 3, cy += m.X[3 * m.tri[3 * e + a] + 1] / 3;
+    c->in_a[e] = c->part_a.Contains(cx, cy);
+    c->in_b[e] = c->part_b.Contains(cx, cy);
   }
-  return best;
+  PetscCall(ProblemNearestElement(P, c->elem_i_at[0], c->elem_i_at[1], &c->elem_i));
+  PetscCall(ProblemNearestElement(P, c->elem_ii_at[0], c->elem_ii_at[1], &c->elem_ii));
+  c->slide_nodes.clear(), c->slide_y.clear();
+  for (double y : c->slide_at) {
+    PetscInt node;
+    double x[3];
+    PetscCall(ProblemNearestNode(P, c->g.arch_x, y, &node));
+    PetscCall(ProblemGetNodePosition(P, nullptr, node, x));
+    c->slide_nodes.push_back(node);
+    c->slide_y.push_back(x[1]);
+  }
+  PetscCall(SaddleShapeNodesFind(P, c->g, &c->shape));
+  PetscFunctionReturn(0);
 }
 
 // Collective: per-probe numbers at the committed state.
@@ -63,7 +83,7 @@ PetscErrorCode Measure(Problem *P, StretchContext *c, const CellFields &f, Probe
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     const PetscInt id = m.element_natural[e];
     for (int part = 0; part < 2; ++part) {
-      if (!(part == 0 ? c->in_a : c->in_b)[id]) continue;
+      if (!(part == 0 ? c->in_a : c->in_b)[e]) continue;
       double *acc = &loc[5 * part];
       acc[0] += f.strain[3 * e], acc[1] += f.strain[3 * e + 1], acc[2] += f.strain[3 * e + 2];
       acc[3] += f.mises[e], acc[4] += 1.0;
@@ -137,21 +157,33 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
   PetscFunctionBeginUser;
   PetscCall(ComputeCellFields(P, P->U, &f));
   PetscCall(Measure(P, c, f, &v));
-  // Mises distribution over all elements (gathered: thesis-size meshes are small).
-  int n = (int)f.mises.size(), N;
-  std::vector<int> counts(P->size), displs(P->size, 0);
-  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
-  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  N = displs[P->size - 1] + counts[P->size - 1];
-  // PK2 Mises (the yield table's measure) and the true (Cauchy) Mises that gauges and other codes report.
-  std::vector<double> all(N), true_all(N);
-  for (auto [mine, sorted] : {std::make_pair(&f.mises, &all), std::make_pair(&f.cauchy_mises, &true_all)}) {
-    PetscCallMPI(MPI_Allgatherv(mine->data(), n, MPI_DOUBLE, sorted->data(), counts.data(), displs.data(),
-                                MPI_DOUBLE, P->comm));
-    std::sort(sorted->begin(), sorted->end());
+  // Mises distribution over all elements: sorted on rank 0, the reader (every other rank
+  // holds its own elements only); [0..2] min, median, max of the PK2 Mises, [3..5] of the true
+  // (Cauchy) Mises, [6] the elements within 10 % of S_y1, [7] their number.
+  double dist[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+  {
+    int n = (int)f.mises.size();
+    std::vector<int> counts(P->size), displs(P->size, 0);
+    PetscCallMPI(MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, P->comm));
+    for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    const int N = P->rank == 0 ? displs[P->size - 1] + counts[P->size - 1] : 0;
+    std::vector<double> all(N);
+    // PK2 Mises (the yield table's measure) and the true (Cauchy) Mises that gauges and other codes report.
+    for (int k = 0; k < 2; ++k) {
+      const std::vector<double> &mine = k == 0 ? f.mises : f.cauchy_mises;
+      PetscCallMPI(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0,
+                               P->comm));
+      if (P->rank != 0 || all.empty()) continue;
+      std::sort(all.begin(), all.end());
+      dist[3 * k] = all.front(), dist[3 * k + 1] = all[all.size() / 2], dist[3 * k + 2] = all.back();
+      if (k == 0)
+        for (double s : all) dist[6] += std::fabs(s - 13.28) <= 0.1 * 13.28;
+    }
+    dist[7] = N;
+    PetscCallMPI(MPI_Bcast(dist, 8, MPI_DOUBLE, 0, P->comm));
   }
-  double near = 0;
-  for (double s : all) near += std::fabs(s - 13.28) <= 0.1 * 13.28;
+  const int N = (int)dist[7];
+  const double near = dist[6];
   double loc[4] = {0, 0, 0, 0}, glob[4];  // wrinkled elements (strain, stress) in the middle part, max ep, max |slide|
   for (PetscInt e = 0; e < P->mesh.num_elements; ++e) {
     loc[0] += f.emin[e] < 0;
@@ -176,8 +208,7 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
                         "saddle: element_I emin = %.4e smin = %.4f MPa; element_II emin = %.4e smin = %.4f MPa\n"
                         "saddle: wrinkled elements: strain-based = %.0f, stress-based = %.0f; max plastic_strain_eq = "
                         "%.5f; max arch slide = %.4f mm\n",
-                        all.front(), all[all.size() / 2], all.back(), N, 100.0 * near / N, true_all.front(),
-                        true_all[true_all.size() / 2], true_all.back(), v.a[3], v.a[0], v.a[1],
+                        dist[0], dist[1], dist[2], N, 100.0 * near / N, dist[3], dist[4], dist[5], v.a[3], v.a[0], v.a[1],
                         v.a[2], v.b[3], v.b[0], v.b[1], v.b[2], v.i_emin, v.i_smin, v.ii_emin, v.ii_smin, glob[0],
                         glob[1], glob[2], glob[3]));
   if (!f.wrinkle_state.empty()) {
@@ -259,6 +290,9 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   c->part_a = {part_a[0], part_a[1], part_a[2], part_a[3]};
   c->part_b = {part_b[0], part_b[1], part_b[2], part_b[3]};
   if (reference == 1) PetscCall(SaddlePatternReference(comm, m, &scene->element_reference));
+  c->elem_i_at[0] = elem_i[0], c->elem_i_at[1] = elem_i[1];
+  c->elem_ii_at[0] = elem_ii[0], c->elem_ii_at[1] = elem_ii[1];
+  c->slide_at = slides;
   c->drawing_stages = (PetscInt)ns;
   scene->stage_options = {{"saddle_draw_a", da}, {"saddle_draw_b", db}, {"saddle_draw_c", dc}, {"saddle_draw_d", dd}};
 
@@ -282,7 +316,7 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   const int sb = scene->AddSchedule({"draw_b", 0.0, extend(db, 1), "mm"});
   const int sc = scene->AddSchedule({"draw_c", 0.0, extend(dc, 2), "mm"});
   const int sd = scene->AddSchedule({"draw_d", 0.0, extend(dd, 3), "mm"});
-  if (!scene->element_reference.empty()) {
+  if (reference == 1) {  // not element_reference.empty(): that list is on rank 0 only
     // The film is laid on in the first drawing step: the reference goes from the surface to the
     // flat pattern while the frame draws (saddle_pattern_reference.cpp says why not before it).
     const int sl = scene->AddSchedule({"lay_on", 0.0, std::vector<double>(stages, 1.0), ""});
@@ -341,23 +375,8 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
     if (!on_frame[k]) m.node_sets["arch_contact"].push_back(k);
   scene->contact.search_tol = 1e-3 * g.rise;
 
-  // Probes.
-  c->in_a.assign(m.NumElements(), 0);
-  c->in_b.assign(m.NumElements(), 0);
-  for (int e = 0; e < m.NumElements(); ++e) {
-    double cx = 0, cy = 0;
-    for (int a = 0; a < 3; ++a) cx += m.coords[3 * m.triangles[3 * e + a]] / 3, cy += m.coords[3 * m.triangles[3 * e + a] + 1] / 3;
-    c->in_a[e] = c->part_a.Contains(cx, cy);
-    c->in_b[e] = c->part_b.Contains(cx, cy);
-  }
-  c->elem_i = NearestElement(m, elem_i[0], elem_i[1]);
-  c->elem_ii = NearestElement(m, elem_ii[0], elem_ii[1]);
-  for (double y : slides) {
-    c->slide_nodes.push_back(SaddleNearestNode(m, A, y));
-    c->slide_y.push_back(m.coords[3 * c->slide_nodes.back() + 1]);
-  }
   c->history = history;
-  c->shape = SaddleShapeNodesOf(m, g);
+  observer->setup = StretchSetup;
   observer->step_monitor = StretchStep;
   observer->report = StretchReport;
   observer->ctx = c;

@@ -314,7 +314,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   const double dt_nominal = 1.0 / per_stage, eps = 1e-12;
   double t = 0.0, dt = dt_nominal, dt_last = 0.0;
   // Extrapolate only from converged states: a scene's initial guess is not one.
-  PetscInt converged_states = P->scene.initial_guess.empty() ? 1 : 0;
+  PetscInt converged_states = P->has_initial_guess ? 0 : 1;
   PetscInt step = 0, easy = 0, cutbacks_printed = 0, lifted_since_print = 0;
   Vec U_committed, U_previous, F, Fint, Fint_committed, dU;
   double work_total = 0.0, shift_work_total = 0.0;
@@ -333,7 +333,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   // Reactions of the initial state, then the initial state itself as step 0. A scene's initial
   // guess is not an equilibrium state: only a true start state is step 0.
   PetscCall(ProblemUpdateReactions(P, P->U));
-  if (P->scene.initial_guess.empty() && !ck.restart[0]) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
+  if (!P->has_initial_guess && !ck.restart[0]) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
   if (ck.restart[0]) {
     StepperState st;
     PetscCall(CheckpointRead(P, ck.restart, &st, U_committed, U_previous));
