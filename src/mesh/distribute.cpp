@@ -24,9 +24,9 @@ namespace {
 struct Plan {
   std::vector<int> part, owner;            // per element, per node
   std::vector<PetscInt> petsc_id;          // per node
-  std::vector<PetscInt> first;             // PETSc id of each rank's first owned node (size + 1)
   std::vector<PetscInt> elem_ptr, elems;   // elements of each rank, ascending (CSR)
-  std::vector<PetscInt> own_ptr, owned;    // owned nodes of each rank, ascending = PETSc order
+  std::vector<PetscInt> own_ptr, owned;    // owned nodes of each rank, ascending = PETSc order, so
+                                           // own_ptr[r] is rank r's first PETSc id
   std::vector<PetscInt> ne_ptr, node_elems;  // elements of each node (CSR)
 };
 
@@ -56,15 +56,10 @@ bool MakePlan(const MeshData &gm, int size, Plan *p, std::string *err) {
     }
   Bucket(p->part, size, &p->elem_ptr, &p->elems);
   Bucket(p->owner, size, &p->own_ptr, &p->owned);
-  p->first = p->own_ptr;
   p->petsc_id.resize(nn);
   for (PetscInt k = 0; k < nn; ++k) p->petsc_id[p->owned[k]] = k;
-  p->ne_ptr.assign(nn + 1, 0);
-  for (int v : gm.triangles) p->ne_ptr[v + 1]++;
-  std::partial_sum(p->ne_ptr.begin(), p->ne_ptr.end(), p->ne_ptr.begin());
-  std::vector<PetscInt> next(p->ne_ptr.begin(), p->ne_ptr.end() - 1);
-  p->node_elems.resize(gm.triangles.size());
-  for (size_t k = 0; k < gm.triangles.size(); ++k) p->node_elems[next[gm.triangles[k]]++] = (PetscInt)(k / 3);
+  Bucket(gm.triangles, nn, &p->ne_ptr, &p->node_elems);  // triangle corners by node
+  for (PetscInt &c : p->node_elems) c /= 3;                 // corner -> its triangle
   return true;
 }
 
@@ -97,7 +92,7 @@ void PackShare(const MeshData &gm, const Plan &p, int r, const ShareWriter &extr
   // Exact preallocation of the owned rows: the neighbours over every element at the node,
   // including those of other ranks.
   std::vector<PetscInt> d_nnz(no), o_nnz(no), cols;
-  const PetscInt lo = p.first[r], hi = p.first[r + 1];
+  const PetscInt lo = p.own_ptr[r], hi = p.own_ptr[r + 1];
   for (PetscInt l = 0; l < no; ++l) {
     cols.clear();
     for (PetscInt k = p.ne_ptr[nodes[l]]; k < p.ne_ptr[nodes[l] + 1]; ++k)
