@@ -13,6 +13,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
+#include "etfe/gather.h"
 #include "scene_share.h"
 
 namespace etfe {
@@ -263,7 +264,7 @@ PetscErrorCode ProblemNearestNode(Problem *P, double x, double y, PetscInt *node
   PetscFunctionBeginUser;
   for (PetscInt l = 0; l < m.num_owned; ++l) {
     const double dd = std::hypot(m.X[3 * l] - x, m.X[3 * l + 1] - y);
-    if (dd < d || (dd == d && m.natural_id[l] < best)) d = dd, best = m.natural_id[l];
+    if (dd < d) d = dd, best = m.natural_id[l];  // owned nodes in ascending scene ids
   }
   PetscCall(Nearest(P->comm, d, best, node));
   PetscFunctionReturn(0);
@@ -314,13 +315,7 @@ PetscErrorCode ProblemNodeSetIds(Problem *P, const char *name, std::vector<Petsc
   std::vector<PetscInt> mine;
   for (PetscInt l : *set)
     if (l < m.num_owned) mine.push_back(m.natural_id[l]);
-  PetscMPIInt n = (PetscMPIInt)mine.size(), total;
-  std::vector<PetscMPIInt> counts(P->size), displs(P->size, 0);
-  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
-  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  total = displs[P->size - 1] + counts[P->size - 1];
-  ids->resize(total);
-  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPIU_INT, ids->data(), counts.data(), displs.data(), MPIU_INT, P->comm));
+  PetscCall(AllGatherConcat(P->comm, mine, ids));
   std::sort(ids->begin(), ids->end());
   PetscFunctionReturn(0);
 }

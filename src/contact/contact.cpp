@@ -9,7 +9,9 @@
 #include <cstring>
 #include <string>
 
+#include "etfe/assembly.h"
 #include "etfe/contact.h"
+#include "etfe/gather.h"
 #include "etfe/csv_history.h"
 #include "etfe/kernels/contact_frame.h"
 #include "etfe/problem.h"
@@ -149,13 +151,8 @@ static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<Petsc
       const double len = std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
       mine.push_back({std::min(m.natural_id[u], m.natural_id[v]), std::max(m.natural_id[u], m.natural_id[v]), len});
     }
-  PetscMPIInt n = (PetscMPIInt)(mine.size() * sizeof(Edge)), total;
-  std::vector<PetscMPIInt> counts(P->size), displs(P->size, 0);
-  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
-  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  total = displs[P->size - 1] + counts[P->size - 1];
-  std::vector<Edge> edges(total / sizeof(Edge));
-  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPI_BYTE, edges.data(), counts.data(), displs.data(), MPI_BYTE, P->comm));
+  std::vector<Edge> edges;
+  PetscCall(AllGatherConcat(P->comm, mine, &edges));
   std::sort(edges.begin(), edges.end(), [](const Edge &x, const Edge &y) { return x.a < y.a || (x.a == y.a && x.b < y.b); });
   edges.erase(std::unique(edges.begin(), edges.end(), [](const Edge &x, const Edge &y) { return x.a == y.a && x.b == y.b; }),
               edges.end());
@@ -210,13 +207,8 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   // Candidates: a node set of the mesh, or every node; pairs are made on owned nodes, and
   // pair_local also flags the ghosts that make pairs on their owners (the same test).
   const LocalMesh &m = P->mesh;
-  std::vector<char> candidate(m.NumLocal(), spec.node_set.empty() ? 1 : 0), pair_local(m.NumLocal(), 0);
-  if (!spec.node_set.empty()) {
-    auto it = m.node_sets.find(spec.node_set);
-    PetscCheck(it != m.node_sets.end(), P->comm, PETSC_ERR_ARG_WRONG,
-               "contact: the mesh has no node set \"%s\" (check its physical groups)", spec.node_set.c_str());
-    for (PetscInt l : it->second) candidate[l] = 1;
-  }
+  std::vector<char> candidate(m.NumLocal(), 1), pair_local(m.NumLocal(), 0);
+  if (!spec.node_set.empty()) PetscCall(ProblemNodeSetFlags(P, spec.node_set.c_str(), &candidate));
   for (PetscInt l = 0; l < m.NumLocal(); ++l) {
     if (!candidate[l]) continue;
     for (size_t s = 0; s < spec.supports.size(); ++s) {
@@ -241,15 +233,10 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
     }
   }
   // Global ids in scene node order (pairs are few: gather their node ids everywhere).
-  PetscMPIInt n = (PetscMPIInt)c->pairs.size();
-  std::vector<PetscMPIInt> counts(P->size), displs(P->size, 0);
-  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, P->comm));
-  for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-  c->num_global = displs[P->size - 1] + counts[P->size - 1];
-  c->pair_start = displs[P->rank];
-  std::vector<PetscInt> mine(n), all(c->num_global);
-  for (PetscMPIInt i = 0; i < n; ++i) mine[i] = c->pairs[i].natural_node;
-  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, P->comm));
+  std::vector<PetscInt> mine, all;
+  for (const ContactPair &pr : c->pairs) mine.push_back(pr.natural_node);
+  PetscCall(AllGatherConcat(P->comm, mine, &all, &c->pair_start));
+  c->num_global = (PetscInt)all.size();
   std::sort(all.begin(), all.end());
   for (auto &pr : c->pairs) pr.id = std::lower_bound(all.begin(), all.end(), pr.natural_node) - all.begin();
   PetscCheck(c->num_global > 0, P->comm, PETSC_ERR_ARG_WRONG,

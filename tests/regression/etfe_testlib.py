@@ -251,6 +251,15 @@ def largest_history_difference(h0, h, columns):
     return worst, where
 
 
+def dd1511_case(etfe, msh, tmp, name, args, np=1):
+    """DD1511 (options/saddle/dd1511.opts) on the surface msh with args, results off, its files
+    named tmp/<name>.*: returns (output, rows of its history CSV)."""
+    _, out = run(etfe, ["-options_file", os.path.join(REPO, "options", "saddle", "dd1511.opts"), "-mesh_file", msh,
+                        "-output", 0, "-output_file", os.path.join(tmp, name + ".h5"),
+                        "-saddle_history", os.path.join(tmp, name + ".csv")] + list(args), np=np)
+    return out, read_history(os.path.join(tmp, name + ".csv"))
+
+
 def form_found_saddle(etfe, tmp, options="ff_r15_s11_n19.opts", extra=(), name="ff"):
     """Form-finds a saddle start (options/saddle/<options>) into tmp and returns its .msh: a clean
     checkout has no results/saddle/, and the stretch cases name that file."""

@@ -13,10 +13,9 @@ is L0 = 55.4; 0 gives per-node penalties):
 * bad input: a negative length, and a contact area (the capstan's pipe, where pair nodes do not
   form lines), are refused with messages naming the option.
 """
-import os
 import re
 
-from etfe_testlib import REPO, error_message, form_found_saddle, main, opts, read_history, run, scratch_dir
+from etfe_testlib import dd1511_case, error_message, form_found_saddle, main, opts, run, scratch_dir
 
 L0 = 55.4
 
@@ -26,12 +25,10 @@ def test(etfe, chk):
         msh = form_found_saddle(etfe, tmp)
 
         def case(name, extra):
-            _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
-                                "-load_increments", 40, "-load_monitor", 0, "-output", 0,
-                                "-saddle_history", os.path.join(tmp, name + ".csv")] + extra)
+            out, history = dd1511_case(etfe, msh, tmp, name, ["-load_increments", 40, "-load_monitor", 0] + extra)
             num = lambda pattern: float(re.search(pattern + r" = (\S+)", out).group(1))
             res = {"A": num(r"part_A mises"), "B": num(r"part_B mises"), "slide1": num(r"slide_1 \(Y = 0\) X"),
-                   "history": read_history(os.path.join(tmp, name + ".csv"))}
+                   "history": history}
             print("%-10s part A %.6f, part B %.6f MPa, slide I %.6f mm" % (name, res["A"], res["B"], res["slide1"]))
             return res
 

@@ -3,10 +3,8 @@ default in options/saddle/stretch_base.opts, and the others tried) do not move t
 on the form-found 1:1 saddle at 10^4 triangles, first 3 of 200 increments, part A/B Mises and the
 five slides of every step agree with the plain run (levers off) to 1e-6 of each quantity's largest
 value; the default takes no more Newton iterations than the plain run."""
-import os
 
-from etfe_testlib import (REPO, form_found_saddle, increments, largest_history_difference, main, read_history, run,
-                          scratch_dir)
+from etfe_testlib import dd1511_case, form_found_saddle, increments, largest_history_difference, main, scratch_dir
 
 INCREMENTS = 3
 PLAIN = ["-load_tangent_predictor_shift", "0", "-load_force_roundoff", "0"]
@@ -23,13 +21,10 @@ def test(etfe, chk):
         msh = form_found_saddle(etfe, tmp, "ff_r15_s11.opts", ["-mesh_n", 50], name="ff_n50")
 
         def case(name, extra):
-            _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
-                                "-load_stop_after", INCREMENTS, "-output", 0,
-                                "-output_file", os.path.join(tmp, name + ".h5"),
-                                "-saddle_history", os.path.join(tmp, name + ".csv")] + extra)
+            out, history = dd1511_case(etfe, msh, tmp, name, ["-load_stop_after", INCREMENTS] + extra)
             its = [i["newton"] for i in increments(out)]
             print("%-10s Newton per increment %s" % (name, its))
-            return its, read_history(os.path.join(tmp, name + ".csv"))
+            return its, history
 
         its0, h0 = case("plain", PLAIN)
         chk.check(len(h0) == INCREMENTS, "plain run: %d history rows" % len(h0))

@@ -3,10 +3,8 @@ cases): DD1511 at the thesis density on one rank is factored with PETSc's own LU
 with -etfe_lu_native_max_dof 0 or -pc_factor_mat_solver_type mumps with MUMPS; every run takes the
 same Newton iterations and part A/B Mises and the five slides of every increment agree to 1e-9 of
 each quantity's largest value (the packages differ only in round-off)."""
-import os
 
-from etfe_testlib import (REPO, form_found_saddle, increments, largest_history_difference, main, read_history, run,
-                          scratch_dir)
+from etfe_testlib import dd1511_case, form_found_saddle, increments, largest_history_difference, main, scratch_dir
 
 COLUMNS = ["A_mises", "B_mises"] + ["slide%d_%s" % (i, c) for i in range(1, 6) for c in "XY"]
 
@@ -16,14 +14,11 @@ def test(etfe, chk):
         msh = form_found_saddle(etfe, tmp)
 
         def case(name, extra, np=1):
-            _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
-                                "-load_increments", 40, "-output", 0,
-                                "-output_file", os.path.join(tmp, name + ".h5"),
-                                "-saddle_history", os.path.join(tmp, name + ".csv")] + extra, np=np)
+            out, history = dd1511_case(etfe, msh, tmp, name, ["-load_increments", 40] + extra, np=np)
             package = "petsc" if "PC lu petsc" in out else "mumps" if "PC lu mumps" in out else "?"
             its = [i["newton"] for i in increments(out)]
             print("%-12s ranks %d, package %s, Newton %d" % (name, np, package, sum(its)))
-            return package, its, read_history(os.path.join(tmp, name + ".csv"))
+            return package, its, history
 
         pkg0, its0, h0 = case("default", [])
         chk.check(pkg0 == "petsc", "one rank, 2 340 DOF: PETSc's own LU (got %s)" % pkg0)

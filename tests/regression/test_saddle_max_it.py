@@ -7,10 +7,9 @@ DD1511 at the thesis density, first 12 of 200 increments:
 * the saddle default (60) is never reached at this density: the Newton iterations and the history
   equal those of -load_max_it 0 (the limit off) exactly.
 """
-import os
 import re
 
-from etfe_testlib import REPO, form_found_saddle, increments, main, read_history, run, scratch_dir
+from etfe_testlib import dd1511_case, form_found_saddle, increments, main, scratch_dir
 
 INCREMENTS = 12
 
@@ -20,13 +19,10 @@ def test(etfe, chk):
         msh = form_found_saddle(etfe, tmp)
 
         def case(name, extra):
-            _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
-                                "-load_stop_after", INCREMENTS, "-output", 0, "-checkpoint_every", 0,
-                                "-output_file", os.path.join(tmp, name + ".h5"),
-                                "-saddle_history", os.path.join(tmp, name + ".csv")] + extra)
+            out, history = dd1511_case(etfe, msh, tmp, name, ["-load_stop_after", INCREMENTS, "-checkpoint_every", 0] + extra)
             its = [i["newton"] for i in increments(out)]
             print("%-8s Newton per increment %s" % (name, its))
-            return out, its, read_history(os.path.join(tmp, name + ".csv"))
+            return out, its, history
 
         out, its, _ = case("limit3", ["-load_max_it", 3])
         chk.check(len(its) == INCREMENTS, "-load_max_it 3: %d of %d increments converged" % (len(its), INCREMENTS))

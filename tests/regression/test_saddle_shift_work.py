@@ -4,11 +4,9 @@ shift_k |x_{k+1} - x_k|^2, is reported per increment (progress line and the hist
 the work done on the film, and in total at the end; on DD1511 (thesis density, first 20
 increments) it is small against the work, smallest once the film is taut, and it is absent
 without a shift."""
-import csv
-import os
 import re
 
-from etfe_testlib import NUMBER, REPO, form_found_saddle, increments, main, run, scratch_dir
+from etfe_testlib import NUMBER, dd1511_case, form_found_saddle, increments, main, scratch_dir
 
 INCREMENTS = 20
 LINE = re.compile(r"^step +(\d+)/.*?  work (%s) N mm shift (%s) \((%s) of it\)" % (NUMBER, NUMBER, NUMBER), re.M)
@@ -21,12 +19,7 @@ def test(etfe, chk):
         msh = form_found_saddle(etfe, tmp)
 
         def case(name, extra):
-            _, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/dd1511.opts"), "-mesh_file", msh,
-                                "-load_stop_after", INCREMENTS, "-output", 0,
-                                "-output_file", os.path.join(tmp, name + ".h5"),
-                                "-saddle_history", os.path.join(tmp, name + ".csv")] + extra)
-            with open(os.path.join(tmp, name + ".csv")) as f:
-                return out, list(csv.DictReader(f))
+            return dd1511_case(etfe, msh, tmp, name, ["-load_stop_after", INCREMENTS] + extra)
 
         out, rows = case("shift", [])
         lines = {int(m.group(1)): (float(m.group(2)), float(m.group(3))) for m in LINE.finditer(out)}
