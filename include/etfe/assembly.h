@@ -21,6 +21,20 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 // The film's internal nodal forces at U with the committed history (the membrane part of the
 // residual, constrained DOFs included): its work along an increment is the work done on the film.
+// Viscous stabilization (stabilization.cpp): Begin makes the residual carry
+// relative * E h0 * (U - anchor) on free DOFs and the tangent its diagonal, until End;
+// MoveAnchor starts a proximal pass from U; Measure gives the force's work on U - anchor (N mm)
+// and its largest nodal size (N) at U, and spends the anchor (call it last).
+PetscErrorCode StabilizationBegin(Problem *problem, double relative, Vec anchor);
+PetscErrorCode StabilizationMoveAnchor(Problem *problem, Vec U);
+void StabilizationEnd(Problem *problem);
+PetscErrorCode AddStabilizationForce(Problem *problem, Vec U, Vec F);
+PetscErrorCode AddStabilizationTangent(Problem *problem, Mat J);
+PetscErrorCode StabilizationMeasure(Problem *problem, Vec U, double *work, double *force_max);
+PetscErrorCode StabilizationDestroy(Problem *problem);
+// The largest committed equivalent plastic strain, its element (natural id, -1 without a
+// plastic law) and that element's reference centroid [mm] (collective).
+PetscErrorCode LargestPlasticStrain(Problem *problem, double *value, PetscInt *element, double centroid[3]);
 PetscErrorCode FormInternalForce(Problem *problem, Vec U, Vec F);
 // Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
 // collapse. Collective; *ok false names the element in problem->bad_element.

@@ -34,10 +34,23 @@ struct LoadStepperOptions {
   // the membrane forces (coordinates of size |x| differenced over elements of size ~|x|/sqrt(n)),
   // which grows with the mesh density and passes the force test's tolerance near 10^6 elements.
   PetscReal force_roundoff = 0.0;  // 0: off
+  // Viscous stabilization (stabilization.cpp) relative to E h0 per node, and when it acts: never,
+  // on failure (an increment whose Newton solve failed is solved again stabilized before it is
+  // cut back) or always. Proximal passes move its anchor to the converged state and solve again
+  // until its force is at most stabilize_rtol of the reactions and loads (0: no passes).
+  // Warn once when the committed equivalent plastic strain passes this (0: never): beyond it the
+  // small-strain yield law no longer describes the film.
+  PetscReal plastic_strain_limit = 0.2;
+  PetscReal stabilize = 1e-3;
+  PetscInt stabilize_when = 1;  // index into kStabilizeWhen
+  PetscReal stabilize_rtol = 0.0;
+  PetscInt stabilize_passes = 20;
 };
+extern const char *const kStabilizeWhen[3];  // never, failure, always
 
 struct LoadStepperResult {
   PetscInt steps = 0, cutbacks = 0, newton_iterations = 0;
+  PetscInt stabilized = 0;  // converged increments that needed the stabilization
   double time = 0.0, wall = 0.0;
   PetscBool completed = PETSC_FALSE;
   PetscBool stopped = PETSC_FALSE;  // ended cleanly by -load_stop_after before the schedule's end

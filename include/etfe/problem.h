@@ -41,6 +41,15 @@ struct SceneObserver {
 // Frees ctx and clears the observer.
 void SceneObserverDestroy(SceneObserver *observer);
 
+// Viscous stabilization of the increment being solved (src/assembly/stabilization.cpp): active
+// while stiffness > 0; the vectors exist once a run has used it.
+struct Stabilization {
+  double stiffness = 0.0;   // N/mm per free DOF
+  Vec anchor = nullptr;     // the state the force pulls towards (the increment's start)
+  Vec diagonal = nullptr;   // stiffness on free DOFs, 0 on constrained ones
+  Vec work = nullptr;
+};
+
 struct Problem {
   MPI_Comm comm;
   PetscMPIInt rank = 0, size = 1;
@@ -76,6 +85,7 @@ struct Problem {
   // Of the last converged increment: the work done on the film by the prescribed boundary,
   // pressure, loads and contact (= its internal work, trapezoid rule) and the shift work (N mm).
   double increment_work = 0.0, increment_shift_work = 0.0;
+  Stabilization stabilization;
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
   PetscBool near_null_space = PETSC_FALSE;  // rigid-body modes attached to J (AMG preconditioners)

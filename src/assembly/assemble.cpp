@@ -208,6 +208,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
     }
   }
   PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
+  if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationForce(P, U, Fout));
 
   // Constrained DOFs: keep the internal force as the reaction, then R = u - u_prescribed.
   {
@@ -312,6 +313,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   }
   PetscCall(MatAssemblyBegin(Pmat, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Pmat, MAT_FINAL_ASSEMBLY));
+  if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationTangent(P, Pmat));
   // Slack starts: a shift of the tangent's diagonal (not of the residual) lets Newton take its
   // first steps where a stress-free film has no out-of-plane stiffness; the converged answer is
   // unchanged, the convergence rate slightly lowered while the shift matters.

@@ -209,6 +209,7 @@ void SceneObserverDestroy(SceneObserver *o) {
 PetscErrorCode ProblemDestroy(Problem *P) {
   PetscFunctionBeginUser;
   PetscCall(VecDestroy(&P->U));
+  PetscCall(StabilizationDestroy(P));
   PetscCall(VecDestroy(&P->U_work));
   PetscCall(VecDestroy(&P->F_work));
   PetscCall(VecDestroy(&P->reaction));

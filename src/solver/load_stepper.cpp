@@ -13,6 +13,8 @@
 
 namespace etfe {
 
+const char *const kStabilizeWhen[3] = {"never", "failure", "always"};
+
 PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptions *o) {
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Load stepping", "LoadStepper");
@@ -53,7 +55,29 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                              "of the membrane forces, which dense meshes (~10^6 triangles) reach above the force test "
                              "(0: off; 10 is safe)",
                              "", o->force_roundoff, &o->force_roundoff, nullptr));
+  PetscCall(PetscOptionsReal("-load_plastic_strain_limit",
+                             "Warn (once, naming the element, its position and the increment) when the equivalent "
+                             "plastic strain passes this: the small-strain yield law's range (0: never)",
+                             "", o->plastic_strain_limit, &o->plastic_strain_limit, nullptr));
+  PetscCall(PetscOptionsEList("-load_stabilize_when",
+                              "Viscous stabilization of an increment: never, failure (an increment whose Newton solve "
+                              "failed is solved again stabilized before it is cut back) or always",
+                              "", kStabilizeWhen, 3, kStabilizeWhen[o->stabilize_when], &o->stabilize_when, nullptr));
+  PetscCall(PetscOptionsReal("-load_stabilize",
+                             "Stabilizing force per node and mm of the increment's motion, relative to E h0 (slack or "
+                             "compressed film; its work is reported)",
+                             "", o->stabilize, &o->stabilize, nullptr));
+  PetscCall(PetscOptionsReal("-load_stabilize_rtol",
+                             "Proximal passes: solve a stabilized increment again from its answer until the "
+                             "stabilizing force is at most this times the reactions and loads (0: no passes)",
+                             "", o->stabilize_rtol, &o->stabilize_rtol, nullptr));
+  PetscCall(PetscOptionsInt("-load_stabilize_passes", "Most proximal passes per increment", "", o->stabilize_passes,
+                            &o->stabilize_passes, nullptr));
   PetscOptionsEnd();
+  PetscCheck(o->stabilize > 0 && o->stabilize_rtol >= 0 && o->stabilize_passes >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-load_stabilize %g, -load_stabilize_rtol %g, -load_stabilize_passes %" PetscInt_FMT
+             ": use a positive stabilization, a tolerance >= 0 and passes >= 0", (double)o->stabilize,
+             (double)o->stabilize_rtol, o->stabilize_passes);
   // Bounds keep the step arithmetic (increments + stages, 2^cutbacks) far from overflow and the
   // smallest increment far above the round-off of the load time.
   const PetscInt max_increments = 1000000, max_cutbacks = 30;
@@ -253,6 +277,80 @@ std::string StageDescription(const SceneSpec &scene, double t) {
   return d.empty() ? "held" : d;
 }
 
+// One Newton solve of the increment to t_new from the predicted P->U, stabilized as o asks: at
+// once (always) or after a failed plain solve, from the committed state again (failure). Returns
+// the last solve's reason and function norm and all its Newton iterations; stab_work and
+// stab_force are the stabilizing force's work and largest nodal size (0 unless stabilized).
+struct IncrementSolve {
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  PetscInt its = 0;
+  PetscReal fnorm = 0.0;
+  bool stabilized = false;
+  double stab_work = 0.0, stab_force = 0.0;
+  PetscInt passes = 0;
+};
+
+PetscErrorCode SolveIncrement(Problem *P, SNES snes, const LoadStepperOptions &o, Vec U_committed, double t_new,
+                              IncrementSolve *r) {
+  PetscInt its;
+  PetscFunctionBeginUser;
+  auto solve = [&]() -> PetscErrorCode {
+    PetscFunctionBeginUser;
+    PetscCall(SNESSolve(snes, nullptr, P->U));
+    PetscCall(SNESGetConvergedReason(snes, &r->reason));
+    PetscCall(SNESGetIterationNumber(snes, &its));
+    PetscCall(SNESGetFunctionNorm(snes, &r->fnorm));
+    r->its += its;
+    PetscFunctionReturn(0);
+  };
+  const bool always = o.stabilize_when == 2;
+  if (!always) PetscCall(solve());
+  if (always || (r->reason <= 0 && o.stabilize_when == 1)) {
+    if (!always) {
+      PetscCall(VecCopy(U_committed, P->U));
+      PetscCall(ProblemSetLoadTime(P, t_new, P->U));
+    }
+    r->stabilized = true;
+    PetscCall(StabilizationBegin(P, o.stabilize, U_committed));
+    PetscCall(solve());
+    Vec dU;
+    PetscCall(VecDuplicate(P->U, &dU));
+    for (; r->reason > 0 && o.stabilize_rtol > 0 && r->passes < o.stabilize_passes; ++r->passes) {
+      PetscReal size;
+      PetscCall(VecWAXPY(dU, -1.0, P->stabilization.anchor, P->U));
+      PetscCall(VecPointwiseMult(dU, dU, P->stabilization.diagonal));
+      PetscCall(VecNorm(dU, NORM_2, &size));
+      if (size <= o.stabilize_rtol * P->force_scale) break;
+      PetscCall(StabilizationMoveAnchor(P, P->U));
+      PetscCall(solve());
+    }
+    PetscCall(VecDestroy(&dU));
+    if (r->reason > 0) PetscCall(StabilizationMeasure(P, P->U, &r->stab_work, &r->stab_force));
+    StabilizationEnd(P);
+  }
+  PetscFunctionReturn(0);
+}
+
+// Once per run: the first increment whose committed plastic strain passes the limit.
+PetscErrorCode WarnPlasticStrain(Problem *P, const LoadStepperOptions &o, PetscInt step, double t, bool *warned) {
+  double ep, x[3];
+  PetscInt element;
+  PetscFunctionBeginUser;
+  if (*warned || o.plastic_strain_limit <= 0 || !P->material->HasPlasticStrain()) PetscFunctionReturn(0);
+  PetscCall(LargestPlasticStrain(P, &ep, &element, x));
+  if (ep <= o.plastic_strain_limit) PetscFunctionReturn(0);
+  *warned = true;
+  PetscCall(PetscPrintf(P->comm,
+                        "etfe: WARNING increment %" PetscInt_FMT " (load time %.5f): element %" PetscInt_FMT
+                        " at (%.0f, %.0f, %.0f) mm has an equivalent plastic strain of %.3f, beyond "
+                        "-load_plastic_strain_limit %g: the small-strain yield law (additive split of the "
+                        "Green-Lagrange strain) no longer describes the film there. It is drawn far past its yield "
+                        "stress: look for a support that holds the film next to a drawn edge, or smaller drawing "
+                        "values\n",
+                        step, t, element, x[0], x[1], x[2], ep, (double)o.plastic_strain_limit));
+  PetscFunctionReturn(0);
+}
+
 std::string Clock(double seconds) {
   const long s = (long)std::llround(std::max(0.0, seconds));
   char buf[32];
@@ -317,7 +415,8 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   PetscInt converged_states = P->has_initial_guess ? 0 : 1;
   PetscInt step = 0, easy = 0, cutbacks_printed = 0, lifted_since_print = 0;
   Vec U_committed, U_previous, F, Fint, Fint_committed, dU;
-  double work_total = 0.0, shift_work_total = 0.0;
+  bool strain_warned = false;
+  double work_total = 0.0, shift_work_total = 0.0, stab_work_total = 0.0, stab_force_max = 0.0;
   PetscLogDouble t0, t_inc;
   PetscReal snes_atol, snes_rtol, snes_stol;
   PetscInt snes_max_it, snes_max_f;
@@ -378,16 +477,20 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     PetscCall(ProblemSetLoadTime(P, t_new, P->U));
     const PetscInt max_it = (step > 0 && o.max_it > 0) ? std::min(o.max_it, snes_max_it) : snes_max_it;
     PetscCall(SNESSetTolerances(snes, snes_atol, snes_rtol, snes_stol, max_it, snes_max_f));
-    PetscCall(SNESSolve(snes, nullptr, P->U));
-    SNESConvergedReason reason;
-    PetscInt its;
-    PetscReal fnorm;
-    PetscCall(SNESGetConvergedReason(snes, &reason));
-    PetscCall(SNESGetIterationNumber(snes, &its));
-    PetscCall(SNESGetFunctionNorm(snes, &fnorm));
+    IncrementSolve solved;
+    PetscCall(SolveIncrement(P, snes, o, U_committed, t_new, &solved));
+    const SNESConvergedReason reason = solved.reason;
+    const PetscInt its = solved.its;
+    const PetscReal fnorm = solved.fnorm;
     res->newton_iterations += its;
+    if (reason > 0 && solved.stabilized) {
+      ++res->stabilized;
+      stab_work_total += solved.stab_work;
+      stab_force_max = std::max(stab_force_max, solved.stab_force);
+    }
     if (reason > 0) {
       PetscCall(CommitHistory(P, P->U));
+      PetscCall(WarnPlasticStrain(P, o, step + 1, t_new, &strain_warned));
       {
         PetscScalar w;
         PetscCall(FormInternalForce(P, P->U, Fint));
@@ -498,6 +601,18 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                           "dissipate %.3e N mm (%.2e of it, sum over Newton iterations of shift |dx|^2)%s\n",
                           work_total, shift_work_total, work_total != 0 ? shift_work_total / std::fabs(work_total) : 0.0,
                           ck.restart[0] ? " since the restart" : ""));
+  if (res->stabilized) {
+    PetscReal reaction_max;
+    PetscCall(VecMaxNodalNorm(P->reaction, &reaction_max));
+    PetscCall(PetscPrintf(P->comm,
+                          "etfe: %" PetscInt_FMT " increments stabilized (-load_stabilize %g, -load_stabilize_when %s): "
+                          "the stabilizing force did %.3e N mm of work (%.2e of the work done on the film), largest "
+                          "nodal stabilizing force %.3e N (%.2e of the largest reaction)%s\n",
+                          res->stabilized, (double)o.stabilize, kStabilizeWhen[o.stabilize_when], stab_work_total,
+                          work_total != 0 ? stab_work_total / std::fabs(work_total) : 0.0, stab_force_max,
+                          reaction_max > 0 ? stab_force_max / reaction_max : 0.0,
+                          ck.restart[0] ? " since the restart" : ""));
+  }
   PetscCall(SNESSetTolerances(snes, snes_atol, snes_rtol, snes_stol, snes_max_it, snes_max_f));
   PetscCall(VecDestroy(&Fint));
   PetscCall(VecDestroy(&Fint_committed));

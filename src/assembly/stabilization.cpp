@@ -1,0 +1,78 @@
+// Viscous stabilization of a load increment (the idea of Abaqus's *STATIC, STABILIZE): a force
+// k (u - u_n) on every free DOF, u_n the state the increment started from, k = relative * E h0
+// per node (the film's nodal stiffness scale, so the same relative value acts alike on any mesh
+// density). It resists the motion of the increment, so a film with slack or compressed parts
+// (no out-of-plane stiffness, a near-mechanism) gets a well-posed increment; the converged state
+// carries the force k (u - u_n), whose size and work the load stepper reports. Proximal passes
+// (StabilizationMoveAnchor) shrink it: at a fixed point the stabilized state solves the
+// unstabilized equations.
+#include "etfe/assembly.h"
+
+namespace etfe {
+
+PetscErrorCode StabilizationBegin(Problem *P, double relative, Vec anchor) {
+  Stabilization &s = P->stabilization;
+  PetscFunctionBeginUser;
+  if (!s.anchor) {
+    PetscCall(VecDuplicate(P->U, &s.anchor));
+    PetscCall(VecDuplicate(P->U, &s.diagonal));
+    PetscCall(VecDuplicate(P->U, &s.work));
+  }
+  s.stiffness = relative * P->AxialStiffness();
+  PetscCall(VecSet(s.diagonal, s.stiffness));
+  // Constrained rows keep their unit diagonal and prescribed-value residual.
+  PetscScalar *d;
+  PetscCall(VecGetArray(s.diagonal, &d));
+  for (PetscInt dof : P->con_owned_dof) d[dof] = 0.0;
+  PetscCall(VecRestoreArray(s.diagonal, &d));
+  PetscCall(VecCopy(anchor, s.anchor));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilizationMoveAnchor(Problem *P, Vec U) {
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(U, P->stabilization.anchor));
+  PetscFunctionReturn(0);
+}
+
+void StabilizationEnd(Problem *P) { P->stabilization.stiffness = 0.0; }
+
+PetscErrorCode AddStabilizationForce(Problem *P, Vec U, Vec F) {
+  Stabilization &s = P->stabilization;
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(s.work, -1.0, s.anchor, U));
+  PetscCall(VecPointwiseMult(s.work, s.work, s.diagonal));
+  PetscCall(VecAXPY(F, 1.0, s.work));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AddStabilizationTangent(Problem *P, Mat J) {
+  PetscFunctionBeginUser;
+  PetscCall(MatDiagonalSet(J, P->stabilization.diagonal, ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilizationMeasure(Problem *P, Vec U, double *work, double *force_max) {
+  Stabilization &s = P->stabilization;
+  PetscScalar w;
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(s.work, -1.0, s.anchor, U));
+  PetscCall(VecPointwiseMult(s.work, s.work, s.diagonal));
+  PetscCall(VecMaxNodalNorm(s.work, force_max));
+  PetscCall(VecAYPX(s.anchor, -1.0, U));  // U - anchor: the anchor is not needed after this
+  PetscCall(VecDot(s.work, s.anchor, &w));
+  *work = PetscRealPart(w);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilizationDestroy(Problem *P) {
+  Stabilization &s = P->stabilization;
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&s.anchor));
+  PetscCall(VecDestroy(&s.diagonal));
+  PetscCall(VecDestroy(&s.work));
+  s.stiffness = 0.0;
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
