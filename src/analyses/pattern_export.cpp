@@ -260,13 +260,18 @@ std::vector<std::pair<std::string, int>> DxfLayers(const FlattenResult &r, bool 
   return layers;
 }
 
+// The head of a TABLE of `count` entries.
+void DxfTableHead(std::string *s, const char *name, int count) {
+  Pair(s, 0, "TABLE");
+  Pair(s, 2, name);
+  Pair(s, 70, count);
+}
+
 // The TABLES section: the continuous line type, the layers and the text style of height h.
 void DxfTables(std::string *s, const std::vector<std::pair<std::string, int>> &layers, double h) {
   Pair(s, 0, "SECTION");
   Pair(s, 2, "TABLES");
-  Pair(s, 0, "TABLE");
-  Pair(s, 2, "LTYPE");
-  Pair(s, 70, 1);
+  DxfTableHead(s, "LTYPE", 1);
   Pair(s, 0, "LTYPE");
   Pair(s, 2, "CONTINUOUS");
   Pair(s, 70, 0);
@@ -275,14 +280,10 @@ void DxfTables(std::string *s, const std::vector<std::pair<std::string, int>> &l
   Pair(s, 73, 0);
   Pair(s, 40, 0.0);
   Pair(s, 0, "ENDTAB");
-  Pair(s, 0, "TABLE");
-  Pair(s, 2, "LAYER");
-  Pair(s, 70, (int)layers.size());
+  DxfTableHead(s, "LAYER", (int)layers.size());
   for (const auto &ly : layers) DxfLayer(s, ly.first, ly.second);
   Pair(s, 0, "ENDTAB");
-  Pair(s, 0, "TABLE");
-  Pair(s, 2, "STYLE");
-  Pair(s, 70, 1);
+  DxfTableHead(s, "STYLE", 1);
   Pair(s, 0, "STYLE");
   Pair(s, 2, "STANDARD");
   Pair(s, 70, 0);
