@@ -195,6 +195,75 @@ const char *CompensationName(Compensation c) {
   return c == Compensation::Uniform ? "uniform" : c == Compensation::Stress ? "stress" : "none";
 }
 
+// Flattens the strip `name` of shape into *r (*strip: the strip as a mesh of its own). With
+// compensation, the design pattern first (its axes define MD/TD) into *design, then the pattern
+// of the compensated link lengths, started again from the strip's own layouts.
+bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const CutPatternOptions &o, MeshData *strip,
+                       FlattenResult *r, FlattenResult *design, std::string *err) {
+  auto it = shape.element_sets.find(name);
+  if (it == shape.element_sets.end() || it->second.empty()) {
+    *err = "cutting pattern: the surface has no element set \"" + name + "\" (check -cutpattern_strips)";
+    return false;
+  }
+  *strip = ExtractStrip(shape, it->second, name);
+  if (!FlattenStrip(*strip, o.flatten, r, err)) {
+    *err = "cutting pattern of strip " + name + ": " + *err;
+    return false;
+  }
+  if (o.compensation != Compensation::None) {
+    *design = *r;
+    FlattenOptions fo = o.flatten;
+    if (!CompensatedTargets(*strip, it->second, *design, o, &fo.link_target, err) || !FlattenStrip(*strip, fo, r, err)) {
+      *err = "compensated cutting pattern of strip " + name + ": " + *err;
+      return false;
+    }
+  }
+  return true;
+}
+
+// The pattern's files <base>.dxf, <base>.svg and <base>.msh (the plane layout as a mesh).
+bool WriteStripFiles(const std::string &base, const std::string &name, const MeshData &strip, const FlattenResult &r,
+                     std::string *err) {
+  MeshData flat = strip;
+  for (int n = 0; n < flat.NumNodes(); ++n)
+    flat.coords[3 * n] = r.xy[2 * n], flat.coords[3 * n + 1] = r.xy[2 * n + 1], flat.coords[3 * n + 2] = 0.0;
+  return WritePatternDxf(base + ".dxf", r, name, true, err) && WritePatternSvg(base + ".svg", r, name, true, err) &&
+         WriteGmshFile(base + ".msh", flat, err);
+}
+
+// The printed lines of one strip: the fit, the outline, each cutting line and, with compensation
+// (design != nullptr), the compensated outline against the design one.
+std::string StripReport(const std::string &name, const std::string &base, const MeshData &strip, const FlattenResult &r,
+                        const FlattenResult *design, Compensation compensation) {
+  std::string report;
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "cutpattern: strip %s: %d nodes, %d links, %d iterations (%s start), S = %.3e mm^2, link error "
+                "max %.3e rms %.3e; files %s.{dxf,svg,msh}\n",
+                name.c_str(), strip.NumNodes(), (int)r.link_length3d.size(), r.iterations, r.initial_guess.c_str(),
+                r.S, r.max_rel_error, r.rms_rel_error, base.c_str());
+  report += line;
+  std::snprintf(line, sizeof line, "cutpattern: strip %s outline: 3D %.3f mm, 2D %.3f mm, expansion %.4f %%\n",
+                name.c_str(), r.outline_length3d, r.outline_length2d,
+                100.0 * (r.outline_length2d - r.outline_length3d) / r.outline_length3d);
+  report += line;
+  for (const PatternLine &pl : r.lines) {
+    std::snprintf(line, sizeof line, "cutpattern: strip %s line %s: 3D %.3f mm, 2D %.3f mm, expansion %.4f %%\n",
+                  name.c_str(), pl.name.c_str(), pl.length3d, pl.length2d, pl.expansion_pct);
+    report += line;
+  }
+  if (design) {
+    const FlattenResult &d = *design;
+    std::snprintf(line, sizeof line,
+                  "cutpattern: strip %s compensation %s: outline 2D %.6f mm (uncompensated %.6f mm, %+.4f %%), "
+                  "fit to the compensated lengths max %.3e\n",
+                  name.c_str(), CompensationName(compensation), r.outline_length2d, d.outline_length2d,
+                  100.0 * (r.outline_length2d - d.outline_length2d) / d.outline_length2d, r.max_rel_error);
+    report += line;
+  }
+  return report;
+}
+
 } // namespace
 
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o, const std::string &dir,
@@ -217,66 +286,17 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
         if (kv.first != "all") names.push_back(kv.first);
     std::vector<FlattenResult> results(names.size()), design(names.size());
     std::vector<PatternTableEntry> table;
-    char line[512];
+    const bool compensated = o.compensation != Compensation::None;
     for (size_t k = 0; k < names.size() && ok; ++k) {
-      auto it = shape.element_sets.find(names[k]);
-      if (it == shape.element_sets.end() || it->second.empty()) {
-        err = "cutting pattern: the surface has no element set \"" + names[k] + "\" (check -cutpattern_strips)";
-        ok = 0;
-        break;
-      }
-      const MeshData strip = ExtractStrip(shape, it->second, names[k]);
-      FlattenResult &r = results[k];
-      if (!FlattenStrip(strip, o.flatten, &r, &err)) {
-        err = "cutting pattern of strip " + names[k] + ": " + err;
-        ok = 0;
-        break;
-      }
-      if (o.compensation != Compensation::None) {
-        // The design pattern first (its axes define MD/TD), then the pattern of the compensated
-        // link lengths, started again from the strip's own layouts.
-        design[k] = r;
-        FlattenOptions fo = o.flatten;
-        if (!CompensatedTargets(strip, it->second, design[k], o, &fo.link_target, &err) || !FlattenStrip(strip, fo, &r, &err)) {
-          err = "compensated cutting pattern of strip " + names[k] + ": " + err;
-          ok = 0;
-          break;
-        }
-      }
+      MeshData strip;
       const std::string base = dir + "/" + stem + "_" + names[k];
-      MeshData flat = strip;
-      for (int n = 0; n < flat.NumNodes(); ++n)
-        flat.coords[3 * n] = r.xy[2 * n], flat.coords[3 * n + 1] = r.xy[2 * n + 1], flat.coords[3 * n + 2] = 0.0;
-      if (!WritePatternDxf(base + ".dxf", r, names[k], true, &err) ||
-          !WritePatternSvg(base + ".svg", r, names[k], true, &err) || !WriteGmshFile(base + ".msh", flat, &err)) {
+      if (!FlattenNamedStrip(shape, names[k], o, &strip, &results[k], &design[k], &err) ||
+          !WriteStripFiles(base, names[k], strip, results[k], &err)) {
         ok = 0;
         break;
       }
-      table.push_back({names[k], &r, o.compensation != Compensation::None ? &design[k] : nullptr});
-      std::snprintf(line, sizeof line,
-                    "cutpattern: strip %s: %d nodes, %d links, %d iterations (%s start), S = %.3e mm^2, link error "
-                    "max %.3e rms %.3e; files %s.{dxf,svg,msh}\n",
-                    names[k].c_str(), strip.NumNodes(), (int)r.link_length3d.size(), r.iterations,
-                    r.initial_guess.c_str(), r.S, r.max_rel_error, r.rms_rel_error, base.c_str());
-      report += line;
-      std::snprintf(line, sizeof line, "cutpattern: strip %s outline: 3D %.3f mm, 2D %.3f mm, expansion %.4f %%\n",
-                    names[k].c_str(), r.outline_length3d, r.outline_length2d,
-                    100.0 * (r.outline_length2d - r.outline_length3d) / r.outline_length3d);
-      report += line;
-      for (const PatternLine &pl : r.lines) {
-        std::snprintf(line, sizeof line, "cutpattern: strip %s line %s: 3D %.3f mm, 2D %.3f mm, expansion %.4f %%\n",
-                      names[k].c_str(), pl.name.c_str(), pl.length3d, pl.length2d, pl.expansion_pct);
-        report += line;
-      }
-      if (o.compensation != Compensation::None) {
-        const FlattenResult &d = design[k];
-        std::snprintf(line, sizeof line,
-                      "cutpattern: strip %s compensation %s: outline 2D %.6f mm (uncompensated %.6f mm, %+.4f %%), "
-                      "fit to the compensated lengths max %.3e\n",
-                      names[k].c_str(), CompensationName(o.compensation), r.outline_length2d, d.outline_length2d,
-                      100.0 * (r.outline_length2d - d.outline_length2d) / d.outline_length2d, r.max_rel_error);
-        report += line;
-      }
+      table.push_back({names[k], &results[k], compensated ? &design[k] : nullptr});
+      report += StripReport(names[k], base, strip, results[k], compensated ? &design[k] : nullptr, o.compensation);
     }
     if (ok && !WritePatternLineTable(dir + "/" + stem + "_lines.csv", table, &err)) ok = 0;
   }

@@ -44,6 +44,89 @@ namespace etfe {
 
 using namespace flatten;
 
+namespace {
+
+// The strip must be one piece across edges: a strip that falls apart has no single layout.
+bool CheckConnected(const MeshData &m, const Topology &t, std::string *err) {
+  std::vector<int> order, via;
+  TriangleBfs(m, t, 0, &order, &via);
+  if ((int)order.size() != m.NumElements()) {
+    return Fail(m, err, Format("the strip falls apart: only %d of its %d triangles are "
+                               "connected to triangle 0 across edges; flatten each piece on "
+                               "its own",
+                               (int)order.size(), m.NumElements()));
+  }
+  return true;
+}
+
+// The links' target lengths L (their 3D lengths, or opt.link_target) and weights w; *lmean the
+// mean target length. False for a link whose nodes coincide.
+bool LinkTargets(const MeshData &m, const Topology &t, const FlattenOptions &opt, Problem *p, double *lmean,
+                 std::string *err) {
+  const int nl = t.NumLinks();
+  p->topo = &t;
+  p->L.resize(nl);
+  p->w.resize(nl);
+  if (!opt.link_target.empty() && (int)opt.link_target.size() != nl)
+    return Fail(m, err, Format("%d target link lengths given for %d links", (int)opt.link_target.size(), nl));
+  *lmean = 0.0;
+  for (int i = 0; i < nl; ++i) {
+    const int a = t.links[2 * i], b = t.links[2 * i + 1];
+    p->L[i] = opt.link_target.empty() ? Dist3(&m.coords[3 * (size_t)a], &m.coords[3 * (size_t)b])
+                                      : opt.link_target[i];
+    *lmean += p->L[i] / nl;
+    p->w[i] = t.Boundary(i) ? opt.boundary_weight : opt.interior_weight;
+  }
+  for (int i = 0; i < nl; ++i)
+    if (!(p->L[i] > opt.min_link_rel * *lmean)) {
+      return Fail(m, err, Format("%s has 3D length %.3g mm (mean link %.3g mm): its nodes "
+                                 "coincide, so the strip cannot be flattened; merge them",
+                                 LinkName(t, i).c_str(), p->L[i], *lmean));
+    }
+  p->min_len2d = 1e-12 * *lmean;
+  return true;
+}
+
+// The initial layout: of the projection and the unfolding, the one with fewer folds, then the
+// smaller S.
+bool InitialLayout(const MeshData &m, const Topology &t, const Problem &p, std::vector<double> *x, FlattenResult *out,
+                   std::string *err) {
+  std::vector<double> cand[2];
+  ProjectionGuess(m, &cand[0]);
+  UnfoldGuess(m, t, &cand[1]);
+  const char *names[2] = {"projection", "unfolding"};
+  int best = -1, best_folds = 0;
+  double best_S = HUGE_VAL;
+  for (int c = 0; c < 2; ++c) {
+    AlignPrincipal(&cand[c]);
+    double S;
+    if (Objective(p, cand[c], &S, nullptr) != KERNEL_OK) continue;
+    const int folds = CountFolds(t, cand[c], nullptr);
+    if (best < 0 || folds < best_folds || (folds == best_folds && S < best_S))
+      best = c, best_folds = folds, best_S = S;
+  }
+  if (best < 0) return Fail(m, err, "no initial plane layout without collapsed links");
+  *x = cand[best];
+  out->initial_guess = names[best];
+  out->S_initial = out->S = best_S;
+  return true;
+}
+
+// Rigid motion: fix the node with the smallest x and the y of the one with the largest x of
+// the (principal-axis aligned) layout, far apart so the rotation is well determined.
+void FixRigidMotion(const std::vector<double> &x, int nn, Problem *p) {
+  int a = 0, b = 0;
+  for (int i = 0; i < nn; ++i) {
+    if (x[2 * (size_t)i] < x[2 * (size_t)a]) a = i;
+    if (x[2 * (size_t)i] > x[2 * (size_t)b]) b = i;
+  }
+  p->eq.assign(2 * (size_t)nn, -1);
+  for (int k = 0; k < 2 * nn; ++k)
+    if (k != 2 * a && k != 2 * a + 1 && k != 2 * b + 1) p->eq[k] = p->nfree++;
+}
+
+} // namespace
+
 bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenResult *out,
                   std::string *err) {
   const MeshData &m = strip3d;
@@ -59,73 +142,13 @@ bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenRes
   if (!initialized) return Fail(m, err, "FlattenStrip needs PETSc to be initialised");
 
   Topology t;
-  if (!BuildTopology(m, &t, err)) return false;
-  const int nn = m.NumNodes(), nl = t.NumLinks();
-  {
-    std::vector<int> order, via;
-    TriangleBfs(m, t, 0, &order, &via);
-    if ((int)order.size() != m.NumElements()) {
-      return Fail(m, err, Format("the strip falls apart: only %d of its %d triangles are "
-                                 "connected to triangle 0 across edges; flatten each piece on "
-                                 "its own",
-                                 (int)order.size(), m.NumElements()));
-    }
-  }
+  if (!BuildTopology(m, &t, err) || !CheckConnected(m, t, err)) return false;
   Problem p;
-  p.topo = &t;
-  p.L.resize(nl);
-  p.w.resize(nl);
-  if (!opt.link_target.empty() && (int)opt.link_target.size() != nl)
-    return Fail(m, err, Format("%d target link lengths given for %d links", (int)opt.link_target.size(), nl));
   double lmean = 0.0;
-  for (int i = 0; i < nl; ++i) {
-    const int a = t.links[2 * i], b = t.links[2 * i + 1];
-    p.L[i] = opt.link_target.empty() ? Dist3(&m.coords[3 * (size_t)a], &m.coords[3 * (size_t)b])
-                                     : opt.link_target[i];
-    lmean += p.L[i] / nl;
-    p.w[i] = t.Boundary(i) ? opt.boundary_weight : opt.interior_weight;
-  }
-  for (int i = 0; i < nl; ++i)
-    if (!(p.L[i] > opt.min_link_rel * lmean)) {
-      return Fail(m, err, Format("%s has 3D length %.3g mm (mean link %.3g mm): its nodes "
-                                 "coincide, so the strip cannot be flattened; merge them",
-                                 LinkName(t, i).c_str(), p.L[i], lmean));
-    }
-  p.min_len2d = 1e-12 * lmean;
-
-  // Initial layouts: fold-free first, then the smaller S.
+  if (!LinkTargets(m, t, opt, &p, &lmean, err)) return false;
   std::vector<double> x;
-  {
-    std::vector<double> cand[2];
-    ProjectionGuess(m, &cand[0]);
-    UnfoldGuess(m, t, &cand[1]);
-    const char *names[2] = {"projection", "unfolding"};
-    int best = -1, best_folds = 0;
-    double best_S = HUGE_VAL;
-    for (int c = 0; c < 2; ++c) {
-      AlignPrincipal(&cand[c]);
-      double S;
-      if (Objective(p, cand[c], &S, nullptr) != KERNEL_OK) continue;
-      const int folds = CountFolds(t, cand[c], nullptr);
-      if (best < 0 || folds < best_folds || (folds == best_folds && S < best_S))
-        best = c, best_folds = folds, best_S = S;
-    }
-    if (best < 0) return Fail(m, err, "no initial plane layout without collapsed links");
-    x = cand[best];
-    out->initial_guess = names[best];
-    out->S_initial = out->S = best_S;
-  }
-
-  // Rigid motion: fix the node with the smallest x and the y of the one with the largest x of
-  // the (principal-axis aligned) layout, far apart so the rotation is well determined.
-  int a = 0, b = 0;
-  for (int i = 0; i < nn; ++i) {
-    if (x[2 * (size_t)i] < x[2 * (size_t)a]) a = i;
-    if (x[2 * (size_t)i] > x[2 * (size_t)b]) b = i;
-  }
-  p.eq.assign(2 * (size_t)nn, -1);
-  for (int k = 0; k < 2 * nn; ++k)
-    if (k != 2 * a && k != 2 * a + 1 && k != 2 * b + 1) p.eq[k] = p.nfree++;
+  if (!InitialLayout(m, t, p, &x, out, err)) return false;
+  FixRigidMotion(x, m.NumNodes(), &p);
 
   std::string msg;
   const PetscErrorCode ierr = Iterate(m, opt, &p, lmean, &x, out, &msg);

@@ -154,6 +154,44 @@ std::string LinkName(const Topology &t, int i) {
   return Format("link %d-%d", t.links[2 * i], t.links[2 * i + 1]);
 }
 
+namespace {
+
+// Backtracking along dx from x, halving the step up to 40 times, until S does not grow (or is at
+// its floor s_atol sw); at every trial point xt = x + a dx the second-order correction
+// dc = K^-1 R(xt), with K's current factorisation, is tried too and the better point kept.
+// On *accepted: *xt the new point, *St its S and *step = *xt - x (*xc is scratch).
+PetscErrorCode SearchAlongStep(const FlattenOptions &opt, const Problem &p, LinearSystem *ls,
+                               const std::vector<double> &x, const std::vector<double> &dx, double S, double sw,
+                               std::vector<double> *xt, std::vector<double> *xc, double *St,
+                               std::vector<double> *step, bool *accepted) {
+  const size_t nd = x.size();
+  std::vector<double> R1, dc;
+  int bad = -1;
+  PetscFunctionBeginUser;
+  double a = 1.0;
+  for (int k = 0; k < 40 && !*accepted; ++k, a *= 0.5) {
+    for (size_t j = 0; j < nd; ++j) (*xt)[j] = x[j] + a * dx[j];
+    double Sp = HUGE_VAL, Sc = HUGE_VAL;
+    if (Objective(p, *xt, &Sp, nullptr) != KERNEL_OK) Sp = HUGE_VAL;
+    bool soc = Residual(p, *xt, &R1, &bad) == KERNEL_OK;
+    if (soc) PetscCall(SolveK(p, ls, R1, &dc, &soc));
+    if (soc) {
+      for (size_t j = 0; j < nd; ++j) (*xc)[j] = (*xt)[j] + dc[j];
+      if (Objective(p, *xc, &Sc, nullptr) != KERNEL_OK) Sc = HUGE_VAL;
+    }
+    const bool use_c = Sc < Sp;
+    *St = use_c ? Sc : Sp;
+    if (*St <= S || *St <= opt.s_atol * sw) {
+      *accepted = true;
+      if (use_c) xt->swap(*xc);
+      for (size_t j = 0; j < nd; ++j) (*step)[j] = (*xt)[j] - x[j];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
 // One stage of the iteration, at the weights in p. Each step dx = K^-1 R is searched by
 // backtracking until S does not grow; at every trial point x + a dx the second-order
 // correction dc = K^-1 R(x + a dx), with the same factorisation, is tried too and the better
@@ -168,7 +206,7 @@ PetscErrorCode IterateStage(const FlattenOptions &opt, const Problem &p, LinearS
                             double sw, double step_tol, int max_it, std::vector<double> *x,
                             FlattenResult *out, bool *converged, std::string *msg) {
   const size_t nd = x->size();
-  std::vector<double> R, R1, dx, dc, xt(nd), xc(nd), step(nd);
+  std::vector<double> R, dx, xt(nd), xc(nd), step(nd);
   PetscFunctionBeginUser;
   *converged = false;
   double S;
@@ -207,25 +245,7 @@ PetscErrorCode IterateStage(const FlattenOptions &opt, const Problem &p, LinearS
       for (double v : dx) dmax = std::max(dmax, std::fabs(v));
       // At the round-off floor of an exact development no trial decreases S; that counts as
       // converged below.
-      double a = 1.0;
-      for (int k = 0; k < 40 && !accepted; ++k, a *= 0.5) {
-        for (size_t j = 0; j < nd; ++j) xt[j] = (*x)[j] + a * dx[j];
-        double Sp = HUGE_VAL, Sc = HUGE_VAL;
-        if (Objective(p, xt, &Sp, nullptr) != KERNEL_OK) Sp = HUGE_VAL;
-        bool soc = Residual(p, xt, &R1, &bad) == KERNEL_OK;
-        if (soc) PetscCall(SolveK(p, ls, R1, &dc, &soc));
-        if (soc) {
-          for (size_t j = 0; j < nd; ++j) xc[j] = xt[j] + dc[j];
-          if (Objective(p, xc, &Sc, nullptr) != KERNEL_OK) Sc = HUGE_VAL;
-        }
-        const bool use_c = Sc < Sp;
-        St = use_c ? Sc : Sp;
-        if (St <= S || St <= opt.s_atol * sw) {
-          accepted = true;
-          if (use_c) xt.swap(xc);
-          for (size_t j = 0; j < nd; ++j) step[j] = xt[j] - (*x)[j];
-        }
-      }
+      PetscCall(SearchAlongStep(opt, p, ls, *x, dx, S, sw, &xt, &xc, &St, &step, &accepted));
       if (accepted && order > 0) ++out->second_order_steps;
     }
     if (!msg->empty()) break;

@@ -123,25 +123,12 @@ PetscErrorCode ModelSize(Problem *P, double *size) {
   PetscFunctionReturn(0);
 }
 
-} // namespace
-
-PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFindOptions &o,
-                           FormFindResult *res) {
-  Vec U_total;
-  PetscLogDouble t0;
+// The fixed-point iteration: solve at the prescribed stress, move the reference onto the
+// solution, until the largest normal move is below tol * size. The moves add up in U_total; res
+// gets the iterations, the last move, and converged or what went wrong.
+PetscErrorCode IterateShape(Problem *P, SNES snes, const FormFindOptions &o, double size, double t_end, Vec U_total,
+                            FormFindResult *res) {
   PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t0));
-  PetscCall(VecDuplicate(P->U, &U_total));
-  PetscCall(VecZeroEntries(U_total));
-  double size = 0.0;
-  PetscCall(ModelSize(P, &size));
-  const double t_end = P->scene.NumStages();  // boundaries at their final (prescribed) positions
-  res->converged = PETSC_FALSE;
-  // A scene may give each element its own stress ratio (the saddle: middle 1:1, corners 3:1).
-  // The prescribed-stress material keeps (S_MD, S_TD) as its element history.
-  const auto &ratio = P->element_stress_ratio;
-  if (!ratio.empty())
-    for (PetscInt e = 0; e < P->mesh.num_elements; ++e) P->history[2 * e] = ratio[e] * P->history[2 * e + 1];
   for (PetscInt it = 1; it <= o.max_iterations; ++it) {
     PetscCall(VecZeroEntries(P->U));
     PetscCall(ProblemSetLoadTime(P, t_end, P->U));
@@ -189,6 +176,69 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
                    " iterations (last move " + std::to_string(res->last_move) +
                    " mm): raise -formfind_max_iterations or -formfind_tol, or the shape keeps "
                    "shrinking because none exists for these boundaries";
+  PetscFunctionReturn(0);
+}
+
+// Writes the found surface as Gmsh (rank 0) to -formfind_mesh_out or beside the results.
+PetscErrorCode WriteFoundSurface(Problem *P, const OutputFile *out, const FormFindOptions &o, const MeshData &shape,
+                                 std::string *path) {
+  PetscFunctionBeginUser;
+  *path = o.mesh_out;
+  if (path->empty())
+    *path = (out ? OutputDirectory(out) : std::string("results/") + P->scene.name) + "/" + P->scene.name +
+            "_formfound.msh";
+  if (P->rank == 0) {
+    std::error_code ec;
+    auto dir = std::filesystem::path(*path).parent_path();
+    if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+    std::string err;
+    PetscCheck(WriteGmshFile(*path, shape, &err), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "%s", err.c_str());
+  }
+  PetscFunctionReturn(0);
+}
+
+// Cuts the found surface (written to path) into flat patterns beside it.
+PetscErrorCode CutFoundSurface(Problem *P, const FormFindOptions &o, const MeshData &shape, const std::string &path) {
+  PetscFunctionBeginUser;
+  const std::filesystem::path p(path);
+  // Stress compensation without -cutpattern_prestress: the form-finding stress, (ratio S, S)
+  // in each element's MD/TD frame (the Cauchy stress at the fixed point, taken as the PK2
+  // the drawn film must reach).
+  CutPatternOptions cpo = o.cutpattern;
+  cpo.element_stress = true;
+  for (int i = 0; i < 3; ++i) cpo.md_axis[i] = P->scene.md_axis[i];
+  if (P->rank == 0 && cpo.compensation == Compensation::Stress && !cpo.prestress_given) {
+    const auto &ratio = P->scene.element_stress_ratio;
+    cpo.element_prestress.resize(3 * (size_t)shape.NumElements());
+    for (int e = 0; e < shape.NumElements(); ++e) {
+      cpo.element_prestress[3 * e] = (ratio.empty() ? o.ratio : ratio[e]) * o.stress;
+      cpo.element_prestress[3 * e + 1] = o.stress;
+      cpo.element_prestress[3 * e + 2] = 0.0;
+    }
+  }
+  PetscCall(CutPatternRun(P->comm, shape, cpo, p.parent_path().empty() ? "." : p.parent_path().string(),
+                          p.stem().string()));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFindOptions &o,
+                           FormFindResult *res) {
+  Vec U_total;
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(P->U, &U_total));
+  PetscCall(VecZeroEntries(U_total));
+  double size = 0.0;
+  PetscCall(ModelSize(P, &size));
+  const double t_end = P->scene.NumStages();  // boundaries at their final (prescribed) positions
+  res->converged = PETSC_FALSE;
+  // A scene may give each element its own stress ratio (the saddle: middle 1:1, corners 3:1).
+  // The prescribed-stress material keeps (S_MD, S_TD) as its element history.
+  const auto &ratio = P->element_stress_ratio;
+  if (!ratio.empty())
+    for (PetscInt e = 0; e < P->mesh.num_elements; ++e) P->history[2 * e] = ratio[e] * P->history[2 * e + 1];
+  PetscCall(IterateShape(P, snes, o, size, t_end, U_total, res));
   // The found surface: displacement from the scene's mesh, stresses at the last iterate.
   PetscCall(VecZeroEntries(P->U));
   PetscCall(ProblemSetLoadTime(P, t_end, P->U));
@@ -196,40 +246,12 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
   if (out) PetscCall(OutputWriteStep(out, P, U_total, 1, t_end, P->U));
   if (res->converged) {
     MeshData shape;
+    std::string path;
     PetscCall(OutputGatherShape(P, P->U, &shape));
-    std::string path = o.mesh_out;
-    if (path.empty())
-      path = (out ? OutputDirectory(out) : std::string("results/") + P->scene.name) + "/" +
-             P->scene.name + "_formfound.msh";
-    if (P->rank == 0) {
-      std::error_code ec;
-      auto dir = std::filesystem::path(path).parent_path();
-      if (!dir.empty()) std::filesystem::create_directories(dir, ec);
-      std::string err;
-      PetscCheck(WriteGmshFile(path, shape, &err), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "%s", err.c_str());
-    }
+    PetscCall(WriteFoundSurface(P, out, o, shape, &path));
     PetscCall(PetscPrintf(P->comm, "formfind: converged after %" PetscInt_FMT " iterations; surface written to %s\n",
                           res->iterations, path.c_str()));
-    if (o.cutpattern.enabled) {
-      const std::filesystem::path p(path);
-      // Stress compensation without -cutpattern_prestress: the form-finding stress, (ratio S, S)
-      // in each element's MD/TD frame (the Cauchy stress at the fixed point, taken as the PK2
-      // the drawn film must reach).
-      CutPatternOptions cpo = o.cutpattern;
-      cpo.element_stress = true;
-      for (int i = 0; i < 3; ++i) cpo.md_axis[i] = P->scene.md_axis[i];
-      if (P->rank == 0 && cpo.compensation == Compensation::Stress && !cpo.prestress_given) {
-        const auto &ratio = P->scene.element_stress_ratio;
-        cpo.element_prestress.resize(3 * (size_t)shape.NumElements());
-        for (int e = 0; e < shape.NumElements(); ++e) {
-          cpo.element_prestress[3 * e] = (ratio.empty() ? o.ratio : ratio[e]) * o.stress;
-          cpo.element_prestress[3 * e + 1] = o.stress;
-          cpo.element_prestress[3 * e + 2] = 0.0;
-        }
-      }
-      PetscCall(CutPatternRun(P->comm, shape, cpo, p.parent_path().empty() ? "." : p.parent_path().string(),
-                              p.stem().string()));
-    }
+    if (o.cutpattern.enabled) PetscCall(CutFoundSurface(P, o, shape, path));
   }
   // P->U now holds the total displacement so that scene reports see the found shape.
   PetscCall(VecZeroEntries(P->U));

@@ -125,40 +125,47 @@ bool TraceBothWays(const TriSurface &s, int v, int parent, const double q[3], co
   return true;
 }
 
-} // namespace
+// The surface to cut: the mesh's one physical surface (or all its triangles) as a TriSurface.
+struct CutSurface {
+  std::string base = "strip";  // the strips' names are <base>_01, <base>_02, ...
+  MeshData sub;                // the input triangles, before any line is inserted
+  TriSurface s;                // the surface the lines are inserted into
+};
 
-bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
-                       std::string *err) {
-  const std::string opt = "-cutpattern_strip_width " + Fmt("%g", o.width);
-  const auto t0 = std::chrono::steady_clock::now();
-  // 1. The surface: its one physical surface, or every triangle.
-  if (mesh->element_sets.size() > 1) {
+bool SurfaceToCut(const MeshData &mesh, const std::string &opt, CutSurface *c, std::vector<std::string> *notes,
+                  std::string *err) {
+  if (mesh.element_sets.size() > 1) {
     std::string names;
-    for (const auto &kv : mesh->element_sets) names += (names.empty() ? "" : ", ") + kv.first;
-    *err = opt + " cuts one surface into strips, but " + mesh->source + " has " +
-           std::to_string(mesh->element_sets.size()) + " physical surfaces (" + names +
+    for (const auto &kv : mesh.element_sets) names += (names.empty() ? "" : ", ") + kv.first;
+    *err = opt + " cuts one surface into strips, but " + mesh.source + " has " +
+           std::to_string(mesh.element_sets.size()) + " physical surfaces (" + names +
            "): give a mesh with one physical surface (or none), or leave out -cutpattern_strip_width to flatten "
            "those groups as the strips";
     return false;
   }
-  std::string base = "strip";
   std::vector<int> elems;
-  if (mesh->element_sets.size() == 1) {
-    base = mesh->element_sets.begin()->first;
-    elems = mesh->element_sets.begin()->second;
+  if (mesh.element_sets.size() == 1) {
+    c->base = mesh.element_sets.begin()->first;
+    elems = mesh.element_sets.begin()->second;
   } else {
-    for (int e = 0; e < mesh->NumElements(); ++e) elems.push_back(e);
+    for (int e = 0; e < mesh.NumElements(); ++e) elems.push_back(e);
   }
-  if ((int)elems.size() < mesh->NumElements())
-    notes->push_back(std::to_string(mesh->NumElements() - (int)elems.size()) +
-                     " triangles outside the physical surface " + base + " are left out");
-  const MeshData sub = ExtractStrip(*mesh, elems, base);
-  TriSurface s;
-  if (!SurfaceFromArrays(sub.coords, sub.triangles, &s, err)) {
-    *err = mesh->source + ": " + *err;
+  if ((int)elems.size() < mesh.NumElements())
+    notes->push_back(std::to_string(mesh.NumElements() - (int)elems.size()) +
+                     " triangles outside the physical surface " + c->base + " are left out");
+  c->sub = ExtractStrip(mesh, elems, c->base);
+  if (!SurfaceFromArrays(c->sub.coords, c->sub.triangles, &c->s, err)) {
+    *err = mesh.source + ": " + *err;
     return false;
   }
-  double h = 0, area = 0, centroid[3] = {0, 0, 0};
+  return true;
+}
+
+// The mean edge length h (each edge once) and the area centroid of s.
+void MeanEdgeAndCentroid(const TriSurface &s, double *h, double centroid[3]) {
+  double area = 0;
+  *h = 0;
+  for (int i = 0; i < 3; ++i) centroid[i] = 0;
   std::set<std::pair<int, int>> edges;
   for (int e = 0; e < s.NumTris(); ++e) {
     const double *x[3] = {&s.coords[3 * s.tris[3 * e]], &s.coords[3 * s.tris[3 * e + 1]], &s.coords[3 * s.tris[3 * e + 2]]};
@@ -168,161 +175,166 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
     for (int k = 0; k < 3; ++k) {
       const int a = s.tris[3 * e + k], b = s.tris[3 * e + (k + 1) % 3];
       if (edges.insert({std::min(a, b), std::max(a, b)}).second)
-        h += std::sqrt(std::pow(s.coords[3 * a] - s.coords[3 * b], 2) + std::pow(s.coords[3 * a + 1] - s.coords[3 * b + 1], 2) +
-                       std::pow(s.coords[3 * a + 2] - s.coords[3 * b + 2], 2));
+        *h += std::sqrt(std::pow(s.coords[3 * a] - s.coords[3 * b], 2) + std::pow(s.coords[3 * a + 1] - s.coords[3 * b + 1], 2) +
+                        std::pow(s.coords[3 * a + 2] - s.coords[3 * b + 2], 2));
     }
   }
-  h /= std::max<size_t>(1, edges.size());
-  for (double &c : centroid) c /= area;
-  if (o.width < h) {
-    *err = opt + " mm is narrower than the elements of " + mesh->source + " (mean edge " + Fmt("%.1f", h) +
-           " mm): a strip needs a few elements across; refine the mesh or give a wider strip";
-    return false;
-  }
-  // 2. The middle: the interior node nearest the centroid, and its normal.
-  int vmid = -1;
+  *h /= std::max<size_t>(1, edges.size());
+  for (int i = 0; i < 3; ++i) centroid[i] /= area;
+}
+
+// The interior node nearest the point c; -1 when s has no interior node.
+int InteriorNodeNearest(const TriSurface &s, const double c[3]) {
+  int v = -1;
   double best = std::numeric_limits<double>::infinity();
   for (int n = 0; n < s.NumNodes(); ++n) {
-    const double d2 = std::pow(s.coords[3 * n] - centroid[0], 2) + std::pow(s.coords[3 * n + 1] - centroid[1], 2) +
-                      std::pow(s.coords[3 * n + 2] - centroid[2], 2);
-    if (d2 < best && !SurfaceVertexOnBoundary(s, n)) best = d2, vmid = n;
+    const double d2 = std::pow(s.coords[3 * n] - c[0], 2) + std::pow(s.coords[3 * n + 1] - c[1], 2) +
+                      std::pow(s.coords[3 * n + 2] - c[2], 2);
+    if (d2 < best && !SurfaceVertexOnBoundary(s, n)) best = d2, v = n;
   }
-  if (vmid < 0) {
-    *err = opt + ": " + mesh->source + " has no interior node to start the cutting lines from; refine the mesh";
-    return false;
-  }
+  return v;
+}
+
+// The unit direction across the strips at node v: its normal (the sum of its triangles' normals)
+// times the strip axis. False when the axis is (nearly) normal to the surface there.
+bool TransverseDirection(const TriSurface &s, int v, const double axis[3], double tr[3]) {
   double nv[3] = {0, 0, 0};
   for (int e = 0; e < s.NumTris(); ++e)
-    if (s.tris[3 * e] == vmid || s.tris[3 * e + 1] == vmid || s.tris[3 * e + 2] == vmid) {
+    if (s.tris[3 * e] == v || s.tris[3 * e + 1] == v || s.tris[3 * e + 2] == v) {
       double n[3];
       SurfaceTriangleNormal(s, e, n);
       for (int i = 0; i < 3; ++i) nv[i] += n[i];
     }
-  double axis[3] = {0, 0, 0};
-  axis[o.direction] = 1;
-  double tr[3] = {nv[1] * axis[2] - nv[2] * axis[1], nv[2] * axis[0] - nv[0] * axis[2], nv[0] * axis[1] - nv[1] * axis[0]};
+  tr[0] = nv[1] * axis[2] - nv[2] * axis[1], tr[1] = nv[2] * axis[0] - nv[0] * axis[2], tr[2] = nv[0] * axis[1] - nv[1] * axis[0];
   const double nn = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
   const double tn = std::sqrt(tr[0] * tr[0] + tr[1] * tr[1] + tr[2] * tr[2]);
-  const double *pm = &s.coords[3 * vmid];
-  if (!(tn > 0.1 * nn)) {
-    *err = std::string("-cutpattern_strip_direction ") + kAxis[o.direction] +
-           " is (nearly) normal to the surface at its middle " + Fmt("(%.1f, %.1f, %.1f) mm", pm[0], pm[1], pm[2]) +
-           ": choose an axis along the surface";
-    return false;
-  }
-  for (double &c : tr) c /= tn;
-  // 3. The transverse geodesic (on the uncut mesh) and the offsets of the lines on it.
-  const int max_steps = 4 * s.NumTris() + 100;
+  if (!(tn > 0.1 * nn)) return false;
+  for (int i = 0; i < 3; ++i) tr[i] /= tn;
+  return true;
+}
+
+// The middle of the surface and the transverse geodesic through it, on which the cutting lines start.
+struct Transverse {
+  int vmid = -1;                   // the middle node
+  double mid[3] = {0, 0, 0};       // its coordinates (a copy: inserting lines grows s.coords)
+  double axis[3] = {0, 0, 0};      // the strip direction
+  double dir[3] = {0, 0, 0};       // the direction across the strips at the middle
+  int max_steps = 0;               // triangle crossings a trace may take
+  GeodesicPath fwd, back;          // the transverse geodesic from the middle along +dir and -dir
+};
+
+// Both halves of the transverse geodesic through the middle node of the uncut surface.
+bool TraceTransverse(const TriSurface &s, Transverse *t, std::string *err) {
   int tf, tb;
   double df[3], db[3];
-  GeodesicPath fwd, back;
-  if (!GeodesicStartAtVertex(s, vmid, tr, &tf, df) || !GeodesicOppositeAtVertex(s, vmid, tf, df, &tb, db) ||
-      !GeodesicTrace(s, tf, pm, df, max_steps, &fwd, err) || !GeodesicTrace(s, tb, pm, db, max_steps, &back, err)) {
-    *err = opt + ": the transverse geodesic through the middle: " + *err;
+  return GeodesicStartAtVertex(s, t->vmid, t->dir, &tf, df) && GeodesicOppositeAtVertex(s, t->vmid, tf, df, &tb, db) &&
+         GeodesicTrace(s, tf, t->mid, df, t->max_steps, &t->fwd, err) &&
+         GeodesicTrace(s, tb, t->mid, db, t->max_steps, &t->back, err);
+}
+
+// The cutting lines' signed arc lengths from the middle on the transverse geodesic (+ along fwd):
+// 0, then steps of W each way while at least W/4 is left to the boundary.
+std::vector<double> LineOffsets(double width, double fwd_length, double back_length) {
+  std::vector<double> offsets{0.0};
+  for (int k = 1; k * width <= fwd_length - 0.25 * width; ++k) offsets.push_back(k * width);
+  for (int k = 1; k * width <= back_length - 0.25 * width; ++k) offsets.push_back(-k * width);
+  return offsets;
+}
+
+// Where the cutting line `off` mm from the middle (off != 0) crosses the transverse geodesic: the
+// point q in the input triangle *parent, and the line's direction c there, at right angles to the
+// geodesic and along the strip axis.
+void CuttingLineStart(const TriSurface &s, const Transverse &t, double off, double q[3], double c[3], int *parent) {
+  const GeodesicPath &g = off > 0 ? t.fwd : t.back;
+  double prev[3] = {t.mid[0], t.mid[1], t.mid[2]}, sum = 0;
+  const double want = std::fabs(off);
+  size_t i = 0;
+  for (; i < g.points.size(); ++i) {
+    const double *x = g.points[i].x;
+    const double l = std::sqrt(std::pow(x[0] - prev[0], 2) + std::pow(x[1] - prev[1], 2) + std::pow(x[2] - prev[2], 2));
+    if (sum + l >= want) break;
+    sum += l;
+    for (int j = 0; j < 3; ++j) prev[j] = x[j];
+  }
+  i = std::min(i, g.points.size() - 1);
+  const double *u = &g.segment_dir[3 * i];
+  for (int j = 0; j < 3; ++j) q[j] = prev[j] + (want - sum) * u[j];
+  *parent = g.segment_tri[i];
+  double n[3];
+  SurfaceTriangleNormal(s, *parent, n);  // the transverse trace ran on the uncut mesh: parent ids are its own
+  c[0] = n[1] * u[2] - n[2] * u[1], c[1] = n[2] * u[0] - n[0] * u[2], c[2] = n[0] * u[1] - n[1] * u[0];
+  if (c[0] * t.axis[0] + c[1] * t.axis[1] + c[2] * t.axis[2] < 0)
+    for (int i = 0; i < 3; ++i) c[i] = -c[i];
+}
+
+// Traces the cutting line `off` mm from the middle both ways and inserts it into s, with a note.
+bool InsertCuttingLine(TriSurface *s, const Transverse &t, double off, double snap, const std::string &opt,
+                       std::vector<std::string> *notes, std::string *err) {
+  Trace line;
+  std::string why;
+  int parent = -1;
+  double q[3], c[3];
+  if (off == 0) {
+    for (int i = 0; i < 3; ++i) q[i] = t.mid[i], c[i] = t.axis[i];
+  } else {
+    CuttingLineStart(*s, t, off, q, c, &parent);
+  }
+  std::vector<int> verts;
+  double moved = 0;
+  if (!TraceBothWays(*s, off == 0 ? t.vmid : -1, parent, q, c, t.max_steps, &line, &why) || !line.ok ||
+      !SurfaceInsertLine(s, line.line, snap, &verts, &moved, &why)) {
+    if (why.empty()) why = "it does not reach the boundary within " + std::to_string(t.max_steps) + " crossings (it winds on the surface)";
+    const bool meets = why.find("another cutting line") != std::string::npos;
+    *err = opt + ": the cutting line " + Fmt("%+.1f", off) + " mm from the middle " +
+           Fmt("(%.1f, %.1f, %.1f) mm", q[0], q[1], q[2]) + ": " + why +
+           (meets ? " (geodesics started W apart converge where the surface curves like a sphere, K > 0, or "
+                    "meet at a node when W is near the element size): split the surface into shorter pieces, "
+                    "choose another -cutpattern_strip_direction or refine the mesh"
+                  : "; give a larger width or another -cutpattern_strip_direction");
     return false;
   }
-  if (!fwd.reached_boundary || !back.reached_boundary) {
-    *err = opt + ": the transverse geodesic through the middle " + Fmt("(%.1f, %.1f, %.1f) mm", pm[0], pm[1], pm[2]) +
-           " does not reach the boundary within " + std::to_string(max_steps) +
-           " triangle crossings: it winds round the surface without ending (a tube or a closed surface across "
-           "-cutpattern_strip_direction?): cut it open into a disc first, or choose another direction";
-    return false;
-  }
-  const double across = fwd.length + back.length;
-  if (o.width >= across) {
-    *err = opt + " mm is wider than the surface: " + Fmt("%.1f", across) +
-           " mm across along the geodesic through its middle; give a smaller width";
-    return false;
-  }
-  std::vector<double> offsets{0.0};  // signed arc length from the middle, + along fwd
-  for (int k = 1; k * o.width <= fwd.length - 0.25 * o.width; ++k) offsets.push_back(k * o.width);
-  for (int k = 1; k * o.width <= back.length - 0.25 * o.width; ++k) offsets.push_back(-k * o.width);
-  // 4. Trace and insert the lines one by one.
-  int inserted = 0;
-  for (double off : offsets) {
-    Trace t;
-    std::string why;
-    int parent = -1;
-    double q[3], c[3];
-    if (off == 0) {
-      for (int i = 0; i < 3; ++i) q[i] = pm[i], c[i] = axis[i];
-    } else {
-      const GeodesicPath &g = off > 0 ? fwd : back;
-      double prev[3] = {pm[0], pm[1], pm[2]}, sum = 0;
-      const double want = std::fabs(off);
-      size_t i = 0;
-      for (; i < g.points.size(); ++i) {
-        const double *x = g.points[i].x;
-        const double l = std::sqrt(std::pow(x[0] - prev[0], 2) + std::pow(x[1] - prev[1], 2) + std::pow(x[2] - prev[2], 2));
-        if (sum + l >= want) break;
-        sum += l;
-        for (int j = 0; j < 3; ++j) prev[j] = x[j];
-      }
-      i = std::min(i, g.points.size() - 1);
-      const double *u = &g.segment_dir[3 * i];
-      for (int j = 0; j < 3; ++j) q[j] = prev[j] + (want - sum) * u[j];
-      parent = g.segment_tri[i];
-      double n[3];
-      SurfaceTriangleNormal(s, parent, n);  // the transverse trace ran on the uncut mesh: parent ids are its own
-      c[0] = n[1] * u[2] - n[2] * u[1], c[1] = n[2] * u[0] - n[0] * u[2], c[2] = n[0] * u[1] - n[1] * u[0];
-      if (c[0] * axis[0] + c[1] * axis[1] + c[2] * axis[2] < 0)
-        for (double &x : c) x = -x;
-    }
-    std::vector<int> verts;
-    double moved = 0;
-    if (!TraceBothWays(s, off == 0 ? vmid : -1, parent, q, c, max_steps, &t, &why) || !t.ok ||
-        !SurfaceInsertLine(&s, t.line, o.snap, &verts, &moved, &why)) {
-      if (why.empty()) why = "it does not reach the boundary within " + std::to_string(max_steps) + " crossings (it winds on the surface)";
-      const bool meets = why.find("another cutting line") != std::string::npos;
-      *err = opt + ": the cutting line " + Fmt("%+.1f", off) + " mm from the middle " +
-             Fmt("(%.1f, %.1f, %.1f) mm", q[0], q[1], q[2]) + ": " + why +
-             (meets ? " (geodesics started W apart converge where the surface curves like a sphere, K > 0, or "
-                      "meet at a node when W is near the element size): split the surface into shorter pieces, "
-                      "choose another -cutpattern_strip_direction or refine the mesh"
-                    : "; give a larger width or another -cutpattern_strip_direction");
-      return false;
-    }
-    inserted += (int)verts.size();
-    notes->push_back("geodesic line " + Fmt("%+.1f", off) + " mm from the middle: " + Fmt("%.3f", t.length) +
-                     " mm long, " + std::to_string(verts.size()) + " nodes, " + std::to_string(t.vertices) +
-                     " mesh nodes passed, inserted within " + Fmt("%.3f", moved) + " mm of the traced geodesic");
-  }
-  // 5. The strips: pieces between the lines, in order across (by their centroids along the
-  // transverse direction at the middle).
-  std::vector<int> label;
-  const int count = SurfaceComponents(s, &label);
-  if (count != (int)offsets.size() + 1) {
-    *err = opt + ": " + std::to_string(offsets.size()) + " cutting lines left " + std::to_string(count) +
-           " pieces instead of " + std::to_string(offsets.size() + 1) + "; give another width or direction";
-    return false;
-  }
+  notes->push_back("geodesic line " + Fmt("%+.1f", off) + " mm from the middle: " + Fmt("%.3f", line.length) +
+                   " mm long, " + std::to_string(verts.size()) + " nodes, " + std::to_string(line.vertices) +
+                   " mesh nodes passed, inserted within " + Fmt("%.3f", moved) + " mm of the traced geodesic");
+  return true;
+}
+
+// The pieces (labels 0..count-1) in order across: by their area centroids along the transverse
+// direction at the middle.
+std::vector<int> PiecesAcross(const TriSurface &s, const std::vector<int> &label, int count, const Transverse &t) {
   std::vector<double> key(count, 0.0), weight(count, 0.0);
   for (int e = 0; e < s.NumTris(); ++e) {
     const double *x[3] = {&s.coords[3 * s.tris[3 * e]], &s.coords[3 * s.tris[3 * e + 1]], &s.coords[3 * s.tris[3 * e + 2]]};
     const double A = TriangleArea(x[0], x[1], x[2]);
-    for (int i = 0; i < 3; ++i) key[label[e]] += A * tr[i] * ((x[0][i] + x[1][i] + x[2][i]) / 3 - pm[i]);
+    for (int i = 0; i < 3; ++i) key[label[e]] += A * t.dir[i] * ((x[0][i] + x[1][i] + x[2][i]) / 3 - t.mid[i]);
     weight[label[e]] += A;
   }
   std::vector<int> order(count);
   for (int k = 0; k < count; ++k) order[k] = k, key[k] /= weight[k];
   std::sort(order.begin(), order.end(), [&](int a, int b) { return key[a] < key[b]; });
-  std::sort(offsets.begin(), offsets.end());
-  MeshData out;
-  out.source = mesh->source + " cut at " + Fmt("%g", o.width) + " mm";
-  out.coords = s.coords;
-  out.triangles = s.tris;
-  out.notes = mesh->notes;
+  return order;
+}
+
+// One element set <base>_NN per piece, in order across, each with a note of its width on the
+// transverse geodesic (offsets sorted).
+void NameStrips(const TriSurface &s, const std::vector<int> &label, const std::vector<int> &order,
+                const std::vector<double> &offsets, const Transverse &t, const std::string &base, MeshData *out,
+                std::vector<std::string> *notes) {
+  const int count = (int)order.size();
   for (int k = 0; k < count; ++k) {
     char name[64];
     std::snprintf(name, sizeof name, "%s_%02d", base.c_str(), k + 1);
-    auto &set = out.element_sets[name];
+    auto &set = out->element_sets[name];
     for (int e = 0; e < s.NumTris(); ++e)
       if (label[e] == order[k]) set.push_back(e);
-    const double lo = k == 0 ? -back.length : offsets[k - 1], hi = k == count - 1 ? fwd.length : offsets[k];
+    const double lo = k == 0 ? -t.back.length : offsets[k - 1], hi = k == count - 1 ? t.fwd.length : offsets[k];
     notes->push_back(std::string("geodesic strip ") + name + ": " + std::to_string(set.size()) +
                      " triangles, width on the transverse geodesic " + Fmt("%.3f", hi - lo) + " mm");
   }
-  // Node sets of the file (named curves) keep their lines: a node put on an edge of a set joins it.
+}
+
+// Node sets of the file (named curves) keep their lines: a node put on an edge of a set joins it.
+void CarryNodeSets(const MeshData &sub, const TriSurface &s, MeshData *out) {
   const int n0 = sub.NumNodes();
   for (const auto &kv : sub.node_sets) {
     std::vector<char> in(s.NumNodes(), 0);
@@ -331,26 +343,100 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
       const auto &ab = s.new_node_edge[p - n0];
       if (in[ab.first] && in[ab.second]) in[p] = 1;
     }
-    auto &v = out.node_sets[kv.first];
+    auto &v = out->node_sets[kv.first];
     for (int n = 0; n < s.NumNodes(); ++n)
       if (in[n]) v.push_back(n);
   }
-  double q0 = 1, q1 = 1;
-  for (int e = 0; e < sub.NumElements(); ++e)
-    q0 = std::min(q0, TriangleQuality(&sub.coords[3 * sub.triangles[3 * e]], &sub.coords[3 * sub.triangles[3 * e + 1]],
-                                      &sub.coords[3 * sub.triangles[3 * e + 2]]));
-  for (int e = 0; e < s.NumTris(); ++e)
-    q1 = std::min(q1, TriangleQuality(&s.coords[3 * s.tris[3 * e]], &s.coords[3 * s.tris[3 * e + 1]],
-                                      &s.coords[3 * s.tris[3 * e + 2]]));
+}
+
+double SmallestQuality(const std::vector<double> &coords, const std::vector<int> &tris) {
+  double q = 1;
+  for (size_t e = 0; e < tris.size() / 3; ++e)
+    q = std::min(q, TriangleQuality(&coords[3 * tris[3 * e]], &coords[3 * tris[3 * e + 1]], &coords[3 * tris[3 * e + 2]]));
+  return q;
+}
+
+} // namespace
+
+bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
+                       std::string *err) {
+  const std::string opt = "-cutpattern_strip_width " + Fmt("%g", o.width);
+  const auto t0 = std::chrono::steady_clock::now();
+  // 1. The surface: its one physical surface, or every triangle.
+  CutSurface cut;
+  if (!SurfaceToCut(*mesh, opt, &cut, notes, err)) return false;
+  TriSurface &s = cut.s;
+  double h, centroid[3];
+  MeanEdgeAndCentroid(s, &h, centroid);
+  if (o.width < h) {
+    *err = opt + " mm is narrower than the elements of " + mesh->source + " (mean edge " + Fmt("%.1f", h) +
+           " mm): a strip needs a few elements across; refine the mesh or give a wider strip";
+    return false;
+  }
+  // 2. The middle: the interior node nearest the centroid, and the transverse direction there.
+  Transverse t;
+  t.vmid = InteriorNodeNearest(s, centroid);
+  if (t.vmid < 0) {
+    *err = opt + ": " + mesh->source + " has no interior node to start the cutting lines from; refine the mesh";
+    return false;
+  }
+  for (int i = 0; i < 3; ++i) t.mid[i] = s.coords[3 * t.vmid + i];
+  t.axis[o.direction] = 1;
+  const std::string at_mid = Fmt("(%.1f, %.1f, %.1f) mm", t.mid[0], t.mid[1], t.mid[2]);
+  if (!TransverseDirection(s, t.vmid, t.axis, t.dir)) {
+    *err = std::string("-cutpattern_strip_direction ") + kAxis[o.direction] +
+           " is (nearly) normal to the surface at its middle " + at_mid + ": choose an axis along the surface";
+    return false;
+  }
+  // 3. The transverse geodesic (on the uncut mesh) and the offsets of the lines on it.
+  t.max_steps = 4 * s.NumTris() + 100;
+  if (!TraceTransverse(s, &t, err)) {
+    *err = opt + ": the transverse geodesic through the middle: " + *err;
+    return false;
+  }
+  if (!t.fwd.reached_boundary || !t.back.reached_boundary) {
+    *err = opt + ": the transverse geodesic through the middle " + at_mid + " does not reach the boundary within " +
+           std::to_string(t.max_steps) +
+           " triangle crossings: it winds round the surface without ending (a tube or a closed surface across "
+           "-cutpattern_strip_direction?): cut it open into a disc first, or choose another direction";
+    return false;
+  }
+  const double across = t.fwd.length + t.back.length;
+  if (o.width >= across) {
+    *err = opt + " mm is wider than the surface: " + Fmt("%.1f", across) +
+           " mm across along the geodesic through its middle; give a smaller width";
+    return false;
+  }
+  std::vector<double> offsets = LineOffsets(o.width, t.fwd.length, t.back.length);
+  // 4. Trace and insert the lines one by one.
+  for (double off : offsets)
+    if (!InsertCuttingLine(&s, t, off, o.snap, opt, notes, err)) return false;
+  // 5. The strips: the pieces between the lines, in order across.
+  std::vector<int> label;
+  const int count = SurfaceComponents(s, &label);
+  if (count != (int)offsets.size() + 1) {
+    *err = opt + ": " + std::to_string(offsets.size()) + " cutting lines left " + std::to_string(count) +
+           " pieces instead of " + std::to_string(offsets.size() + 1) + "; give another width or direction";
+    return false;
+  }
+  const std::vector<int> order = PiecesAcross(s, label, count, t);
+  std::sort(offsets.begin(), offsets.end());
+  MeshData out;
+  out.source = mesh->source + " cut at " + Fmt("%g", o.width) + " mm";
+  out.coords = s.coords;
+  out.triangles = s.tris;
+  out.notes = mesh->notes;
+  NameStrips(s, label, order, offsets, t, cut.base, &out, notes);
+  CarryNodeSets(cut.sub, s, &out);
+  const double q0 = SmallestQuality(cut.sub.coords, cut.sub.triangles), q1 = SmallestQuality(s.coords, s.tris);
   notes->insert(notes->begin(),
-                "geodesic strips of " + base + ": width " + Fmt("%g", o.width) + " mm, lines along " +
-                    kAxis[o.direction] + "; the transverse geodesic through the middle node " +
-                    Fmt("(%.1f, %.1f, %.1f) mm", pm[0], pm[1], pm[2]) + " is " +
-                    Fmt("%.3f mm across (%.3f + %.3f)", across, back.length, fwd.length) + "; " +
+                "geodesic strips of " + cut.base + ": width " + Fmt("%g", o.width) + " mm, lines along " +
+                    kAxis[o.direction] + "; the transverse geodesic through the middle node " + at_mid + " is " +
+                    Fmt("%.3f mm across (%.3f + %.3f)", across, t.back.length, t.fwd.length) + "; " +
                     std::to_string(offsets.size()) + " lines, " + std::to_string(count) + " strips; " +
-                    std::to_string(s.NumNodes() - n0) + " nodes added, " + std::to_string(sub.NumElements()) + " -> " +
-                    std::to_string(s.NumTris()) + " triangles, smallest triangle quality " + Fmt("%.3f", q1) +
-                    " (input " + Fmt("%.3f", q0) + "); " +
+                    std::to_string(s.NumNodes() - cut.sub.NumNodes()) + " nodes added, " +
+                    std::to_string(cut.sub.NumElements()) + " -> " + std::to_string(s.NumTris()) +
+                    " triangles, smallest triangle quality " + Fmt("%.3f", q1) + " (input " + Fmt("%.3f", q0) + "); " +
                     Fmt("%.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()));
   *mesh = out;
   return true;

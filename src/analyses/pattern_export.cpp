@@ -226,6 +226,78 @@ void DxfTextEntity(std::string *s, double x, double y, double h, double deg, boo
   }
 }
 
+// The HEADER section: DXF R12, the drawing's extent (with room for the title label).
+void DxfHeader(std::string *s, const Box &b, double label_room) {
+  Pair(s, 0, "SECTION");
+  Pair(s, 2, "HEADER");
+  Pair(s, 9, "$ACADVER");
+  Pair(s, 1, "AC1009");
+  Pair(s, 9, "$INSBASE");
+  Pair(s, 10, 0.0);
+  Pair(s, 20, 0.0);
+  Pair(s, 30, 0.0);
+  Pair(s, 9, "$EXTMIN");
+  Pair(s, 10, b.lo[0]);
+  Pair(s, 20, b.lo[1]);
+  Pair(s, 30, 0.0);
+  Pair(s, 9, "$EXTMAX");
+  Pair(s, 10, b.hi[0]);
+  Pair(s, 20, b.hi[1] + label_room);
+  Pair(s, 30, 0.0);
+  Pair(s, 0, "ENDSEC");
+}
+
+// Layers (name, colour): 0 (always present), OUTLINE, one per named line, LABELS.
+std::vector<std::pair<std::string, int>> DxfLayers(const FlattenResult &r, bool labels) {
+  std::vector<std::pair<std::string, int>> layers = {{"0", 7}, {"OUTLINE", 7}};
+  for (const PatternLine &l : r.lines) {
+    const std::string name = LayerName(l.name);
+    bool have = false;
+    for (const auto &ly : layers) have = have || ly.first == name;
+    if (!have) layers.push_back({name, kAci[LineKind(l.name)]});
+  }
+  if (labels) layers.push_back({"LABELS", 8});
+  return layers;
+}
+
+// The head of a TABLE of `count` entries.
+void DxfTableHead(std::string *s, const char *name, int count) {
+  Pair(s, 0, "TABLE");
+  Pair(s, 2, name);
+  Pair(s, 70, count);
+}
+
+// The TABLES section: the continuous line type, the layers and the text style of height h.
+void DxfTables(std::string *s, const std::vector<std::pair<std::string, int>> &layers, double h) {
+  Pair(s, 0, "SECTION");
+  Pair(s, 2, "TABLES");
+  DxfTableHead(s, "LTYPE", 1);
+  Pair(s, 0, "LTYPE");
+  Pair(s, 2, "CONTINUOUS");
+  Pair(s, 70, 0);
+  Pair(s, 3, "Solid line");
+  Pair(s, 72, 65);
+  Pair(s, 73, 0);
+  Pair(s, 40, 0.0);
+  Pair(s, 0, "ENDTAB");
+  DxfTableHead(s, "LAYER", (int)layers.size());
+  for (const auto &ly : layers) DxfLayer(s, ly.first, ly.second);
+  Pair(s, 0, "ENDTAB");
+  DxfTableHead(s, "STYLE", 1);
+  Pair(s, 0, "STYLE");
+  Pair(s, 2, "STANDARD");
+  Pair(s, 70, 0);
+  Pair(s, 40, 0.0);
+  Pair(s, 41, 1.0);
+  Pair(s, 50, 0.0);
+  Pair(s, 71, 0);
+  Pair(s, 42, h);
+  Pair(s, 3, "txt");
+  Pair(s, 4, "");
+  Pair(s, 0, "ENDTAB");
+  Pair(s, 0, "ENDSEC");
+}
+
 } // namespace
 
 bool WritePatternDxf(const std::string &path, const FlattenResult &r,
@@ -235,66 +307,8 @@ bool WritePatternDxf(const std::string &path, const FlattenResult &r,
   const double h = std::max(2.5, 0.012 * b.Size());  // label height, mm
   std::string s;
   Pair(&s, 999, DxfText("cutting pattern " + strip_name + " (etfe, units mm)"));
-  Pair(&s, 0, "SECTION");
-  Pair(&s, 2, "HEADER");
-  Pair(&s, 9, "$ACADVER");
-  Pair(&s, 1, "AC1009");
-  Pair(&s, 9, "$INSBASE");
-  Pair(&s, 10, 0.0);
-  Pair(&s, 20, 0.0);
-  Pair(&s, 30, 0.0);
-  Pair(&s, 9, "$EXTMIN");
-  Pair(&s, 10, b.lo[0]);
-  Pair(&s, 20, b.lo[1]);
-  Pair(&s, 30, 0.0);
-  Pair(&s, 9, "$EXTMAX");
-  Pair(&s, 10, b.hi[0]);
-  Pair(&s, 20, b.hi[1] + (labels ? 2.0 * h : 0.0));
-  Pair(&s, 30, 0.0);
-  Pair(&s, 0, "ENDSEC");
-
-  // Layers: 0 (always present), OUTLINE, one per named line, LABELS.
-  std::vector<std::pair<std::string, int>> layers = {{"0", 7}, {"OUTLINE", 7}};
-  for (const PatternLine &l : r.lines) {
-    const std::string name = LayerName(l.name);
-    bool have = false;
-    for (const auto &ly : layers) have = have || ly.first == name;
-    if (!have) layers.push_back({name, kAci[LineKind(l.name)]});
-  }
-  if (labels) layers.push_back({"LABELS", 8});
-  Pair(&s, 0, "SECTION");
-  Pair(&s, 2, "TABLES");
-  Pair(&s, 0, "TABLE");
-  Pair(&s, 2, "LTYPE");
-  Pair(&s, 70, 1);
-  Pair(&s, 0, "LTYPE");
-  Pair(&s, 2, "CONTINUOUS");
-  Pair(&s, 70, 0);
-  Pair(&s, 3, "Solid line");
-  Pair(&s, 72, 65);
-  Pair(&s, 73, 0);
-  Pair(&s, 40, 0.0);
-  Pair(&s, 0, "ENDTAB");
-  Pair(&s, 0, "TABLE");
-  Pair(&s, 2, "LAYER");
-  Pair(&s, 70, (int)layers.size());
-  for (const auto &ly : layers) DxfLayer(&s, ly.first, ly.second);
-  Pair(&s, 0, "ENDTAB");
-  Pair(&s, 0, "TABLE");
-  Pair(&s, 2, "STYLE");
-  Pair(&s, 70, 1);
-  Pair(&s, 0, "STYLE");
-  Pair(&s, 2, "STANDARD");
-  Pair(&s, 70, 0);
-  Pair(&s, 40, 0.0);
-  Pair(&s, 41, 1.0);
-  Pair(&s, 50, 0.0);
-  Pair(&s, 71, 0);
-  Pair(&s, 42, h);
-  Pair(&s, 3, "txt");
-  Pair(&s, 4, "");
-  Pair(&s, 0, "ENDTAB");
-  Pair(&s, 0, "ENDSEC");
+  DxfHeader(&s, b, labels ? 2.0 * h : 0.0);
+  DxfTables(&s, DxfLayers(r, labels), h);
 
   Pair(&s, 0, "SECTION");
   Pair(&s, 2, "ENTITIES");

@@ -82,6 +82,50 @@ void VertexFan(const TriSurface &s, int v, std::vector<int> *fan, bool *boundary
   }
 }
 
+// The edge k (from node k to node k+1) through which the ray P + s u leaves triangle T (unit
+// normal n), the distance smin to it and the edge's outward unit normal m_exit in T's plane; -1
+// when the ray leaves at once. P closer than on_edge_tol to an edge (relative to the longest
+// edge) is on it and never leaves through it.
+int ExitEdge(const TriSurface &s, int T, const double n[3], const double P[3], const double u[3], double *smin,
+             double m_exit[3]) {
+  const double on_edge_tol = 1e-13;
+  const int *v = &s.tris[3 * T];
+  double h = 0;
+  for (int k = 0; k < 3; ++k) {
+    double e[3];
+    Sub(X(s, v[(k + 1) % 3]), X(s, v[k]), e);
+    h = std::max(h, std::sqrt(Dot(e, e)));
+  }
+  *smin = std::numeric_limits<double>::infinity();
+  int kexit = -1;
+  m_exit[0] = m_exit[1] = m_exit[2] = 0;
+  for (int k = 0; k < 3; ++k) {
+    double e[3], m[3], w[3];
+    Sub(X(s, v[(k + 1) % 3]), X(s, v[k]), e);
+    Cross(e, n, m);  // outward normal of edge k in the triangle's plane
+    Normalize(m);
+    Sub(X(s, v[k]), P, w);
+    const double dist = Dot(w, m), rate = Dot(u, m);
+    if (dist <= on_edge_tol * h || rate <= 1e-15) continue;
+    if (dist / rate < *smin) *smin = dist / rate, kexit = k, m_exit[0] = m[0], m_exit[1] = m[1], m_exit[2] = m[2];
+  }
+  return kexit;
+}
+
+// Unfolds the direction u across the edge e (leaving with outward normal m_exit) into triangle N:
+// the components along the edge and across it are kept, the latter now in N's plane. e is
+// normalised. False when N is degenerate.
+bool UnfoldInto(const TriSurface &s, int N, double e[3], const double m_exit[3], double u[3]) {
+  double nN[3], into[3];
+  if (!Normal(s, N, nN)) return false;
+  Normalize(e);
+  Cross(e, nN, into);
+  const double along = Dot(u, e), across = Dot(u, m_exit);
+  for (int i = 0; i < 3; ++i) u[i] = along * e[i] + across * into[i];
+  Normalize(u);
+  return true;
+}
+
 } // namespace
 
 void SurfaceTriangleNormal(const TriSurface &s, int t, double n[3]) {
@@ -172,34 +216,16 @@ bool GeodesicTrace(const TriSurface &s, int tri, const double P0[3], const doubl
     *err = "geodesic trace: the direction is zero or normal to triangle " + std::to_string(T);
     return false;
   }
-  // A crossing this close to an edge end (relative) goes through the vertex; P closer than this
-  // to an edge (relative to the longest edge) is on it and never leaves through it.
-  const double vertex_tol = 1e-12, on_edge_tol = 1e-13;
+  // A crossing this close to an edge end (relative) goes through the vertex.
+  const double vertex_tol = 1e-12;
   for (int step = 0; step < max_steps; ++step) {
     const int *v = &s.tris[3 * T];
     if (!Normal(s, T, n)) {
       *err = "geodesic trace: triangle " + std::to_string(T) + " is degenerate";
       return false;
     }
-    double h = 0;
-    for (int k = 0; k < 3; ++k) {
-      double e[3];
-      Sub(X(s, v[(k + 1) % 3]), X(s, v[k]), e);
-      h = std::max(h, std::sqrt(Dot(e, e)));
-    }
-    double smin = std::numeric_limits<double>::infinity();
-    int kexit = -1;
-    double m_exit[3] = {0, 0, 0};
-    for (int k = 0; k < 3; ++k) {
-      double e[3], m[3], w[3];
-      Sub(X(s, v[(k + 1) % 3]), X(s, v[k]), e);
-      Cross(e, n, m);  // outward normal of edge k in the triangle's plane
-      Normalize(m);
-      Sub(X(s, v[k]), P, w);
-      const double dist = Dot(w, m), rate = Dot(u, m);
-      if (dist <= on_edge_tol * h || rate <= 1e-15) continue;
-      if (dist / rate < smin) smin = dist / rate, kexit = k, m_exit[0] = m[0], m_exit[1] = m[1], m_exit[2] = m[2];
-    }
+    double smin, m_exit[3];
+    const int kexit = ExitEdge(s, T, n, P, u, &smin, m_exit);
     if (kexit < 0) {
       *err = "geodesic trace: the direction leaves triangle " + std::to_string(T) + " at once (start outside it)";
       return false;
@@ -241,17 +267,10 @@ bool GeodesicTrace(const TriSurface &s, int tri, const double P0[3], const doubl
       out->reached_boundary = true;
       return true;
     }
-    // Unfold: keep the components along the edge and across it, the latter now in N's plane.
-    double nN[3], into[3];
-    if (!Normal(s, N, nN)) {
+    if (!UnfoldInto(s, N, e, m_exit, u)) {
       *err = "geodesic trace: triangle " + std::to_string(N) + " is degenerate";
       return false;
     }
-    Normalize(e);
-    Cross(e, nN, into);
-    const double along = Dot(u, e), across = Dot(u, m_exit);
-    for (int i = 0; i < 3; ++i) u[i] = along * e[i] + across * into[i];
-    Normalize(u);
     T = N;
     for (int i = 0; i < 3; ++i) P[i] = x[i];
   }

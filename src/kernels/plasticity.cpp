@@ -60,10 +60,24 @@ void ElasticTangent(const PlasticMaterial &m, double D[9]) {
 // The trial state in the common eigenbasis of D and P: Smises(dl)^2 = A/a^2 + B/b^2 with
 // a = 1 + c1 dl (equibiaxial mode) and b = 1 + c2 dl (the two deviatoric modes).
 struct TrialModes {
+  double sum, dif, s12;  // the trial stress's mode amplitudes: Sxx + Syy, Sxx - Syy, Sxy
   double A, B;
   double c1, c2;
   double ep_n;
 };
+
+TrialModes TrialInEigenbasis(const PlasticMaterial &m, const double St[3], double ep_n) {
+  TrialModes t;
+  t.sum = St[0] + St[1];
+  t.dif = St[0] - St[1];
+  t.s12 = St[2];
+  t.A = 0.25 * t.sum * t.sum;
+  t.B = 0.75 * t.dif * t.dif + 3.0 * t.s12 * t.s12;
+  t.c1 = m.young / (3.0 * (1.0 - m.nu));
+  t.c2 = m.young / (1.0 + m.nu);
+  t.ep_n = ep_n;
+  return t;
+}
 
 struct LocalEval {
   double g;      // consistency residual Smises - Sy (the convergence measure)
@@ -85,6 +99,94 @@ void EvaluateConsistency(const PlasticMaterial &m, const TrialModes &t, double d
   ev->g = q - sy;
   ev->r = 1.0 / sy - 1.0 / q;
   ev->dr = -dsy / (sy * sy) + dq / (q * q);
+}
+
+// The plastic multiplier dl at which Smises(dl) = Sy(ep_n + 2/3 dl Smises(dl)), with ev the state
+// there. False when no bracket exists or the iteration does not converge.
+bool SolveConsistency(const PlasticMaterial &m, const TrialModes &t, double q_trial, double sy_n, double *dl_out,
+                      LocalEval *ev_out) {
+  // Every mode shrinks at least as fast as 1/(1 + min(c1,c2) dl), so at this dl the Mises stress
+  // is at most sy_n <= Sy(ep): g <= 0 there and the root lies in [0, hi].
+  double hi = (q_trial / sy_n - 1.0) / std::fmin(t.c1, t.c2);
+  if (!(std::isfinite(hi) && hi > 0.0)) return false;
+  double lo = 0.0;
+  double dl = 0.0;
+  LocalEval ev;
+  EvaluateConsistency(m, t, dl, &ev);
+  const double tol = kLocalRelTol * sy_n;
+  double r_prev = HUGE_VAL;
+  double H_prev = ev.H;
+  bool kink_pass = true;
+  bool converged = false;
+  for (int it = 0; it < kMaxLocalIterations; ++it) {
+    if (!(std::isfinite(ev.g) && std::isfinite(ev.r) && std::isfinite(ev.dr))) break;
+    if (std::fabs(ev.g) <= tol) {
+      converged = true;
+      break;
+    }
+    if (ev.r > 0.0) {
+      lo = dl;
+    } else {
+      hi = dl;
+    }
+    // The bracket is at the rounding level of dl: g cannot get any smaller than it is.
+    if (hi - lo <= 4.0 * DBL_EPSILON * hi) {
+      converged = true;
+      break;
+    }
+    // Newton unless it leaves the bracket or the last Newton step did not halve the residual;
+    // then bisect, and let the next step try Newton again, so the bracket at least halves every
+    // second iteration. The first step that lands on a new hardening segment is exempt once:
+    // it was taken with the old segment's slope, and the new slope is usually accurate.
+    const double newton = ev.dr < 0.0 ? dl - ev.r / ev.dr : hi;
+    bool stalled = std::fabs(ev.r) > 0.5 * r_prev;
+    if (stalled && kink_pass && ev.H != H_prev) {
+      stalled = false;
+      kink_pass = false;
+    }
+    H_prev = ev.H;
+    if (newton > lo && newton < hi && !stalled) {
+      dl = newton;
+      r_prev = std::fabs(ev.r);
+    } else {
+      dl = 0.5 * (lo + hi);
+      r_prev = HUGE_VAL;
+    }
+    EvaluateConsistency(m, t, dl, &ev);
+  }
+  *dl_out = dl;
+  *ev_out = ev;
+  return converged;
+}
+
+// At the converged dl: the returned stress Sn, the flow direction PS = P Sn and the consistent
+// tangent Dep = Xi - coef N N^T (eq. 4.21 multiplied through by a).
+void ReturnedStressAndTangent(const PlasticMaterial &m, const TrialModes &t, double dl, const LocalEval &ev,
+                              double Sn[3], double PS[3], double Dep[9], double *coef) {
+  const double ia = 1.0 / (1.0 + t.c1 * dl);
+  const double ib = 1.0 / (1.0 + t.c2 * dl);
+  Sn[0] = 0.5 * (t.sum * ia + t.dif * ib);
+  Sn[1] = 0.5 * (t.sum * ia - t.dif * ib);
+  Sn[2] = t.s12 * ib;
+  PS[0] = (2.0 * Sn[0] - Sn[1]) / 3.0, PS[1] = (2.0 * Sn[1] - Sn[0]) / 3.0, PS[2] = 2.0 * Sn[2];
+
+  // Xi in the shared eigenbasis: eigenvalues d_i / (1 + dl d_i p_i) with D-eigenvalues
+  // E/(1-nu), 2G, G and P-eigenvalues 1/3, 1, 2.
+  const double G = 0.5 * m.young / (1.0 + m.nu);
+  const double x1 = m.young / (1.0 - m.nu) * ia;
+  const double x2 = 2.0 * G * ib;
+  const double x3 = G * ib;
+  const double Xi[9] = {0.5 * (x1 + x2), 0.5 * (x1 - x2), 0.0,
+                        0.5 * (x1 - x2), 0.5 * (x1 + x2), 0.0,
+                        0.0,             0.0,             x3};
+  const double N[3] = {Xi[0] * PS[0] + Xi[1] * PS[1], Xi[3] * PS[0] + Xi[4] * PS[1], x3 * PS[2]};
+  const double pxp = PS[0] * N[0] + PS[1] * N[1] + PS[2] * N[2];
+  const double a = 1.0 - (2.0 / 3.0) * ev.H * dl;
+  const double den = a * pxp + (4.0 / 9.0) * ev.H * ev.q * ev.q;
+  *coef = a / den;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) Dep[3 * i + j] = Xi[3 * i + j] - *coef * N[i] * N[j];
+  }
 }
 
 // Leaves the history untouched and a usable (elastic) tangent so that a caller that ignores the
@@ -181,15 +283,7 @@ int PlasticReturnMap(const PlasticMaterial &m, const double E[3], const PlasticS
   const double ee[3] = {Ein[0] - c.ep[0], Ein[1] - c.ep[1], Ein[2] - c.ep[2]};
   const double St[3] = {De[0] * ee[0] + De[1] * ee[1], De[3] * ee[0] + De[4] * ee[1],
                         De[8] * ee[2]};
-
-  const double sum = St[0] + St[1];
-  const double dif = St[0] - St[1];
-  TrialModes t;
-  t.A = 0.25 * sum * sum;
-  t.B = 0.75 * dif * dif + 3.0 * St[2] * St[2];
-  t.c1 = m.young / (3.0 * (1.0 - m.nu));
-  t.c2 = m.young / (1.0 + m.nu);
-  t.ep_n = c.ep_bar;
+  const TrialModes t = TrialInEigenbasis(m, St, c.ep_bar);
   const double q_trial = std::sqrt(t.A + t.B);
   const double sy_n = PlasticYieldStress(m, c.ep_bar, nullptr);
   if (!(std::isfinite(q_trial) && std::isfinite(sy_n))) {
@@ -206,83 +300,11 @@ int PlasticReturnMap(const PlasticMaterial &m, const double E[3], const PlasticS
     return KERNEL_OK;
   }
 
-  // Every mode shrinks at least as fast as 1/(1 + min(c1,c2) dl), so at this dl the Mises stress
-  // is at most sy_n <= Sy(ep): g <= 0 there and the root lies in [0, hi].
-  double hi = (q_trial / sy_n - 1.0) / std::fmin(t.c1, t.c2);
-  if (!(std::isfinite(hi) && hi > 0.0)) return Fail(KERNEL_NO_CONVERGENCE, m, c, trial, S, D);
-  double lo = 0.0;
-  double dl = 0.0;
+  double dl;
   LocalEval ev;
-  EvaluateConsistency(m, t, dl, &ev);
-  const double tol = kLocalRelTol * sy_n;
-  double r_prev = HUGE_VAL;
-  double H_prev = ev.H;
-  bool kink_pass = true;
-  bool converged = false;
-  for (int it = 0; it < kMaxLocalIterations; ++it) {
-    if (!(std::isfinite(ev.g) && std::isfinite(ev.r) && std::isfinite(ev.dr))) break;
-    if (std::fabs(ev.g) <= tol) {
-      converged = true;
-      break;
-    }
-    if (ev.r > 0.0) {
-      lo = dl;
-    } else {
-      hi = dl;
-    }
-    // The bracket is at the rounding level of dl: g cannot get any smaller than it is.
-    if (hi - lo <= 4.0 * DBL_EPSILON * hi) {
-      converged = true;
-      break;
-    }
-    // Newton unless it leaves the bracket or the last Newton step did not halve the residual;
-    // then bisect, and let the next step try Newton again, so the bracket at least halves every
-    // second iteration. The first step that lands on a new hardening segment is exempt once:
-    // it was taken with the old segment's slope, and the new slope is usually accurate.
-    const double newton = ev.dr < 0.0 ? dl - ev.r / ev.dr : hi;
-    bool stalled = std::fabs(ev.r) > 0.5 * r_prev;
-    if (stalled && kink_pass && ev.H != H_prev) {
-      stalled = false;
-      kink_pass = false;
-    }
-    H_prev = ev.H;
-    if (newton > lo && newton < hi && !stalled) {
-      dl = newton;
-      r_prev = std::fabs(ev.r);
-    } else {
-      dl = 0.5 * (lo + hi);
-      r_prev = HUGE_VAL;
-    }
-    EvaluateConsistency(m, t, dl, &ev);
-  }
-  if (!converged) return Fail(KERNEL_NO_CONVERGENCE, m, c, trial, S, D);
-
-  const double ia = 1.0 / (1.0 + t.c1 * dl);
-  const double ib = 1.0 / (1.0 + t.c2 * dl);
-  double Sn[3];
-  Sn[0] = 0.5 * (sum * ia + dif * ib);
-  Sn[1] = 0.5 * (sum * ia - dif * ib);
-  Sn[2] = St[2] * ib;
-  const double PS[3] = {(2.0 * Sn[0] - Sn[1]) / 3.0, (2.0 * Sn[1] - Sn[0]) / 3.0, 2.0 * Sn[2]};
-
-  // Xi in the shared eigenbasis: eigenvalues d_i / (1 + dl d_i p_i) with D-eigenvalues
-  // E/(1-nu), 2G, G and P-eigenvalues 1/3, 1, 2.
-  const double G = 0.5 * m.young / (1.0 + m.nu);
-  const double x1 = m.young / (1.0 - m.nu) * ia;
-  const double x2 = 2.0 * G * ib;
-  const double x3 = G * ib;
-  const double Xi[9] = {0.5 * (x1 + x2), 0.5 * (x1 - x2), 0.0,
-                        0.5 * (x1 - x2), 0.5 * (x1 + x2), 0.0,
-                        0.0,             0.0,             x3};
-  const double N[3] = {Xi[0] * PS[0] + Xi[1] * PS[1], Xi[3] * PS[0] + Xi[4] * PS[1], x3 * PS[2]};
-  const double pxp = PS[0] * N[0] + PS[1] * N[1] + PS[2] * N[2];
-  const double a = 1.0 - (2.0 / 3.0) * ev.H * dl;
-  const double den = a * pxp + (4.0 / 9.0) * ev.H * ev.q * ev.q;
-  const double coef = a / den;
-  double Dep[9];
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) Dep[3 * i + j] = Xi[3 * i + j] - coef * N[i] * N[j];
-  }
+  if (!SolveConsistency(m, t, q_trial, sy_n, &dl, &ev)) return Fail(KERNEL_NO_CONVERGENCE, m, c, trial, S, D);
+  double Sn[3], PS[3], Dep[9], coef;
+  ReturnedStressAndTangent(m, t, dl, ev, Sn, PS, Dep, &coef);
 
   PlasticState out;
   for (int i = 0; i < 3; ++i) out.ep[i] = c.ep[i] + dl * PS[i];

@@ -18,6 +18,42 @@ double MinorPrincipal(const double S[3]) {
   return m - std::sqrt(d * d + S[2] * S[2]);
 }
 
+// No stress, the committed history and the elastic tangent.
+void Unstressed(const PlasticMaterial &m, const PlasticState &c, PlasticState *trial, double S[3], double D[9]) {
+  *trial = c;
+  S[0] = S[1] = S[2] = 0.0;
+  ElasticPlaneStressTangent(m.young, m.nu, D);
+}
+
+// The uniaxial return along the wrinkle direction: the plastic strain dl with
+// f(dl) = Y (e1 - dl) - Sy(ep_n + dl) = 0, and *H the hardening slope there; dl = 0 and *plastic
+// false when Y e1 is inside the yield stress. f decreases (slope -(Y + H) < 0) and Sy is piecewise
+// linear, so Newton is exact on each segment. False when it does not converge.
+bool UniaxialReturn(const PlasticMaterial &m, double ep_n, double e1, double *dl_out, double *H_out, bool *plastic) {
+  const double Y = m.young;
+  double H;
+  double dl = 0.0;
+  double sy = PlasticYieldStress(m, ep_n, &H);
+  *plastic = Y * e1 > sy * (1.0 + 1e-10);
+  if (*plastic) {
+    bool converged = false;
+    for (int it = 0; it < kMaxUniaxialIterations; ++it) {
+      sy = PlasticYieldStress(m, ep_n + dl, &H);
+      const double f = Y * (e1 - dl) - sy;
+      if (std::fabs(f) <= 1e-13 * sy) {
+        converged = true;
+        break;
+      }
+      dl += f / (Y + H);
+      if (dl < 0.0) dl = 0.0;
+    }
+    if (!converged || !std::isfinite(dl)) return false;
+  }
+  *dl_out = dl;
+  *H_out = H;
+  return true;
+}
+
 } // namespace
 
 int TensionFieldPlastic(const PlasticMaterial &m, const double E[3], const PlasticState &committed,
@@ -55,40 +91,20 @@ int TensionFieldPlastic(const PlasticMaterial &m, const double E[3], const Plast
   } else {
     info->state = WRINKLE_SLACK;
     info->strain = -e2;
-    *trial = c;
-    S[0] = S[1] = S[2] = 0.0;
-    ElasticPlaneStressTangent(m.young, m.nu, D);
+    Unstressed(m, c, trial, S, D);
     for (int k = 0; k < 9; ++k) D[k] *= kSlackTangentFraction;
     return KERNEL_OK;
   }
 
-  // Wrinkled: uniaxial return along n. f(dl) = Y (e1 - dl) - Sy(ep_n + dl) decreases
-  // (slope -(Y + H) < 0); Sy is piecewise linear, so Newton is exact on each segment.
+  // Wrinkled: uniaxial return along n.
   const double th = 0.5 * std::atan2(g, dd);
   const double cs = std::cos(th), sn = std::sin(th);
   const double Y = m.young;
-  double H;
-  double dl = 0.0;
-  double sy = PlasticYieldStress(m, c.ep_bar, &H);
-  bool plastic = Y * e1 > sy * (1.0 + 1e-10);
-  if (plastic) {
-    bool converged = false;
-    for (int it = 0; it < kMaxUniaxialIterations; ++it) {
-      sy = PlasticYieldStress(m, c.ep_bar + dl, &H);
-      const double f = Y * (e1 - dl) - sy;
-      if (std::fabs(f) <= 1e-13 * sy) {
-        converged = true;
-        break;
-      }
-      dl += f / (Y + H);
-      if (dl < 0.0) dl = 0.0;
-    }
-    if (!converged || !std::isfinite(dl)) {
-      *trial = c;
-      S[0] = S[1] = S[2] = 0.0;
-      ElasticPlaneStressTangent(m.young, m.nu, D);
-      return KERNEL_NO_CONVERGENCE;
-    }
+  double H, dl;
+  bool plastic;
+  if (!UniaxialReturn(m, c.ep_bar, e1, &dl, &H, &plastic)) {
+    Unstressed(m, c, trial, S, D);
+    return KERNEL_NO_CONVERGENCE;
   }
   const double s = Y * (e1 - dl);
   const double Et = plastic ? Y * H / (Y + H) : Y;

@@ -87,30 +87,35 @@ bool WriterCheck(const std::string &path, const MeshData &mesh, std::string *err
   return true;
 }
 
-} // namespace
-
 // Layout: all nodes in one block on surface entity 1. Triangles go to one surface entity per
 // distinct combination of element sets (a triangle can only sit on one entity), written in runs
 // so that the file keeps the triangle order. A node set is the node set of the element set with
 // the same name (the reader derives it) plus, for the nodes that adds, a 0-D physical group of
 // the same name carried by one point entity per node, as Gmsh itself models points.
-bool WriteGmshFile(const std::string &path, const MeshData &mesh, std::string *err) {
-  if (!WriterCheck(path, mesh, err)) return false;
-  const size_t nn = mesh.coords.size() / 3, ne = mesh.triangles.size() / 3;
-
+struct GmshLayout {
   // 2-D physical tags 1..E for the element sets, then 0-D tags for the node sets that need them.
   std::vector<std::pair<long long, const std::string *>> phys2, phys0;
-  std::vector<std::vector<long long>> tri_groups(ne);
+  std::vector<std::vector<long long>> tri_groups;      // triangle -> 2-D physical tags
+  std::map<int, std::vector<long long>> point_groups;  // node -> 0-D physical tags
+  // Surface entities 1..S: one per distinct group combination, in order of first use.
+  std::map<std::vector<long long>, long long> surface_of;
+  std::vector<const std::vector<long long> *> surface_groups;  // entity - 1 -> its groups
+  std::vector<long long> tri_surface;                          // triangle -> its entity
+  std::vector<double> box;                                     // entity - 1 -> min xyz, max xyz
+};
+
+void PhysicalGroups(const MeshData &mesh, GmshLayout *g) {
+  const size_t nn = mesh.coords.size() / 3, ne = mesh.triangles.size() / 3;
+  g->tri_groups.assign(ne, {});
   for (const auto &s : mesh.element_sets) {
-    const long long tag = (long long)phys2.size() + 1;
-    phys2.emplace_back(tag, &s.first);
+    const long long tag = (long long)g->phys2.size() + 1;
+    g->phys2.emplace_back(tag, &s.first);
     for (int e : s.second) {
-      if (tri_groups[(size_t)e].empty() || tri_groups[(size_t)e].back() != tag) {
-        tri_groups[(size_t)e].push_back(tag);
+      if (g->tri_groups[(size_t)e].empty() || g->tri_groups[(size_t)e].back() != tag) {
+        g->tri_groups[(size_t)e].push_back(tag);
       }
     }
   }
-  std::map<int, std::vector<long long>> point_groups;  // node -> 0-D physical tags
   for (const auto &s : mesh.node_sets) {
     std::vector<char> covered;
     const auto es = mesh.element_sets.find(s.first);
@@ -126,99 +131,116 @@ bool WriteGmshFile(const std::string &path, const MeshData &mesh, std::string *e
     }
     // An empty node set without an element set is kept as a named group with no entity.
     if (extra.empty() && !(s.second.empty() && es == mesh.element_sets.end())) continue;
-    const long long tag = (long long)(phys2.size() + phys0.size()) + 1;
-    phys0.emplace_back(tag, &s.first);
+    const long long tag = (long long)(g->phys2.size() + g->phys0.size()) + 1;
+    g->phys0.emplace_back(tag, &s.first);
     for (int v : extra) {
-      std::vector<long long> &g = point_groups[v];
-      if (g.empty() || g.back() != tag) g.push_back(tag);
+      std::vector<long long> &groups = g->point_groups[v];
+      if (groups.empty() || groups.back() != tag) groups.push_back(tag);
     }
   }
+}
 
-  // Surface entities: one per distinct group combination, in order of first use.
-  std::map<std::vector<long long>, long long> surface_of;
-  std::vector<const std::vector<long long> *> surface_groups;
-  std::vector<long long> tri_surface(ne);
+// The surface entities of the triangles' group combinations and their bounding boxes.
+void SurfaceEntities(const MeshData &mesh, GmshLayout *g) {
+  const size_t ne = mesh.triangles.size() / 3;
+  g->tri_surface.assign(ne, 0);
   for (size_t e = 0; e < ne; ++e) {
-    const auto ins = surface_of.emplace(tri_groups[e], (long long)surface_groups.size() + 1);
-    if (ins.second) surface_groups.push_back(&ins.first->first);
-    tri_surface[e] = ins.first->second;
+    const auto ins = g->surface_of.emplace(g->tri_groups[e], (long long)g->surface_groups.size() + 1);
+    if (ins.second) g->surface_groups.push_back(&ins.first->first);
+    g->tri_surface[e] = ins.first->second;
   }
   static const std::vector<long long> kNoGroups;
-  if (surface_groups.empty()) surface_groups.push_back(&kNoGroups);  // to carry the nodes
-  const size_t nsurf = surface_groups.size();
-  std::vector<double> box(6 * nsurf, 0.0);
+  if (g->surface_groups.empty()) g->surface_groups.push_back(&kNoGroups);  // to carry the nodes
+  const size_t nsurf = g->surface_groups.size();
+  g->box.assign(6 * nsurf, 0.0);
   std::vector<char> box_set(nsurf, 0);
   for (size_t e = 0; e < ne; ++e) {
-    const size_t s = (size_t)tri_surface[e] - 1;
+    const size_t s = (size_t)g->tri_surface[e] - 1;
     for (int k = 0; k < 3; ++k) {
       const double *x = &mesh.coords[3 * (size_t)mesh.triangles[3 * e + k]];
       for (int c = 0; c < 3; ++c) {
-        if (!box_set[s] || x[c] < box[6 * s + c]) box[6 * s + c] = x[c];
-        if (!box_set[s] || x[c] > box[6 * s + 3 + c]) box[6 * s + 3 + c] = x[c];
+        if (!box_set[s] || x[c] < g->box[6 * s + c]) g->box[6 * s + c] = x[c];
+        if (!box_set[s] || x[c] > g->box[6 * s + 3 + c]) g->box[6 * s + 3 + c] = x[c];
       }
       box_set[s] = 1;
     }
   }
+}
 
-  std::string out;
-  out.reserve(64 * (nn + ne) + 4096);
-  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
-  out += "$PhysicalNames\n";
-  Line(&out, (long long)(phys0.size() + phys2.size()));
-  for (const auto &p : phys0) {
-    Line(&out, 0LL, p.first, ("\"" + *p.second + "\"").c_str());
+void AppendPhysicalNames(const GmshLayout &g, std::string *out) {
+  *out += "$PhysicalNames\n";
+  Line(out, (long long)(g.phys0.size() + g.phys2.size()));
+  for (const auto &p : g.phys0) {
+    Line(out, 0LL, p.first, ("\"" + *p.second + "\"").c_str());
   }
-  for (const auto &p : phys2) {
-    Line(&out, 2LL, p.first, ("\"" + *p.second + "\"").c_str());
+  for (const auto &p : g.phys2) {
+    Line(out, 2LL, p.first, ("\"" + *p.second + "\"").c_str());
   }
-  out += "$EndPhysicalNames\n$Entities\n";
-  Line(&out, (long long)point_groups.size(), 0LL, (long long)nsurf, 0LL);
+  *out += "$EndPhysicalNames\n";
+}
+
+void AppendEntities(const MeshData &mesh, const GmshLayout &g, std::string *out) {
+  const size_t nsurf = g.surface_groups.size();
+  *out += "$Entities\n";
+  Line(out, (long long)g.point_groups.size(), 0LL, (long long)nsurf, 0LL);
   long long point_tag = 0;
-  for (const auto &pg : point_groups) {
+  for (const auto &pg : g.point_groups) {
     const double *x = &mesh.coords[3 * (size_t)pg.first];
-    Append(&out, ++point_tag);
-    for (int c = 0; c < 3; ++c) Field(&out, x[c]);
-    Field(&out, (long long)pg.second.size());
-    for (long long t : pg.second) Field(&out, t);
-    out += '\n';
+    Append(out, ++point_tag);
+    for (int c = 0; c < 3; ++c) Field(out, x[c]);
+    Field(out, (long long)pg.second.size());
+    for (long long t : pg.second) Field(out, t);
+    *out += '\n';
   }
   for (size_t s = 0; s < nsurf; ++s) {
-    Append(&out, (long long)s + 1);
-    for (int c = 0; c < 6; ++c) Field(&out, box[6 * s + c]);
-    Field(&out, (long long)surface_groups[s]->size());
-    for (long long t : *surface_groups[s]) Field(&out, t);
-    out += " 0\n";  // no bounding curves: a discrete surface
+    Append(out, (long long)s + 1);
+    for (int c = 0; c < 6; ++c) Field(out, g.box[6 * s + c]);
+    Field(out, (long long)g.surface_groups[s]->size());
+    for (long long t : *g.surface_groups[s]) Field(out, t);
+    *out += " 0\n";  // no bounding curves: a discrete surface
   }
-  out += "$EndEntities\n$Nodes\n";
-  Line(&out, 1LL, (long long)nn, nn ? 1LL : 0LL, (long long)nn);
-  Line(&out, 2LL, 1LL, 0LL, (long long)nn);
-  for (size_t i = 0; i < nn; ++i) Line(&out, (long long)i + 1);
+  *out += "$EndEntities\n";
+}
+
+void AppendNodes(const MeshData &mesh, std::string *out) {
+  const size_t nn = mesh.coords.size() / 3;
+  *out += "$Nodes\n";
+  Line(out, 1LL, (long long)nn, nn ? 1LL : 0LL, (long long)nn);
+  Line(out, 2LL, 1LL, 0LL, (long long)nn);
+  for (size_t i = 0; i < nn; ++i) Line(out, (long long)i + 1);
   for (size_t i = 0; i < nn; ++i) {
-    Line(&out, mesh.coords[3 * i], mesh.coords[3 * i + 1], mesh.coords[3 * i + 2]);
+    Line(out, mesh.coords[3 * i], mesh.coords[3 * i + 1], mesh.coords[3 * i + 2]);
   }
-  out += "$EndNodes\n$Elements\n";
+  *out += "$EndNodes\n";
+}
+
+// The triangles in runs of one surface entity, then one point element per point entity.
+void AppendElements(const MeshData &mesh, const GmshLayout &g, std::string *out) {
+  const size_t ne = mesh.triangles.size() / 3;
+  *out += "$Elements\n";
   size_t nruns = 0;
-  for (size_t e = 0; e < ne; ++e) nruns += (e == 0 || tri_surface[e] != tri_surface[e - 1]);
-  const size_t nelem = ne + point_groups.size();
-  Line(&out, (long long)(nruns + point_groups.size()), (long long)nelem, nelem ? 1LL : 0LL,
+  for (size_t e = 0; e < ne; ++e) nruns += (e == 0 || g.tri_surface[e] != g.tri_surface[e - 1]);
+  const size_t nelem = ne + g.point_groups.size();
+  Line(out, (long long)(nruns + g.point_groups.size()), (long long)nelem, nelem ? 1LL : 0LL,
        (long long)nelem);
   for (size_t e = 0; e < ne;) {
     size_t end = e;
-    while (end < ne && tri_surface[end] == tri_surface[e]) ++end;
-    Line(&out, 2LL, tri_surface[e], 2LL, (long long)(end - e));
+    while (end < ne && g.tri_surface[end] == g.tri_surface[e]) ++end;
+    Line(out, 2LL, g.tri_surface[e], 2LL, (long long)(end - e));
     for (; e < end; ++e) {
-      Line(&out, (long long)e + 1, (long long)mesh.triangles[3 * e] + 1,
+      Line(out, (long long)e + 1, (long long)mesh.triangles[3 * e] + 1,
            (long long)mesh.triangles[3 * e + 1] + 1, (long long)mesh.triangles[3 * e + 2] + 1);
     }
   }
-  long long elem_tag = (long long)ne;
-  point_tag = 0;
-  for (const auto &pg : point_groups) {
-    Line(&out, 0LL, ++point_tag, 15LL, 1LL);
-    Line(&out, ++elem_tag, (long long)pg.first + 1);
+  long long elem_tag = (long long)ne, point_tag = 0;
+  for (const auto &pg : g.point_groups) {
+    Line(out, 0LL, ++point_tag, 15LL, 1LL);
+    Line(out, ++elem_tag, (long long)pg.first + 1);
   }
-  out += "$EndElements\n";
+  *out += "$EndElements\n";
+}
 
+bool WriteWholeFile(const std::string &path, const std::string &out, std::string *err) {
   std::FILE *f = std::fopen(path.c_str(), "wb");
   if (!f) {
     if (err) *err = path + ": cannot open for writing: " + std::strerror(errno);
@@ -231,6 +253,23 @@ bool WriteGmshFile(const std::string &path, const MeshData &mesh, std::string *e
     return false;
   }
   return true;
+}
+
+} // namespace
+
+bool WriteGmshFile(const std::string &path, const MeshData &mesh, std::string *err) {
+  if (!WriterCheck(path, mesh, err)) return false;
+  GmshLayout layout;
+  PhysicalGroups(mesh, &layout);
+  SurfaceEntities(mesh, &layout);
+  std::string out;
+  out.reserve(64 * (mesh.coords.size() / 3 + mesh.triangles.size() / 3) + 4096);
+  out += "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  AppendPhysicalNames(layout, &out);
+  AppendEntities(mesh, layout, &out);
+  AppendNodes(mesh, &out);
+  AppendElements(mesh, layout, &out);
+  return WriteWholeFile(path, out, err);
 }
 
 } // namespace etfe

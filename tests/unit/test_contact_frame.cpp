@@ -14,6 +14,7 @@
 #include "etfe/kernels/contact_frame.h"
 
 #include "check.h"
+#include "fd_tangent.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -88,18 +89,22 @@ void CheckFrame(const Support &s, const double p[3]) {
   double P[9];  // I - a a^T - n n^T: projector on the circumferential direction
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) P[3 * i + j] = (i == j) - a[i] * a[j] - n[i] * n[j];
+  // Differentiated: (distance, M, normal = third row of R) at p; J is 7 x 3.
+  const auto frame = [&](const double *q, double *out) {
+    double R[9];
+    out[0] = etfe::ContactSupportFrame(s.c, s.a, s.r, q, out + 1, R);
+    for (int i = 0; i < 3; ++i) out[4 + i] = R[6 + i];
+  };
+  double J[21];
+  etfe_test::CentralDifferenceJacobian(frame, p, 3, 7, h, J);
   double worst_d = 0, worst_M = 0, worst_n = 0;
   for (int j = 0; j < 3; ++j) {
-    double pp[3] = {p[0], p[1], p[2]}, pn[3] = {p[0], p[1], p[2]}, Mp[3], Mm[3], Rp[9], Rm[9];
-    pp[j] += h, pn[j] -= h;
-    const double dp = etfe::ContactSupportFrame(s.c, s.a, s.r, pp, Mp, Rp);
-    const double dm = etfe::ContactSupportFrame(s.c, s.a, s.r, pn, Mm, Rm);
-    worst_d = std::fmax(worst_d, std::fabs((dp - dm) / (2 * h) - n[j]));
+    worst_d = std::fmax(worst_d, std::fabs(J[j] - n[j]));
     for (int i = 0; i < 3; ++i) {
       const double dM = a[i] * a[j] + s.r / rho * P[3 * i + j];
       const double dn = P[3 * i + j] / rho;
-      worst_M = std::fmax(worst_M, std::fabs((Mp[i] - Mm[i]) / (2 * h) - dM));
-      worst_n = std::fmax(worst_n, std::fabs((Rp[6 + i] - Rm[6 + i]) / (2 * h) - dn) * rho);
+      worst_M = std::fmax(worst_M, std::fabs(J[3 * (1 + i) + j] - dM));
+      worst_n = std::fmax(worst_n, std::fabs(J[3 * (4 + i) + j] - dn) * rho);
     }
   }
   CHECK(worst_d < 1e-7, "%s: d distance/dp vs z0: %.3e", s.name, worst_d);

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "check.h"
+#include "fd_tangent.h"
 #include "etfe/flatten_strip.h"
 #include "etfe/kernels/flatten_link.h"
 #include "etfe/kernels/status.h"
@@ -87,16 +88,11 @@ void TestKernel() {
   CHECK(FlattenLink(p, q, L, 1e-12, &c, g) == KERNEL_OK, "kernel status");
   CHECK_CLOSE(c, std::hypot(q[0] - p[0], q[1] - p[1]) - L, 1e-15, 0.0);
   double x[4] = {p[0], p[1], q[0], q[1]};
-  for (int k = 0; k < 4; ++k) {
-    const double h = 1e-6;
-    double xp[4], xm[4], cp, cm;
-    for (int j = 0; j < 4; ++j) xp[j] = xm[j] = x[j];
-    xp[k] += h;
-    xm[k] -= h;
-    FlattenLink(xp, xp + 2, L, 0.0, &cp, nullptr);
-    FlattenLink(xm, xm + 2, L, 0.0, &cm, nullptr);
-    CHECK_CLOSE(g[k], (cp - cm) / (2 * h), 1e-8, 1e-10);
-  }
+  const double h = 1e-6;
+  double gfd[4];
+  etfe_test::CentralDifferenceJacobian([&](const double *y, double *cy) { FlattenLink(y, y + 2, L, 0.0, cy, nullptr); },
+                                       x, 4, 1, h, gfd);
+  for (int k = 0; k < 4; ++k) CHECK_CLOSE(g[k], gfd[k], 1e-8, 1e-10);
   double K[16], R[4];
   FlattenLinkSystem(7.0, c, g, 0.0, K, R);
   for (int a = 0; a < 4; ++a) {
@@ -111,18 +107,15 @@ void TestKernel() {
   // With the current length the matrix is the exact derivative -dR/dx (Newton).
   double KN[16], RN[4];
   FlattenLinkSystem(7.0, c, g, c + L, KN, RN);
-  for (int k = 0; k < 4; ++k) {
-    const double h = 1e-6;
-    double xp[4], xm[4], cp, cm, gp[4], gm[4], Kt[16], Rp[4], Rm[4];
-    for (int j = 0; j < 4; ++j) xp[j] = xm[j] = x[j];
-    xp[k] += h;
-    xm[k] -= h;
-    FlattenLink(xp, xp + 2, L, 0.0, &cp, gp);
-    FlattenLink(xm, xm + 2, L, 0.0, &cm, gm);
-    FlattenLinkSystem(7.0, cp, gp, 0.0, Kt, Rp);
-    FlattenLinkSystem(7.0, cm, gm, 0.0, Kt, Rm);
-    for (int a = 0; a < 4; ++a) CHECK_CLOSE(KN[4 * a + k], -(Rp[a] - Rm[a]) / (2 * h), 1e-7, 1e-8);
-  }
+  const auto residual = [&](const double *y, double *Ry) {
+    double cy, gy[4], Kt[16];
+    FlattenLink(y, y + 2, L, 0.0, &cy, gy);
+    FlattenLinkSystem(7.0, cy, gy, 0.0, Kt, Ry);
+  };
+  double dRdx[16];
+  etfe_test::CentralDifferenceJacobian(residual, x, 4, 4, h, dRdx);
+  for (int k = 0; k < 4; ++k)
+    for (int a = 0; a < 4; ++a) CHECK_CLOSE(KN[4 * a + k], -dRdx[4 * a + k], 1e-7, 1e-8);
   CHECK(FlattenLink(p, p, L, 0.0, &c, g) == KERNEL_DEGENERATE, "zero length guard");
   const double tiny[2] = {p[0] + 1e-14, p[1]};
   CHECK(FlattenLink(p, tiny, L, 1e-12, &c, g) == KERNEL_DEGENERATE, "min length guard");

@@ -6,6 +6,7 @@
 #include "etfe/kernels/status.h"
 
 #include "check.h"
+#include "fd_tangent.h"
 
 #include <cmath>
 #include <cstdint>
@@ -119,16 +120,8 @@ void Evaluate(const Setup &st, const double x[9], double f[9], double K[81]) {
 double TangentError(const Setup &st, const double x[9], double scale) {
   double f[9], K[81], Kfd[81];
   Evaluate(st, x, f, K);
-  const double h = 1e-5 * scale;
-  for (int col = 0; col < 9; ++col) {
-    double xp[9], xm[9], fp[9], fm[9];
-    for (int k = 0; k < 9; ++k) xp[k] = xm[k] = x[k];
-    xp[col] += h;
-    xm[col] -= h;
-    Evaluate(st, xp, fp, nullptr);
-    Evaluate(st, xm, fm, nullptr);
-    for (int row = 0; row < 9; ++row) Kfd[9 * row + col] = (fp[row] - fm[row]) / (2.0 * h);
-  }
+  etfe_test::CentralDifferenceJacobian([&](const double *y, double *fy) { Evaluate(st, y, fy, nullptr); }, x, 9, 9,
+                                       1e-5 * scale, Kfd);
   double diff[81];
   for (int k = 0; k < 81; ++k) diff[k] = K[k] - Kfd[k];
   return MaxAbs(diff, 81) / MaxAbs(K, 81);

@@ -4,6 +4,7 @@
 #include "etfe/kernels/pressure.h"
 
 #include "check.h"
+#include "fd_tangent.h"
 
 #include <cmath>
 #include <cstdint>
@@ -45,16 +46,8 @@ int main() {
 
     // f is quadratic in x: central differences are exact up to rounding.
     double Lfd[81];
-    const double h = 1e-4 * scale;
-    for (int col = 0; col < 9; ++col) {
-      double xp[9], xm[9], fp[9], fm[9];
-      for (int k = 0; k < 9; ++k) xp[k] = xm[k] = x[k];
-      xp[col] += h;
-      xm[col] -= h;
-      PressureLoad(p, xp, fp, nullptr);
-      PressureLoad(p, xm, fm, nullptr);
-      for (int row = 0; row < 9; ++row) Lfd[9 * row + col] = (fp[row] - fm[row]) / (2.0 * h);
-    }
+    etfe_test::CentralDifferenceJacobian([&](const double *y, double *fy) { PressureLoad(p, y, fy, nullptr); }, x, 9,
+                                         9, 1e-4 * scale, Lfd);
     double diff[81];
     for (int k = 0; k < 81; ++k) diff[k] = L[k] - Lfd[k];
     const double rel = MaxAbs(diff, 81) / MaxAbs(L, 81);
