@@ -98,6 +98,22 @@ def header(out):
     return d
 
 
+def value(out, key):
+    """The first `key = number` of the output (lines without a scene prefix such as `mu_eff = ...`,
+    `neck_radius = ...`), or None."""
+    m = re.search(r"(?<![\w(])%s = (%s)" % (re.escape(key), NUMBER), out)
+    return float(m.group(1)) if m else None
+
+
+FORMFIND = re.compile(r"formfind: converged after (\d+) iterations")
+
+
+def formfind_iterations(out):
+    """Iterations of a converged form finding (`formfind: converged after N iterations`), or None."""
+    m = FORMFIND.search(out)
+    return int(m.group(1)) if m else None
+
+
 def numbers(text):
     """Every `key = number` pair of a line, in order: [(key, value, printed)]."""
     return [(m.group(1), float(m.group(2)), m.group(2)) for m in KEY_VALUE.finditer(text)]
@@ -254,3 +270,34 @@ def tail(out, n=40):
     """The last n lines of a run's output without PETSc's configure-options noise."""
     lines = [l for l in out.splitlines() if "Configure options" not in l]
     return "\n".join(lines[-n:])
+
+
+# /usr/bin/time -v, in front of a benchmark run
+TIME_V = {"maxrss_kb": re.compile(r"Maximum resident set size \(kbytes\): (\d+)"),
+          "user": re.compile(r"User time \(seconds\): ([0-9.]+)"),
+          "system": re.compile(r"System time \(seconds\): ([0-9.]+)")}
+
+
+def run_log(out):
+    """Everything a benchmark reads from one run's log: header (nodes, triangles, dofs), summary
+    (end, increments, newton, cutbacks, solve_wall), steps (progress()), events (petsc_events()),
+    mem_total, mem_max, mem_min (-memory_view, bytes), maxrss_kb and cpu (/usr/bin/time -v, s),
+    error (first line of a PETSc error message, or ""). Keys of what was not printed are missing."""
+    d = {k: v for k, v in header(out).items() if k in ("nodes", "triangles", "dofs")}
+    s = summary(out)
+    if s:
+        d.update(end=s["end"], increments=s["increments"], newton=s["newton"], cutbacks=s["cutbacks"],
+                 solve_wall=s["wall"])
+    d["steps"] = progress(out)
+    d["events"] = petsc_events(out)
+    mem = petsc_memory(out)
+    if mem:
+        d["mem_total"], d["mem_max"], d["mem_min"] = mem
+    m = TIME_V["maxrss_kb"].search(out)
+    if m:
+        d["maxrss_kb"] = int(m.group(1))
+    u, s = TIME_V["user"].search(out), TIME_V["system"].search(out)
+    if u and s:
+        d["cpu"] = float(u.group(1)) + float(s.group(1))
+    d["error"] = first_error(out)
+    return d

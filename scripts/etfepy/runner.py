@@ -129,3 +129,34 @@ def make_required(options_file, np=1, etfe=None, timeout=None):
             made.append((need, run(["-options_file", source, "-formfind_monitor", 0], np=np, etfe=etfe,
                                    timeout=timeout)))
     return made
+
+
+def load_average():
+    """The 1-minute load average of the machine (nan where /proc/loadavg is missing)."""
+    try:
+        with open("/proc/loadavg") as f:
+            return float(f.read().split()[0])
+    except OSError:
+        return float("nan")
+
+
+def progress_reporter(label, say=print):
+    """A progress(elapsed, log) for run(): says how long `label` has run and its last step line."""
+    def report(elapsed, log):
+        last = ""
+        try:
+            with open(log, errors="replace") as g:
+                found = [l.strip() for l in g if l.startswith(("step", "formfind:", "etfe:"))]
+            last = found[-1] if found else ""
+        except OSError:
+            pass
+        say(f"    ... {label}: {elapsed:.0f} s{', last: ' + last[:110] if last else ''}")
+    return report
+
+
+def run_measured(args, np, etfe, log, timeout, label, say=print):
+    """A benchmark run: under /usr/bin/time -v (peak memory, CPU time; when installed), one OpenMP
+    thread per rank, into the file log, saying how it goes every 30 s. Returns a Result."""
+    timev = ["/usr/bin/time", "-v"] if os.path.exists("/usr/bin/time") else []
+    return run(args, np=np, etfe=etfe, timeout=timeout, log=log, env=environment(OMP_NUM_THREADS="1"), prefix=timev,
+               progress=progress_reporter(label, say))
