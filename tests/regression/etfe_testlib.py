@@ -5,6 +5,7 @@ repository root. It uses:
   etfe = etfe_path()                      the solver (argv[1], default build/etfe)
   rc, out = run(etfe, [...], np=2)        one run; raises TestFailure on an unexpected exit code
   scene_values(out, "patch")              {tag: {key: number}} from the scene's `key = value` lines
+  summary(out), increments(out), ...      etfe's printed lines, parsed by scripts/etfepy/lines.py
   with scratch_dir() as tmp: ...          a temp dir outside the repo (kept if ETFE_KEEP_TMP=1)
   chk = Checker("name"); chk.check(cond, msg); ...; chk.finish()
 """
@@ -30,7 +31,6 @@ from etfepy.lines import (NUMBER, cutpattern_report, error_message, numbers, pat
 from etfepy.results import read_steps, status  # noqa: E402,F401
 
 OPTIONS = os.path.join(REPO, "options")
-MPI_ENV = runner.MPI_ENV
 
 
 class TestFailure(Exception):
