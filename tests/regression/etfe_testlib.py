@@ -5,6 +5,7 @@ repository root. It uses:
   etfe = etfe_path()                      the solver (argv[1], default build/etfe)
   rc, out = run(etfe, [...], np=2)        one run; raises TestFailure on an unexpected exit code
   scene_values(out, "patch")              {tag: {key: number}} from the scene's `key = value` lines
+  summary(out), increments(out), ...      etfe's printed lines, parsed by scripts/etfepy/lines.py
   with scratch_dir() as tmp: ...          a temp dir outside the repo (kept if ETFE_KEEP_TMP=1)
   chk = Checker("name"); chk.check(cond, msg); ...; chk.finish()
 """
@@ -14,7 +15,6 @@ import math
 import os
 import re
 import shutil
-import subprocess
 import sys
 import tempfile
 import time
@@ -23,15 +23,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 sys.path.insert(0, os.path.join(REPO, "scripts"))
 
-import h5compare  # noqa: E402  (scripts/h5compare.py)
+import h5compare  # noqa: E402,F401  (scripts/h5compare.py; tests use T.h5compare)
+from etfepy import lines, runner  # noqa: E402  (scripts/etfepy)
+from etfepy import options as optionsfile  # noqa: E402,F401
+from etfepy.lines import (NUMBER, cutpattern_report, error_message, numbers, patch_ranges, saddle_report,  # noqa: E402,F401
+                          scene_lines, scene_values, snes_histories, tail)
+from etfepy.results import read_steps, status  # noqa: E402,F401
 
 OPTIONS = os.path.join(REPO, "options")
-MPI_ENV = {
-    "OMPI_ALLOW_RUN_AS_ROOT": "1",
-    "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1",
-    "OMPI_MCA_btl_vader_single_copy_mechanism": "none",
-}
-NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?(?:inf|nan)"
 
 
 class TestFailure(Exception):
@@ -52,110 +51,31 @@ def opts(scene):
     return os.path.join(OPTIONS, scene + ".opts")
 
 
-def run(etfe, args, np=1, expect_fail=False, timeout=300, oversubscribe=None, echo=False):
-    """Run the solver (under mpirun when np > 1) from the repository root.
+def run(etfe, args, np=1, expect_fail=False, timeout=300, oversubscribe=None, echo=False, cwd=None):
+    """Run the solver (under mpirun when np > 1) from the repository root (or cwd).
 
     Returns (returncode, stdout + stderr). Raises TestFailure when the run succeeds although
     expect_fail is True, fails although expect_fail is False, or exceeds timeout seconds
     (expect_fail=None accepts any exit code).
     """
-    env = dict(os.environ)
-    env.update(MPI_ENV)
-    cmd = [etfe] + [str(a) for a in args]
-    if np > 1:
-        if oversubscribe is None:
-            oversubscribe = np > (os.cpu_count() or 1)
-        cmd = ["mpirun", "-n", str(np)] + (["--oversubscribe"] if oversubscribe else []) + cmd
-    t0 = time.time()
-    try:
-        p = subprocess.run(cmd, cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                           timeout=timeout)
-    except subprocess.TimeoutExpired as e:
-        raise TestFailure("timed out after %g s: %s\n%s" % (timeout, " ".join(cmd),
-                                                          tail(_decode(e.stdout or b""))))
-    except OSError as e:
-        raise TestFailure("cannot run %s: %s" % (" ".join(cmd), e))
-    out = _decode(p.stdout)
-    run.last_wall = time.time() - t0
+    res = runner.run(args, np=np, etfe=etfe, timeout=timeout, oversubscribe=oversubscribe, cwd=cwd)
+    cmd, out = res.command, res.output
+    run.last_wall = res.wall
+    if res.timed_out:
+        raise TestFailure("timed out after %g s: %s\n%s" % (timeout, " ".join(cmd), tail(out)))
+    if res.returncode == 127 and out.startswith("cannot run"):
+        raise TestFailure(out)
     if echo:
         print(out)
-    if expect_fail is True and p.returncode == 0:
+    if expect_fail is True and res.returncode == 0:
         raise TestFailure("expected a failure (non-zero exit) but the run succeeded: %s\n%s"
                           % (" ".join(cmd), tail(out)))
-    if expect_fail is False and p.returncode != 0:
-        raise TestFailure("run failed with exit code %d: %s\n%s" % (p.returncode, " ".join(cmd), tail(out)))
-    return p.returncode, out
+    if expect_fail is False and res.returncode != 0:
+        raise TestFailure("run failed with exit code %d: %s\n%s" % (res.returncode, " ".join(cmd), tail(out)))
+    return res.returncode, out
 
 
 run.last_wall = 0.0
-
-
-def _decode(b):
-    return b.decode("utf-8", "replace") if isinstance(b, bytes) else b
-
-
-def tail(out, n=40):
-    """The last n lines of a run's output without PETSc's configure-options noise."""
-    lines = [l for l in out.splitlines() if "Configure options" not in l]
-    return "\n".join(lines[-n:])
-
-
-def error_message(out):
-    """The lines of a PETSc error message that say what went wrong: no trace (#n ... or the
-    concise "(raised in f() at file:line ...)"), no "Option left" warnings, no option table, no
-    version/configure banner."""
-    keep, in_table = [], False
-    for l in out.splitlines():
-        m = re.match(r"\[\d+\]PETSC ERROR: (.*)", l)
-        if not m:
-            continue
-        t = m.group(1)
-        if t.startswith("PETSc Option Table entries"):
-            in_table = True
-            continue
-        if "End of Error Message" in t or "Error Message" in t:
-            in_table = False
-            continue
-        if in_table or t.startswith("#") or t.startswith("Option left") or \
-                t.strip().startswith("(raised in ") or \
-                "Configure options" in t or t.startswith("Petsc Release") or \
-                t.startswith("See https") or (" on a " in t and " named " in t) or \
-                t.startswith("WARNING! There are option"):
-            continue
-        keep.append(t)
-    return "\n".join(keep)
-
-
-def numbers(text):
-    """Every `key = number` pair of a line, in order: [(key, value, printed)]."""
-    pairs = []
-    for m in re.finditer(r"([A-Za-z_][\w]*(?:\([^)]*\))?)\s*=\s*(%s)" % NUMBER, text):
-        pairs.append((m.group(1), float(m.group(2)), m.group(2)))
-    return pairs
-
-
-def scene_lines(out, scene):
-    """The lines a scene prints (`<scene>: ...`), without the prefix."""
-    pre = scene + ":"
-    return [l[len(pre):].strip() for l in out.splitlines() if l.startswith(pre)]
-
-
-def scene_values(out, scene, printed=False):
-    """{tag: {key: value}} from the scene's lines; tag is the line's first word.
-
-    `hencky: centre_deflection = 2.6e+01 mm, closed_form = 2.59e+01 mm, relative_error = 9.2e-04`
-    gives values["centre_deflection"] = {"centre_deflection": 26.0, "closed_form": 25.9,
-    "relative_error": 9.2e-4}. With printed=True the values are the printed strings.
-    """
-    res = {}
-    for line in scene_lines(out, scene):
-        m = re.match(r"(\w+)", line)
-        if not m:
-            continue
-        d = res.setdefault(m.group(1), {})
-        for k, v, s in numbers(line):
-            d[k] = s if printed else v
-    return res
 
 
 def scene_value(out, scene, tag, key=None):
@@ -170,36 +90,15 @@ def scene_value(out, scene, tag, key=None):
 
 def summary(out):
     """Numbers of the `etfe: completed after N increments (...), M Newton iterations, C cut-backs, W s` line."""
-    m = re.search(r"etfe: (completed|STOPPED) after (\d+) increments \(load time (%s)\), (\d+) Newton "
-                  r"iterations, (\d+) cut-backs, (%s) s" % (NUMBER, NUMBER), out)
-    if not m:
+    s = lines.summary(out)
+    if s is None:
         raise TestFailure("no `etfe: completed/STOPPED after ...` line in the output:\n" + tail(out))
-    return dict(completed=m.group(1) == "completed", increments=int(m.group(2)),
-                time=float(m.group(3)), newton=int(m.group(4)), cutbacks=int(m.group(5)),
-                wall=float(m.group(6)))
+    return s
 
 
 def increments(out):
-    """Per converged increment: dict(step, t, stage, newton, residual) from the load monitor lines."""
-    res = []
-    for m in re.finditer(r"^step +(\d+)/\d+ +[0-9.]+%% +t +(%s) +stage (\d+)/\d+ .*? newton +(\d+) +\|R\| (%s)"
-                         % (NUMBER, NUMBER), out, re.M):
-        res.append(dict(step=int(m.group(1)), t=float(m.group(2)), stage=int(m.group(3)),
-                        newton=int(m.group(4)), residual=float(m.group(5))))
-    return res
-
-
-def snes_histories(out):
-    """Residual norms of every SNES solve (from -snes_monitor), one list per solve, in order."""
-    hist = []
-    for l in out.splitlines():
-        m = re.match(r"\s*(\d+) SNES Function norm (%s)" % NUMBER, l)
-        if not m:
-            continue
-        if int(m.group(1)) == 0:
-            hist.append([])
-        hist[-1].append(float(m.group(2)))
-    return hist
+    """Per converged increment: dict(step, t, stage, newton, residual, ...) from the load monitor lines."""
+    return lines.progress(out)
 
 
 def printed_ulp(s):
@@ -267,22 +166,6 @@ def form_found_saddle(etfe, tmp, options="ff_r15_s11_n19.opts", extra=(), name="
     run(etfe, ["-options_file", os.path.join(REPO, "options", "saddle", options), "-formfind_monitor", 0,
                "-formfind_mesh_out", msh, "-output", 0, "-output_file", os.path.join(tmp, name + ".h5")] + list(extra))
     return msh
-
-
-def read_steps(path):
-    """[(step, attrs, {dataset: array})] of a results file, in step order."""
-    import h5py
-    res = []
-    with h5py.File(path, "r") as f:
-        for k in sorted(f["steps"].keys(), key=int):
-            g = f["steps"][k]
-            res.append((int(k), {a: g.attrs[a] for a in g.attrs},
-                        {n: d[()] for n, d in h5compare.datasets(g).items()}))
-    return res
-
-
-def status(path):
-    return h5compare.file_status(path)
 
 
 class Checker:

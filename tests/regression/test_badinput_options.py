@@ -3,9 +3,8 @@ run with the closest name, options that exist but are not used by the chosen con
 warn, -help is the manual, options files do not depend on the current folder and a bad line in
 one is one message naming file and line."""
 import os
-import subprocess
 
-from etfe_testlib import MPI_ENV, Checker, etfe_path, opts, run, scratch_dir
+from etfe_testlib import Checker, etfe_path, opts, run, scratch_dir
 
 etfe = etfe_path()
 chk = Checker("badinput_options")
@@ -36,17 +35,14 @@ chk.check(all(s in out for s in ("hencky", "capstan", "saddle", "options/capstan
           "-scene_list says what each scene computes and names its options files")
 
 with scratch_dir() as tmp:
-    env = dict(os.environ, **MPI_ENV)
-    p = subprocess.run([etfe, "-options_file", os.path.abspath(opts("patch")), "-output", "0", "-load_monitor", "0"],
-                       cwd=tmp, env=env, capture_output=True, text=True, errors="replace")
-    chk.check(p.returncode == 0 and "patch:" in p.stdout,
-              "an options file (with its -options_file includes) runs from another folder")
+    rc, out = run(etfe, ["-options_file", os.path.abspath(opts("patch")), "-output", "0", "-load_monitor", "0"],
+                  cwd=tmp, expect_fail=None)
+    chk.check(rc == 0 and "patch:" in out, "an options file (with its -options_file includes) runs from another folder")
     bad = os.path.join(tmp, "bad.opts")
     with open(bad, "w") as f:
         f.write("# a case\n-options_file %s\nmesh_nx 8\n" % os.path.abspath(opts("patch")))
-    p = subprocess.run([etfe, "-options_file", bad], cwd=tmp, env=env, capture_output=True, text=True,
-                       errors="replace")
-    msg = (p.stdout + p.stderr).strip()
-    chk.check(p.returncode != 0 and msg.startswith("etfe: %s:3:" % bad) and len(msg.splitlines()) == 1
+    rc, out = run(etfe, ["-options_file", bad], cwd=tmp, expect_fail=None)
+    msg = out.strip()
+    chk.check(rc != 0 and msg.startswith("etfe: %s:3:" % bad) and len(msg.splitlines()) == 1
               and "MPI_ABORT" not in msg, "a bad options-file line is one message naming file:line (%s)" % msg[:80])
 chk.finish()

@@ -13,9 +13,9 @@ is L0 = 55.4; 0 gives per-node penalties):
 * bad input: a negative length, and a contact area (the capstan's pipe, where pair nodes do not
   form lines), are refused with messages naming the option.
 """
-import re
 
-from etfe_testlib import dd1511_case, error_message, form_found_saddle, main, opts, run, scratch_dir
+from etfe_testlib import (dd1511_case, error_message, form_found_saddle, main, opts, run, saddle_report,
+                          scene_values, scratch_dir)
 
 L0 = 55.4
 
@@ -26,8 +26,8 @@ def test(etfe, chk):
 
         def case(name, extra):
             out, history = dd1511_case(etfe, msh, tmp, name, ["-load_increments", 40, "-load_monitor", 0] + extra)
-            num = lambda pattern: float(re.search(pattern + r" = (\S+)", out).group(1))
-            res = {"A": num(r"part_A mises"), "B": num(r"part_B mises"), "slide1": num(r"slide_1 \(Y = 0\) X"),
+            rep = saddle_report(out)
+            res = {"A": rep["A_mises"], "B": rep["B_mises"], "slide1": scene_values(out, "saddle")["slide_1"]["X"],
                    "history": history}
             print("%-10s part A %.6f, part B %.6f MPa, slide I %.6f mm" % (name, res["A"], res["B"], res["slide1"]))
             return res

@@ -4,17 +4,15 @@ boundary and cutting lines keep their 3D length; with uniform weights the doubly
 come out shorter in 2D along the weld line over the arch, by more as the rise grows; compensated
 for the form-finding stress, the isotropic middle part shrinks by the closed form."""
 import os
-import re
 
-from etfe_testlib import Checker, etfe_path, run, scratch_dir, REPO
+from etfe_testlib import Checker, cutpattern_report, etfe_path, run, scratch_dir, REPO
 
 etfe = etfe_path()
 chk = Checker("formfind_cutpattern")
 
 
 def lines(out):
-    return {(m.group(1), m.group(2)): (float(m.group(3)), float(m.group(4)), float(m.group(5)))
-            for m in re.finditer(r"cutpattern: strip (\w+) line (\w+): 3D (\S+) mm, 2D (\S+) mm, expansion (\S+) %", out)}
+    return {(k, name): v for k, r in cutpattern_report(out).items() for name, v in r["lines"].items()}
 
 
 with scratch_dir() as tmp:

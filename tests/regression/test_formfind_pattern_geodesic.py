@@ -18,7 +18,7 @@ import re
 import time
 
 import pattern_meshes as pm
-from etfe_testlib import Checker, etfe_path, run, scratch_dir
+from etfe_testlib import Checker, cutpattern_report, etfe_path, run, scratch_dir
 
 etfe = etfe_path()
 chk = Checker("formfind_pattern_geodesic")
@@ -62,12 +62,11 @@ def widths(tmp, name):
 
 
 def report(out):
-    errs = {m.group(1): float(m.group(2)) for m in re.finditer(
-        r"cutpattern: strip (\w+): .* link error max %s" % NUM, out)}
-    lines = [(m.group(1), m.group(2), float(m.group(3)), float(m.group(4))) for m in re.finditer(
-        r"cutpattern: strip (\w+) line (cut_\w+): 3D %s mm, 2D %s mm" % (NUM, NUM), out)]
-    outline = {m.group(1): float(m.group(2)) for m in re.finditer(
-        r"cutpattern: strip (\w+) outline: .* expansion %s %%" % NUM, out)}
+    rep = cutpattern_report(out)
+    errs = {k: r["link_max"] for k, r in rep.items() if "link_max" in r}
+    lines = [(k, name, l3, l2) for k, r in rep.items() for name, (l3, l2, _) in r["lines"].items()
+             if name.startswith("cut_")]
+    outline = {k: r["outline"][2] for k, r in rep.items() if "outline" in r}
     on_transverse = {m.group(1): float(m.group(2)) for m in re.finditer(
         r"geodesic strip (\w+): \d+ triangles, width on the transverse geodesic %s mm" % NUM, out)}
     return errs, lines, outline, on_transverse

@@ -3,12 +3,11 @@ groups and STL solids into physical surfaces (STL's repeated vertices merged, so
 facets share edges), and the strips flatten as the same mesh written directly does: the same
 link errors and the cutting line between the two strips."""
 import os
-import re
 import struct
 import subprocess
 
 import pattern_meshes as pm
-from etfe_testlib import Checker, etfe_path, run, scratch_dir, REPO
+from etfe_testlib import Checker, cutpattern_report, etfe_path, run, scratch_dir, REPO
 
 etfe = etfe_path()
 chk = Checker("formfind_pattern_import")
@@ -16,7 +15,7 @@ conv = os.path.join(REPO, "scripts", "surface2msh")
 
 
 def errors(out):
-    return {m.group(1): m.group(2) for m in re.finditer(r"cutpattern: strip (\w+): .* link error max (\S+)", out)}
+    return {k: r["link_max"] for k, r in cutpattern_report(out, printed=True).items() if "link_max" in r}
 
 
 def cutpattern(tmp, name, msh):

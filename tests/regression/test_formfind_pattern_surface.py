@@ -12,14 +12,12 @@ physical surfaces of a Gmsh file, with no scene and no form finding. Meshes are 
     carries S in every element to 1e-6."""
 import math
 import os
-import re
 
 import pattern_meshes as pm
-from etfe_testlib import Checker, etfe_path, run, scratch_dir, REPO
+from etfe_testlib import Checker, cutpattern_report, etfe_path, patch_ranges, run, scratch_dir, REPO
 
 etfe = etfe_path()
 chk = Checker("formfind_pattern_surface")
-NUM = r"([-+]?\d+\.?\d*(?:e[-+]?\d+)?)"
 
 
 def flatten(tmp, name, mesh, groups=None, extra=(), expect_fail=False):
@@ -34,10 +32,9 @@ def flatten(tmp, name, mesh, groups=None, extra=(), expect_fail=False):
 
 def strips(out):
     """{strip: (max link error, rms link error)} and {strip: outline expansion %}."""
-    err = {m.group(1): (float(m.group(2)), float(m.group(3))) for m in re.finditer(
-        r"cutpattern: strip (\w+): .* link error max %s rms %s" % (NUM, NUM), out)}
-    outl = {m.group(1): float(m.group(2)) for m in re.finditer(
-        r"cutpattern: strip (\w+) outline: .* expansion %s %%" % NUM, out)}
+    rep = cutpattern_report(out)
+    err = {k: (r["link_max"], r["link_rms"]) for k, r in rep.items() if "link_max" in r}
+    outl = {k: r["outline"][2] for k, r in rep.items() if "outline" in r}
     return err, outl
 
 
@@ -133,10 +130,10 @@ with scratch_dir() as tmp:
     lx = max(xs) - min(xs)
     out = run(etfe, ["-options_file", os.path.join(REPO, "options/patch.opts"), "-mesh_file", pattern,
                      "-patch_strain_x", "%.17g" % (1000.0 / lx - 1.0), "-output", 0, "-mesh_perturb", 0] + mat)[1]
-    m = re.search(r"patch: Sxx in \[%s, %s\], Syy in \[%s, %s\]" % (NUM, NUM, NUM, NUM), out)
-    chk.check(m is not None, "patch run on the compensated pattern reports its stress")
-    if m:
-        lo, hi, ylo, yhi = (float(m.group(k)) for k in range(1, 5))
+    r = patch_ranges(out)
+    chk.check(r is not None, "patch run on the compensated pattern reports its stress")
+    if r:
+        (lo, hi), (ylo, yhi) = r["Sxx"], r["Syy"]
         rel = max(abs(lo - S), abs(hi - S)) / S
         print("compensated strip (%.6f mm long) stretched back to 1000 mm: Sxx in [%.10f, %.10f] MPa, "
               "relative error %.2e; Syy within %.1e MPa" % (lx, lo, hi, rel, max(abs(ylo), abs(yhi))))

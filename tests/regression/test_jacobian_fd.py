@@ -209,23 +209,23 @@ def pressure_stiffness(etfe, chk, report):
 
 VIEW = ["-snes_test_jacobian", "-snes_test_jacobian_view", "::ascii_matlab", "-options_allow_unused", "-output", "0"]
 CAPSTAN = ["-mesh_nx", "8", "-mesh_ny", "1", "-load_increments", "4"]  # steps 1-2 tension, 3-4 pull
-STEP = re.compile(r"(?m)^step +(\d+)/\d+ .*?contact open (\d+) stick (\d+) slip (\d+).*$")
 
 
 def option_value(path, name):
-    for line in open(path):
-        p = line.split()
-        if len(p) >= 2 and p[0] == name:
-            return float(p[1])
-    raise T.TestFailure("%s not set in %s" % (name, path))
+    value = T.optionsfile.read_dict(path).get(name)
+    if value is None:
+        raise T.TestFailure("%s not set in %s" % (name, path))
+    return float(value)
 
 
 def by_step(out):
     """[(step, open, stick, slip, [(ratio, J, Jfd)])]: the tests printed before each progress line."""
     res, start = [], 0
-    for m in STEP.finditer(out):
-        res.append(tuple(int(g) for g in m.groups()) + (parse_tests(out[start:m.start()]),))
-        start = m.end()
+    for i in T.increments(out):
+        if i["open"] is None:
+            continue
+        res.append((i["step"], i["open"], i["stick"], i["slip"], parse_tests(out[start:i["span"][0]])))
+        start = i["span"][1]
     return res
 
 
@@ -250,8 +250,7 @@ def capstan_run(etfe, chk, case, extra):
     steps = by_step(out)
     chk.check(len(steps) == 4 and all(s[4] for s in steps),
               "%s: 4 increments, each with its Jacobian tests (%d found)" % (case, len(steps)))
-    t2 = re.search(r"T2 at the end = (%s)" % T.NUMBER, out)
-    return steps, float(t2.group(1)) if t2 else float("nan")
+    return steps, T.scene_values(out, "capstan").get("theta", {}).get("end", float("nan"))
 
 
 def contact_capstan(etfe, chk, report):

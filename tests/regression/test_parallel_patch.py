@@ -6,7 +6,6 @@ field of every written step to 1e-8 (absolute floor 1e-9 for round-off fields), 
 lines agree: the same numbers where they are data, and below 1e-9 where they are round-off
 (stress_spread, relative_error, Syy/Sxy of a uniaxial stretch)."""
 import os
-import re
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in the repository
@@ -31,8 +30,8 @@ def main_test(etfe, chk):
                 h5 = os.path.join(tmp, "%s_np%d.h5" % (case, np_))
                 rc, out = T.run(etfe, ["-options_file", T.opts("patch"), "-output_file", h5, "-load_monitor", "0"]
                                 + MESH + extra, np=np_, oversubscribe=np_ > (os.cpu_count() or 1))
-                m = re.search(r"ranks: (\d+)", out)
-                chk.check(m and int(m.group(1)) == np_, "%s: run reports %s rank(s), expected %d" % (case, m and m.group(1), np_))
+                ranks = T.lines.header(out).get("ranks")
+                chk.check(ranks == np_, "%s: run reports %s rank(s), expected %d" % (case, ranks, np_))
                 chk.check(T.status(h5) == "complete", "%s np=%d: results status 'complete'" % (case, np_))
                 res[np_] = (h5, out)
                 print("%s np=%d: %d Newton iterations, %.2f s wall" % (case, np_, T.summary(out)["newton"], T.run.last_wall))
@@ -67,11 +66,10 @@ def main_test(etfe, chk):
 
 
 def ranges(out):
-    m = re.search(r"patch: Sxx in \[(\S+), (\S+)\], Syy in \[(\S+), (\S+)\], Sxy in \[(\S+), (\S+)\]", out)
-    if not m:
+    r = T.lines.patch_ranges(out, printed=True)
+    if r is None:
         raise T.TestFailure("no `patch: Sxx in [...]` line:\n" + T.tail(out))
-    g = m.groups()
-    return {"Sxx": g[0:2], "Syy": g[2:4], "Sxy": g[4:6]}
+    return r
 
 
 if __name__ == "__main__":

@@ -5,19 +5,14 @@ line gives the bytes); the same answer on 1, 2 and 3 ranks; and what rank 0 alon
 the mesh (a missing group, a mesh that is not the scene's, contact nodes that do not form lines,
 a broken file) is refused with the same message on every rank, not a hang."""
 import os
-import re
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in the repository
 import etfe_testlib as T  # noqa: E402
 import badmesh_cases  # noqa: E402
 
-SHARE = re.compile(r"set-up: rank 0 built the scene and sent each rank its share: (\d+) kB \(max\), (\d+) kB \(min\)")
-
-
 def shares(out):
-    m = SHARE.search(out)
-    return (int(m.group(1)), int(m.group(2))) if m else None
+    return T.lines.header(out).get("share_kb")
 
 
 def main_test(etfe, chk):
@@ -35,8 +30,8 @@ def main_test(etfe, chk):
         chk.less(s2[0], 0.6 * s1[0], "2 ranks: the largest share against the whole (%d of %d kB)" % (s2[0], s1[0]))
         chk.less(s3[0], 0.42 * s1[0], "3 ranks: the largest share against the whole (%d of %d kB)" % (s3[0], s1[0]))
         chk.check(s2[0] + s2[1] >= s1[0], "2 ranks: the shares together hold at least the whole mesh (ghosts twice)")
-        first = {n: re.search(r"step +1/\S+ .*?newton +(\d+) +\|R\| (\S+)", res[n]) for n in (1, 2, 3)}
-        d = {n: first[n].groups() if first[n] else None for n in first}
+        first = {n: T.increments(res[n])[:1] for n in (1, 2, 3)}
+        d = {n: (first[n][0]["newton"], first[n][0]["residual"]) if first[n] else None for n in first}
         print("increment 1 (Newton, |R|):", d)
         chk.check(d[1] and d[1][0] == d[2][0] == d[3][0], "increment 1 takes the same Newton iterations on 1, 2, 3 ranks")
         cd = {n: T.scene_values(res[n], "hencky", printed=True).get("centre_deflection", {}).get("centre_deflection")

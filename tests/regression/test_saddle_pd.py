@@ -4,9 +4,8 @@ PD10a, PD15a and PD15b complete; the middle part stays free of wrinkles at eleme
 10 % rise and wrinkles (minimum principal strain < 0) for 15 % at both final d/c = 2.0 (PD15a) and
 1.5 (PD15b), as the thesis's experiments and its own prediction found (L1753, L888)."""
 import os
-import re
 
-from etfe_testlib import Checker, etfe_path, run, summary, REPO
+from etfe_testlib import Checker, etfe_path, run, saddle_report, summary, REPO
 
 etfe = etfe_path()
 chk = Checker("saddle_pd")
@@ -17,8 +16,8 @@ for case in ("pd10a", "pd15a", "pd15b"):
     chk.check(rc == 0, "%s completes (60 increments)" % case)
     if rc != 0:
         continue
-    m = re.search(r"element_I emin = (\S+) smin = (\S+) MPa; element_II emin = (\S+) smin", out)
-    emin[case] = (float(m.group(1)), float(m.group(3)))
+    rep = saddle_report(out)
+    emin[case] = (rep["I_emin"], rep["II_emin"])
     s = summary(out)
     print("%s: emin I %.3e, II %.3e; %d Newton iterations, %.2f s" % (case, emin[case][0], emin[case][1], s["newton"],
                                                                        s["wall"]))

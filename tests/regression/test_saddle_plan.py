@@ -12,7 +12,7 @@ history (40 increments) and a small budget of stretch runs:
 import os
 import re
 
-from etfe_testlib import REPO, error_message, form_found_saddle, main, run, scene_values, scratch_dir
+from etfe_testlib import REPO, error_message, form_found_saddle, main, run, saddle_report, scene_values, scratch_dir
 
 TARGET, BAND = 13.28, 0.10
 TABLE_5_5 = {"saddle_draw_a": [10, 20, 30, 40], "saddle_draw_b": [10, 15, 20, 30],
@@ -74,8 +74,8 @@ def test(etfe, chk):
         rc, out2 = run(etfe, case + ["-options_file", plan_file, "-output", 0])
         v = scene_values(out2, "saddle")
         mmin, mmax = v["mises_min"]["mises_min"], v["mises_min"]["mises_max"]
-        m = re.search(r"strain-based = (\d+), stress-based = \d+; max plastic_strain_eq = (\S+);", out2)
-        wr, eq = int(m.group(1)), float(m.group(2))
+        rep = saddle_report(out2)
+        wr, eq = int(rep["wrinkled_strain"]), rep["max_plastic_strain_eq"]
         chk.check(abs(mmin - plan["mises_min"]) <= 1e-4 and abs(mmax - plan["mises_max"]) <= 1e-4,
                   "the run of the file gives the Mises range the planner reported (%.4f..%.4f vs %.4f..%.4f)"
                   % (mmin, mmax, plan["mises_min"], plan["mises_max"]))
@@ -97,10 +97,10 @@ def test(etfe, chk):
                                      "-plan_output", os.path.join(tmp, "plan_s.opts"), "-output", 0])
         p4 = parse(out4).get("case's own")
         rc, out5 = run(etfe, case + ["-output", 0])
-        m = re.search(r"strain-based = (\d+), stress-based = (\d+);", out5)
-        chk.check(p4 is not None and "smin" in out4 and m and p4["wrinkled"] == int(m.group(2)),
+        rep = saddle_report(out5, printed=True)
+        chk.check(p4 is not None and "smin" in out4 and rep and p4["wrinkled"] == int(rep["wrinkled_stress"]),
                   "-plan_wrinkle_test stress counts the report's stress-based wrinkles (%s vs %s; strain-based %s)"
-                  % (p4 and p4["wrinkled"], m and m.group(2), m and m.group(1)))
+                  % (p4 and p4["wrinkled"], rep.get("wrinkled_stress"), rep.get("wrinkled_strain")))
 
         # Bad input.
         for extra, words in ((["-plan_bounds", "5"], "-plan_bounds"),
