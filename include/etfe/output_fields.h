@@ -59,7 +59,7 @@ inline constexpr OutputField kOutputFields[] = {
     {"displacement", Layout::Nodes, 3, FieldKind::Vector, false, "mm", "displacement", FieldWhen::Step,
      "displacement", "displacement u x y z from the scene's mesh", [](const OutputValues &v) { return v.displacement; }},
     {"reaction", Layout::Nodes, 3, FieldKind::Vector, false, "N", "reaction", FieldWhen::Step, "reaction",
-     "reaction force x y z at the fixed degrees of freedom", [](const OutputValues &v) { return v.reaction; }},
+     "reaction x y z: the internal force at the constrained degrees of freedom", [](const OutputValues &v) { return v.reaction; }},
     {"nodal_mises", Layout::Nodes, 1, FieldKind::Scalar, false, "MPa", "stress", FieldWhen::Step, "nodal_mises_PK2",
      "von Mises of the PK2 stress, average of the elements around the node",
      [](const OutputValues &v) { return v.cells.nodal_mises.data(); }},
