@@ -1,19 +1,6 @@
-// Results file: HDF5 (written in parallel with MPI-IO) plus an XDMF index that ParaView opens
-// as a time series. Layout (stable, documented in the README):
-//   /                      attributes: format "etfe-results-1", scene, run_id, options (the option
-//                          table of the run that created the file), version, status
-//                          ("running" | "complete" | "failed: <why>"), steps_written
-//   /mesh/coordinates      (N, 3) float64  reference coordinates, scene node order
-//   /mesh/triangles        (E, 3) int32    0-based node ids, scene element order
-//   /steps/<k:06d>/        attributes: step, time (load time), stage, load_factor (time - stage)
-//     displacement (N,3); reaction (N,3); nodal_mises (N)
-//     stress (E,3) Sxx Syy Sxy [MPa, element MD/TD frame, PK2]; strain (E,3) Exx Eyy Exy (GL,
-//     tensor shear); mises (E); min_principal_stress (E); min_principal_strain (E);
-//     area_ratio (E); plastic_strain (E,3) and plastic_strain_eq (E) with a plastic material.
-//   /steps/<k>/contact/    (only with contact; C pairs in scene node order)
-//     force (C,3) local (x0 tangent, y0, z0 normal; f_z < 0 in compression) [N];
-//     slide_local (C,2) and slide_global (C,2: X, Y) since t0 [mm]; status (C) int
-//     0 open, 1 stick, 2 slip; node (C) int film node id.
+// Results file: HDF5 (written in parallel with MPI-IO) plus an XDMF index beside it that ParaView
+// opens as a time series. Its datasets are the rows of the field table (etfe/output_fields.h),
+// each described by attributes; groups, root attributes and how to open it: docs/results.md.
 // A step's group is complete once it is listed in the XDMF file (rewritten atomically after the
 // step is flushed) and counted in steps_written.
 #pragma once

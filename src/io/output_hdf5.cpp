@@ -1,5 +1,6 @@
-// HDF5 + XDMF results (layout in output.h). Fields live in PETSc order on their owning ranks; a
-// VecScatter per (nodes|cells, components) brings them to the scene's ("natural") order in
+// The HDF5 results file (its fields: include/etfe/output_fields.h; layout: docs/results.md) and
+// its life: creation, steps, status, continuation after a restart. Fields live in PETSc order on
+// their owning ranks; a VecScatter per layout brings them to the scene's ("natural") order in
 // contiguous row blocks, which every rank writes as a hyperslab of one collective dataset.
 #include <hdf5.h>
 #include <petscvec.h>
@@ -18,12 +19,16 @@
 #include "etfe/contact.h"
 #include "etfe/h5io.h"
 #include "etfe/output.h"
+#include "etfe/output_fields.h"
+#include "xdmf.h"
 
 namespace etfe {
 
 struct OutputFile {
   Problem *problem = nullptr;
-  std::string path, xdmf_path;
+  std::string path;
+  XdmfIndex xdmf;
+  std::vector<const OutputField *> step_fields;  // the rows of every step of this run
   hid_t file = -1;
   std::vector<std::pair<PetscInt, double>> steps;  // written steps (step, time)
   std::unique_ptr<NaturalOrder> order;
@@ -36,149 +41,84 @@ static OutputFile *g_open_output = nullptr;
 
 namespace {
 
-PetscErrorCode WriteField(OutputFile *out, hid_t group, const char *name, Layout layout, int ncomp,
-                          const double *owned, bool as_int = false) {
-  return H5WriteNatural(out->path, *out->order, group, name, layout, ncomp, owned, as_int);
+// The rows of the field table this run writes: those of the file's creation (open) or those of
+// every step (with a plastic material, wrinkling or contact also theirs).
+std::vector<const OutputField *> FieldsWritten(const Problem *P, bool open) {
+  std::vector<const OutputField *> rows;
+  for (const OutputField &f : kOutputFields) {
+    bool on = false;
+    switch (f.when) {
+    case FieldWhen::Open: on = open; break;
+    case FieldWhen::Step: on = !open; break;
+    case FieldWhen::Plastic: on = !open && P->material->HasPlasticStrain(); break;
+    case FieldWhen::Wrinkling: on = !open && P->wrinkling; break;
+    case FieldWhen::Contact: on = !open && P->contact; break;
+    }
+    if (on) rows.push_back(&f);
+  }
+  return rows;
 }
 
-// Contact pairs of a step: local force, slide (local and global X/Y), status, film node.
-PetscErrorCode WriteContact(OutputFile *out, hid_t step_group) {
-  const ContactSet &c = *out->problem->contact;
-  const size_t n = c.pairs.size();
-  std::vector<double> force(3 * n), slide_local(2 * n), slide_global(2 * n), status(n), node(n);
+// The dataset's self-description, so that a reader needs no copy of the table.
+PetscErrorCode DescribeField(const std::string &path, hid_t loc, const OutputField &f) {
   PetscFunctionBeginUser;
-  for (size_t k = 0; k < n; ++k) {
-    const ContactPair &pr = c.pairs[k];
-    const ContactPairReport r = ContactReport(c, pr);
-    for (int i = 0; i < 3; ++i) force[3 * k + i] = r.force[i];
-    for (int i = 0; i < 2; ++i) slide_local[2 * k + i] = r.slide_local[i], slide_global[2 * k + i] = r.slide_global[i];
-    status[k] = r.status;
-    node[k] = (double)pr.natural_node;
+  hid_t d = H5Dopen2(loc, f.name, H5P_DEFAULT);
+  PetscCheck(d >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_UNEXPECTED, "HDF5: cannot reopen %s in %s to describe it",
+             f.name, path.c_str());
+  PetscCall(H5WriteString(path, d, "vector_field_type", kFieldKindName[(int)f.kind]));
+  PetscCall(H5WriteString(path, d, "units", f.units));
+  PetscCall(H5WriteString(path, d, "family", f.family));
+  PetscCall(H5WriteString(path, d, "description", f.description));
+  H5Dclose(d);
+  PetscFunctionReturn(0);
+}
+
+// Collective: the rows' values (owned rows, PETSc order) as datasets below loc, in the scene's order.
+PetscErrorCode WriteFields(OutputFile *out, hid_t loc, const std::vector<const OutputField *> &rows,
+                           const OutputValues &v) {
+  PetscFunctionBeginUser;
+  for (const OutputField *f : rows) {
+    PetscCall(H5WriteNatural(out->path, *out->order, loc, f->name, f->location, f->components, f->values(v),
+                             f->integer));
+    PetscCall(DescribeField(out->path, loc, *f));
   }
-  hid_t g = H5Gcreate2(step_group, "contact", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: cannot create a contact group in %s",
-             out->path.c_str());
-  PetscCall(WriteField(out, g, "force", Layout::Pairs, 3, force.data()));
-  PetscCall(WriteField(out, g, "slide_local", Layout::Pairs, 2, slide_local.data()));
-  PetscCall(WriteField(out, g, "slide_global", Layout::Pairs, 2, slide_global.data()));
-  PetscCall(WriteField(out, g, "status", Layout::Pairs, 1, status.data(), true));
-  PetscCall(WriteField(out, g, "node", Layout::Pairs, 1, node.data(), true));
+  PetscFunctionReturn(0);
+}
+
+// The table itself as the root attribute field_table: a header line, then one tab-separated line
+// per row (also the rows this run does not write).
+std::string FieldTableText() {
+  std::string t = "name\tlocation\tcomponents\tvector_field_type\tnumber_type\tunits\tfamily\twritten\txdmf\t"
+                  "description\n";
+  for (const OutputField &f : kOutputFields)
+    t += std::string(f.name) + "\t" + kFieldLocationName[(int)f.location] + "\t" + std::to_string(f.components) + "\t" +
+         kFieldKindName[(int)f.kind] + "\t" + (f.integer ? "int32" : "float64") + "\t" + f.units + "\t" + f.family +
+         "\t" + kFieldWhenName[(int)f.when] + "\t" + (f.viewer ? f.viewer : "") + "\t" + f.description + "\n";
+  return t;
+}
+
+PetscErrorCode CreateGroup(const std::string &path, hid_t loc, const char *name) {
+  PetscFunctionBeginUser;
+  hid_t g = H5Gcreate2(loc, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: cannot create the group %s in %s (disk full?)",
+             name, path.c_str());
   H5Gclose(g);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode WriteXdmf(OutputFile *out) {
-  PetscFunctionBeginUser;
-  if (out->problem->rank != 0) PetscFunctionReturn(0);
-  const LocalMesh &m = out->problem->mesh;
-  const std::string h5 = std::filesystem::path(out->path).filename().string();
-  const long long N = m.num_nodes_global, E = m.num_elements_global;
-  const bool plastic = out->problem->material->HasPlasticStrain();
-  const std::string tmp = out->xdmf_path + ".tmp";
-  FILE *f = std::fopen(tmp.c_str(), "w");
-  PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", tmp.c_str());
-  std::fprintf(f, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n<Domain>\n"
-                  "<Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
-               out->problem->scene.name.c_str());
-  auto item = [&](const char *path, long long rows, int cols, const char *type, int prec,
-                  const std::string &group) {
-    if (cols > 1)
-      std::fprintf(f, "  <DataItem Dimensions=\"%lld %d\" NumberType=\"%s\" Precision=\"%d\" "
-                      "Format=\"HDF\">%s:%s%s</DataItem>\n",
-                   rows, cols, type, prec, h5.c_str(), group.c_str(), path);
-    else
-      std::fprintf(f, "  <DataItem Dimensions=\"%lld\" NumberType=\"%s\" Precision=\"%d\" "
-                      "Format=\"HDF\">%s:%s%s</DataItem>\n",
-                   rows, type, prec, h5.c_str(), group.c_str(), path);
-  };
-  const bool contact = out->problem->contact != nullptr;
-  const long long C = contact ? (long long)out->problem->contact->num_global : 0;
-  // One column of an (rows x cols) dataset, as a scalar attribute ParaView names.
-  auto column = [&](const char *name, const char *path, long long rows, int cols, int c, const char *center,
-                    const std::string &group) {
-    std::fprintf(f, " <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"%s\">\n", name, center);
-    std::fprintf(f, "  <DataItem ItemType=\"HyperSlab\" Dimensions=\"%lld 1\" Type=\"HyperSlab\">\n", rows);
-    std::fprintf(f, "   <DataItem Dimensions=\"3 2\" Format=\"XML\">0 %d 1 1 %lld 1</DataItem>\n", c, rows);
-    std::fprintf(f, "   <DataItem Dimensions=\"%lld %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">%s:%s%s"
-                    "</DataItem>\n  </DataItem>\n </Attribute>\n",
-                 rows, cols, h5.c_str(), group.c_str(), path);
-  };
-  for (auto &s : out->steps) {
-    char group[64];
-    std::snprintf(group, sizeof group, "/steps/%06lld/", (long long)s.first);
-    if (contact)
-      std::fprintf(f, " <Grid Name=\"step_%06lld\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
-                      "  <Time Value=\"%.12g\"/>\n", (long long)s.first, s.second);
-    std::fprintf(f, " <Grid Name=\"%s\" GridType=\"Uniform\">\n", contact ? "film" : ("step_" + std::string(group + 7, 6)).c_str());
-    if (!contact) std::fprintf(f, "  <Time Value=\"%.12g\"/>\n", s.second);
-    std::fprintf(f, " <Topology TopologyType=\"Triangle\" NumberOfElements=\"%lld\">\n", E);
-    item("/mesh/triangles", E, 3, "Int", 4, "");
-    std::fprintf(f, " </Topology>\n <Geometry GeometryType=\"XYZ\">\n");
-    item("/mesh/coordinates", N, 3, "Float", 8, "");
-    std::fprintf(f, " </Geometry>\n");
-    // The measure is in the name: PK2 stress and Green-Lagrange strain of the reference
-    // configuration, components in the element's MD/TD frame (x = MD).
-    struct Field { const char *name, *path; bool cell; int ncomp; };
-    std::vector<Field> fields = {{"displacement", "displacement", false, 3}, {"reaction", "reaction", false, 3},
-                                 {"nodal_mises_PK2", "nodal_mises", false, 1}, {"mises_PK2", "mises", true, 1},
-                                 {"min_principal_stress_PK2", "min_principal_stress", true, 1},
-                                 {"min_principal_strain_GL", "min_principal_strain", true, 1},
-                                 {"area_ratio", "area_ratio", true, 1}, {"cauchy_mises", "cauchy_mises", true, 1},
-                                 {"principal_dir1", "principal_dir1", true, 3},
-                                 {"principal_dir2", "principal_dir2", true, 3}};
-    if (plastic) fields.push_back({"plastic_strain_eq", "plastic_strain_eq", true, 1});
-    if (out->problem->wrinkling)
-      for (const char *w : {"wrinkle_state", "wrinkle_dir", "wrinkle_strain"})
-        fields.push_back({w, w, true, std::string(w) == "wrinkle_dir" ? 3 : 1});
-    for (const Field &fl : fields) {
-      std::fprintf(f, " <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", fl.name,
-                   fl.ncomp == 3 ? "Vector" : "Scalar", fl.cell ? "Cell" : "Node");
-      item(fl.path, fl.cell ? E : N, fl.ncomp, "Float", 8, group);
-      std::fprintf(f, " </Attribute>\n");
-    }
-    std::fprintf(f, " <Attribute Name=\"cauchy_stress\" AttributeType=\"Tensor6\" Center=\"Cell\">\n");
-    item("cauchy_stress", E, 6, "Float", 8, group);
-    std::fprintf(f, " </Attribute>\n");
-    column("principal_stress_1", "principal_stress", E, 2, 0, "Cell", group);
-    column("principal_stress_2", "principal_stress", E, 2, 1, "Cell", group);
-    const char *stress[3] = {"PK2_Sxx", "PK2_Syy", "PK2_Sxy"}, *strain[3] = {"GL_Exx", "GL_Eyy", "GL_Exy"},
-               *plast[3] = {"plastic_Exx", "plastic_Eyy", "plastic_Exy"};
-    for (int c = 0; c < 3; ++c) {
-      column(stress[c], "stress", E, 3, c, "Cell", group);
-      column(strain[c], "strain", E, 3, c, "Cell", group);
-      if (plastic) column(plast[c], "plastic_strain", E, 3, c, "Cell", group);
-    }
-    std::fprintf(f, " </Grid>\n");
-    if (contact && C > 0) {
-      // The contact pairs as their own point set: one vertex per pair at its film node.
-      std::fprintf(f, " <Grid Name=\"contact\" GridType=\"Uniform\">\n");
-      std::fprintf(f, " <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%lld\" NodesPerElement=\"1\">\n", C);
-      item("contact/node", C, 1, "Int", 4, group);
-      std::fprintf(f, " </Topology>\n <Geometry GeometryType=\"XYZ\">\n");
-      item("/mesh/coordinates", N, 3, "Float", 8, "");
-      std::fprintf(f, " </Geometry>\n <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n");
-      item("displacement", N, 3, "Float", 8, group);
-      std::fprintf(f, " </Attribute>\n <Attribute Name=\"contact_force\" AttributeType=\"Vector\" Center=\"Cell\">\n");
-      item("contact/force", C, 3, "Float", 8, group);
-      std::fprintf(f, " </Attribute>\n <Attribute Name=\"contact_status\" AttributeType=\"Scalar\" Center=\"Cell\">\n");
-      item("contact/status", C, 1, "Int", 4, group);
-      std::fprintf(f, " </Attribute>\n");
-      column("slide_X", "contact/slide_global", C, 2, 0, "Cell", group);
-      column("slide_Y", "contact/slide_global", C, 2, 1, "Cell", group);
-      column("slide_x0", "contact/slide_local", C, 2, 0, "Cell", group);
-      column("slide_y0", "contact/slide_local", C, 2, 1, "Cell", group);
-      std::fprintf(f, " </Grid>\n");
-    }
-    if (contact) std::fprintf(f, " </Grid>\n");
+// Contact pairs of a step: local force, slide (local and global X/Y), status, film node.
+void ContactValues(const ContactSet &c, OutputValues *v) {
+  const size_t n = c.pairs.size();
+  v->force.resize(3 * n), v->slide_local.resize(2 * n), v->slide_global.resize(2 * n);
+  v->status.resize(n), v->node.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const ContactPair &pr = c.pairs[k];
+    const ContactPairReport r = ContactReport(c, pr);
+    for (int i = 0; i < 3; ++i) v->force[3 * k + i] = r.force[i];
+    for (int i = 0; i < 2; ++i) v->slide_local[2 * k + i] = r.slide_local[i], v->slide_global[2 * k + i] = r.slide_global[i];
+    v->status[k] = r.status;
+    v->node[k] = (double)pr.natural_node;
   }
-  std::fprintf(f, "</Grid>\n</Domain>\n</Xdmf>\n");
-  PetscCheck(std::fclose(f) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot write %s",
-             tmp.c_str());
-  std::error_code ec;
-  std::filesystem::rename(tmp, out->xdmf_path, ec);
-  PetscCheck(!ec, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "cannot rename %s to %s: %s",
-             tmp.c_str(), out->xdmf_path.c_str(), ec.message().c_str());
-  PetscFunctionReturn(0);
 }
 
 } // namespace
@@ -269,17 +209,32 @@ hid_t ResultsAccess(MPI_Comm comm) {
   return fapl;
 }
 
+// What the XDMF index shows of this run's file.
+XdmfIndex XdmfIndexOf(const OutputFile *out) {
+  const Problem *P = out->problem;
+  XdmfIndex ix;
+  ix.path = std::filesystem::path(out->path).replace_extension(".xmf").string();
+  ix.results = std::filesystem::path(out->path).filename().string();
+  ix.name = P->scene.name;
+  ix.rows[(int)Layout::Nodes] = P->mesh.num_nodes_global;
+  ix.rows[(int)Layout::Cells] = P->mesh.num_elements_global;
+  ix.rows[(int)Layout::Pairs] = P->contact ? (long long)P->contact->num_global : 0;
+  ix.contact = P->contact != nullptr;
+  ix.fields = out->step_fields;
+  return ix;
+}
+
 // Rank 0 writes the index; a failure there (disk full) must stop every rank together, not leave
 // the others waiting in the next collective call.
 PetscErrorCode WriteXdmfEverywhere(OutputFile *out) {
   int ok;
   PetscFunctionBeginUser;
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-  ok = WriteXdmf(out) == 0;
+  ok = out->problem->rank != 0 || WriteXdmf(out->xdmf, out->steps) == 0;
   PetscCall(PetscPopErrorHandler());
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, out->problem->comm));
   PetscCheck(ok, out->problem->comm, PETSC_ERR_FILE_WRITE, "cannot write the XDMF index %s (disk full or not writable?)",
-             out->xdmf_path.c_str());
+             out->xdmf.path.c_str());
   PetscFunctionReturn(0);
 }
 
@@ -437,6 +392,7 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   for (const StepInfo &s : steps)
     if (s.step >= 0 && s.step <= restart_step) out->steps.push_back({(PetscInt)s.step, s.time});
   PetscCall(WriteStatus(out->path, out->file, "running"));
+  PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
   *ok = true;
@@ -454,9 +410,9 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   if (out->run_id.empty()) PetscCall(NewRunId(P->comm, &out->run_id));
   out->path = o.path;
   out->every = o.every;
-  std::filesystem::path xp(out->path);
-  out->xdmf_path = xp.replace_extension(".xmf").string();
   out->order = std::make_unique<NaturalOrder>(P);
+  out->step_fields = FieldsWritten(P, false);
+  out->xdmf = XdmfIndexOf(out);
   if (restart_step >= 0) {
     bool ok = false;
     PetscCall(ReopenForRestart(out, restart_step, &ok));
@@ -473,7 +429,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
     auto dir = std::filesystem::path(out->path).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir, ec);
     // A stale index must not describe the new file while it is being written.
-    std::filesystem::remove(out->xdmf_path, ec);
+    std::filesystem::remove(out->xdmf.path, ec);
   }
   PetscCallMPI(MPI_Barrier(P->comm));
   hid_t fapl = ResultsAccess(P->comm);
@@ -496,19 +452,19 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
     PetscCall(H5WriteString(out->path, out->file, "version", ETFE_VERSION));
   }
   PetscCall(WriteStatus(out->path, out->file, "running"));
+  PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
   long long zero = 0;
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
-  hid_t mesh = H5Gcreate2(out->file, "mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-  hid_t steps = H5Gcreate2(out->file, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  PetscCall(CreateGroup(out->path, out->file, "mesh"));
+  PetscCall(CreateGroup(out->path, out->file, "steps"));
   // From each rank's part, in the scene's order (only rank 0 built the global mesh, and a load
   // history has dropped it).
   const LocalMesh &m = P->mesh;
-  PetscCall(WriteField(out, mesh, "coordinates", Layout::Nodes, 3, m.X.data()));
-  std::vector<double> tri(3 * (size_t)m.num_elements);  // scene node ids, exact as doubles
-  for (size_t k = 0; k < tri.size(); ++k) tri[k] = (double)m.natural_id[m.tri[k]];
-  PetscCall(WriteField(out, mesh, "triangles", Layout::Cells, 3, tri.data(), true));
-  H5Gclose(mesh);
-  H5Gclose(steps);
+  OutputValues v;
+  v.coordinates = m.X.data();
+  v.triangles.resize(3 * (size_t)m.num_elements);
+  for (size_t k = 0; k < v.triangles.size(); ++k) v.triangles[k] = (double)m.natural_id[m.tri[k]];
+  PetscCall(WriteFields(out, out->file, FieldsWritten(P, true), v));
   H5Fflush(out->file, H5F_SCOPE_GLOBAL);
   *result = g_open_output = out;
   PetscFunctionReturn(0);
@@ -516,12 +472,12 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
 
 PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step, double time,
                                Vec U_fields) {
-  CellFields c;
-  const PetscScalar *u, *r;
+  OutputValues v;
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
   if (!out->steps.empty() && out->steps.back().first == step) PetscFunctionReturn(0);
-  PetscCall(ComputeCellFields(P, U_fields ? U_fields : U, &c));
+  PetscCall(ComputeCellFields(P, U_fields ? U_fields : U, &v.cells));
+  if (P->contact) ContactValues(*P->contact, &v);
   char name[64];
   std::snprintf(name, sizeof name, "steps/%06lld", (long long)step);
   hid_t g = H5Gcreate2(out->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -533,34 +489,12 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(H5WriteAttribute(out->path, g, "time", H5T_NATIVE_DOUBLE, &time));
   PetscCall(H5WriteAttribute(out->path, g, "stage", H5T_NATIVE_INT, &stage));
   PetscCall(H5WriteAttribute(out->path, g, "load_factor", H5T_NATIVE_DOUBLE, &factor));
-  PetscCall(VecGetArrayRead(U, &u));
-  PetscCall(WriteField(out, g, "displacement", Layout::Nodes, 3, u));
-  PetscCall(VecRestoreArrayRead(U, &u));
-  PetscCall(VecGetArrayRead(P->reaction, &r));
-  PetscCall(WriteField(out, g, "reaction", Layout::Nodes, 3, r));
-  PetscCall(VecRestoreArrayRead(P->reaction, &r));
-  PetscCall(WriteField(out, g, "nodal_mises", Layout::Nodes, 1, c.nodal_mises.data()));
-  PetscCall(WriteField(out, g, "stress", Layout::Cells, 3, c.stress.data()));
-  PetscCall(WriteField(out, g, "strain", Layout::Cells, 3, c.strain.data()));
-  PetscCall(WriteField(out, g, "mises", Layout::Cells, 1, c.mises.data()));
-  PetscCall(WriteField(out, g, "min_principal_stress", Layout::Cells, 1, c.smin.data()));
-  PetscCall(WriteField(out, g, "min_principal_strain", Layout::Cells, 1, c.emin.data()));
-  PetscCall(WriteField(out, g, "area_ratio", Layout::Cells, 1, c.area_ratio.data()));
-  PetscCall(WriteField(out, g, "cauchy_stress", Layout::Cells, 6, c.cauchy.data()));
-  PetscCall(WriteField(out, g, "cauchy_mises", Layout::Cells, 1, c.cauchy_mises.data()));
-  PetscCall(WriteField(out, g, "principal_stress", Layout::Cells, 2, c.principal.data()));
-  PetscCall(WriteField(out, g, "principal_dir1", Layout::Cells, 3, c.dir1.data()));
-  PetscCall(WriteField(out, g, "principal_dir2", Layout::Cells, 3, c.dir2.data()));
-  if (P->material->HasPlasticStrain()) {
-    PetscCall(WriteField(out, g, "plastic_strain", Layout::Cells, 3, c.ep.data()));
-    PetscCall(WriteField(out, g, "plastic_strain_eq", Layout::Cells, 1, c.ep_bar.data()));
-  }
-  if (P->wrinkling) {
-    PetscCall(WriteField(out, g, "wrinkle_state", Layout::Cells, 1, c.wrinkle_state.data()));
-    PetscCall(WriteField(out, g, "wrinkle_dir", Layout::Cells, 3, c.wrinkle_dir.data()));
-    PetscCall(WriteField(out, g, "wrinkle_strain", Layout::Cells, 1, c.wrinkle_strain.data()));
-  }
-  if (P->contact) PetscCall(WriteContact(out, g));
+  if (P->contact) PetscCall(CreateGroup(out->path, g, "contact"));
+  PetscCall(VecGetArrayRead(U, &v.displacement));
+  PetscCall(VecGetArrayRead(P->reaction, &v.reaction));
+  PetscCall(WriteFields(out, g, out->step_fields, v));
+  PetscCall(VecRestoreArrayRead(P->reaction, &v.reaction));
+  PetscCall(VecRestoreArrayRead(U, &v.displacement));
   H5Gclose(g);
   out->steps.push_back({step, time});
   long long count = (long long)out->steps.size();
