@@ -1,5 +1,5 @@
-"""What -help shows is what a run uses: for every option of the saddle's stretch and mesh sections
-and of the patch scene and its mesh, the default -help prints, given explicitly, must leave the run
+"""What -help shows is what a run uses: for every option of the saddle's stretch and mesh sections,
+of the patch scene and its mesh and of the hencky and annulus meshes, the default -help prints, given explicitly, must leave the run
 exactly as it is without the option (the same progress lines, probe history and report). An array
 default cut to its first value (-saddle_part_A <0.> for 0,0,400,400) fails here: given back, it
 is a different box or an error. The saddle report compares its Mises values with the material's
@@ -72,6 +72,11 @@ with scratch_dir() as tmp:
                    {"mesh_n", "saddle_history", "mesh_file"}, tmp)
     patch = ["-scene", "patch", "-output", 0, "-load_monitor", 1]
     check_defaults("patch", patch, ["Patch scene", "Mesh of the patch scene"], {"mesh_file"}, tmp)
+    # The mesh keys of the disc and the annulus (the shared -mesh_* reader), one increment each.
+    for scene in ("hencky", "annulus"):
+        short = ["-scene", scene, "-output", 0, "-load_monitor", 1, "-load_stop_after", 1,
+                 "-checkpoint_file", os.path.join(tmp, scene + ".checkpoint.h5")]
+        check_defaults(scene, short, ["Mesh of the %s scene" % scene], set(), tmp)
 
     # The report's "within 10 % of S_y1" uses the material's first yield.
     short = ["-options_file", os.path.join("options", "saddle", "stretch_base.opts"), "-mesh_n", 4, "-output", 0,
