@@ -2,6 +2,7 @@
 #include "real_array_option.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 namespace etfe {
@@ -30,6 +31,12 @@ PetscErrorCode OptionsRealArray(PetscOptionItems *PetscOptionsObject, const char
     PetscReal x;
     PetscCall(PetscTokenFind(token, &item));
     if (!item) break;
+    // PETSc's own message ("Input string abc has no numeric value") names neither option nor place.
+    char *end = nullptr;
+    std::strtod(item, &end);
+    PetscCheck(end != item && *end == '\0', PetscOptionsObject->comm, PETSC_ERR_ARG_WRONG,
+               "%s: value %zu (\"%s\") is not a number; give comma-separated numbers (default %s)", name,
+               v->size() + 1, item, shown.empty() ? "none" : shown.c_str());
     PetscCall(PetscOptionsStringToReal(item, &x));
     v->push_back(x);
   }
