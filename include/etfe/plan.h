@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "etfe/kernels/plan_criteria.h"
+#include "etfe/scene.h"
 
 namespace etfe {
 
@@ -36,8 +37,9 @@ struct PlanOptions {
   PetscInt max_runs = 40;     // stretch runs the search may spend
   double round = 0.1;         // resolution of the written values (a frame's screw) [mm]
   std::string output;         // the options file written
-  // The case's per-stage arrays where the options database has none (SceneSpec::stage_options).
-  std::map<std::string, std::vector<double>> case_arrays;
+  // The case's per-stage arrays as its scene resolved them (SceneSpec::stage_options): the start
+  // and the staging of the search.
+  StageValues case_arrays;
 };
 
 // What one stretch run leaves for the planner: per element (gathered over the ranks, same order
@@ -57,8 +59,10 @@ struct Problem;
 // The fields of the problem's current state, gathered (collective).
 PetscErrorCode PlanGatherFields(Problem *problem, PlanRunFields *fields);
 
-// Runs the case under the current options database (collective) and fills the fields.
-typedef PetscErrorCode (*PlanStretchRun)(MPI_Comm comm, void *ctx, PlanRunFields *fields);
+// Runs the case (collective) with the per-stage options in stages replacing the case's own
+// (SceneSpec::stage_overrides: the options database is left as the user gave it) and fills the
+// fields.
+typedef PetscErrorCode (*PlanStretchRun)(MPI_Comm comm, void *ctx, const StageValues &stages, PlanRunFields *fields);
 
 // results_stem: the case's results file without extension (the plan goes beside it).
 PetscErrorCode PlanOptionsFromCommandLine(MPI_Comm comm, const std::string &results_stem, PlanOptions *o);

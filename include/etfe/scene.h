@@ -11,6 +11,9 @@
 
 namespace etfe {
 
+// Per-stage option values by option name without '-' ("saddle_draw_a" -> one value per stage).
+typedef std::map<std::string, std::vector<double>> StageValues;
+
 // Prescribed displacement of one DOF of one node (node id in the scene's mesh numbering).
 struct DofConstraint {
   int node;
@@ -60,6 +63,9 @@ struct SceneSpec {
   // Set by the app before the builder runs (-analysis formfind): a scene that offers both
   // analyses builds the form-finding problem instead of the load history.
   bool form_finding = false;
+  // Set by the caller before the builder runs: per-stage values that replace what the options
+  // give (the drawing planner's trial schedules; a scene applies those it offers in stage_options).
+  StageValues stage_overrides;
   MeshData mesh;
   double md_axis[3] = {1.0, 0.0, 0.0};   // MD direction for the element frames
   double thickness = 0.25;               // film thickness [mm] (-membrane_thickness overrides)
@@ -80,7 +86,7 @@ struct SceneSpec {
   std::string initial_guess_note;        // printed in the header when a guess is used
   // Per-stage option arrays as the builder resolved them, defaults included (name without '-'):
   // the drawing planner's start and staging (-analysis plan).
-  std::map<std::string, std::vector<double>> stage_options;
+  StageValues stage_options;
 
   int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }
   int AddSchedule(const Schedule &s) {

@@ -17,6 +17,7 @@
 
 #include "etfe/cutpattern.h"
 #include "etfe/mesh/gmsh_reader.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/output.h"
 #include "etfe/rank0.h"
 
@@ -168,14 +169,12 @@ bool CutPatternPrepareSurface(MeshData *m, const std::vector<std::string> &only,
 }
 
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o) {
-  char mesh_file[PETSC_MAX_PATH_LEN] = "";
-  PetscBool file_set = PETSC_FALSE, width_set = PETSC_FALSE, direction_set = PETSC_FALSE, snap_set = PETSC_FALSE;
+  MeshOptions mesh;
+  PetscBool width_set = PETSC_FALSE, direction_set = PETSC_FALSE, snap_set = PETSC_FALSE;
   PetscFunctionBeginUser;
+  mesh.keys = kMeshFile;
+  PetscCall(MeshOptionsFromCommandLine(comm, "surface (-analysis cutpattern)", &mesh));
   PetscOptionsBegin(comm, nullptr, "Cutting patterns of a surface mesh (-analysis cutpattern)", "CutPattern");
-  PetscCall(PetscOptionsString("-mesh_file",
-                               "Gmsh surface mesh whose physical surfaces are the strips (OBJ groups / STL solids: "
-                               "convert with scripts/surface2msh)",
-                               "", mesh_file, mesh_file, sizeof mesh_file, &file_set));
   PetscCall(PetscOptionsReal("-cutpattern_strip_width",
                              "Cut the surface (its one physical surface, or all of it) into strips this wide (mm) "
                              "by geodesic cutting lines, the first through its middle (default: the physical "
@@ -205,8 +204,8 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
              "-cutpattern_strip_width %g: a strip width must be a positive length in mm (leave the option out to "
              "flatten the physical surfaces as the strips)", (double)o->geodesic.width);
   PetscCall(CutPatternOptionsFromCommandLine(comm, &o->cutpattern));
-  o->mesh_file = file_set ? mesh_file : "";
-  const std::string stem = file_set ? std::filesystem::path(mesh_file).stem().string() : std::string("surface");
+  o->mesh_file = mesh.file;
+  const std::string stem = mesh.file.empty() ? std::string("surface") : std::filesystem::path(mesh.file).stem().string();
   OutputOptions oo;
   PetscCall(OutputOptionsFromCommandLine(comm, stem.c_str(), &oo));
   o->results_path = oo.path;

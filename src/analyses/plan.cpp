@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -47,11 +48,26 @@ struct Planner {
   double wall = 0.0;
 };
 
-std::string Stages(const std::vector<double> &shape, double final_value) {
+// One stage value as the written plan gives it (10 significant digits), so a stretch run of the
+// search uses exactly the numbers a user re-running the written plan gets.
+std::string StageText(double value) {
   std::ostringstream s;
   s.precision(10);
-  for (size_t k = 0; k < shape.size(); ++k) s << (k ? "," : "") << shape[k] * final_value;
+  s << value;
   return s.str();
+}
+
+// The variable's stages at final value x: the case's proportions, rounded as written.
+std::vector<double> StageValuesAt(const std::vector<double> &shape, double final_value) {
+  std::vector<double> v;
+  for (double s : shape) v.push_back(std::strtod(StageText(s * final_value).c_str(), nullptr));
+  return v;
+}
+
+std::string Stages(const std::vector<double> &shape, double final_value) {
+  std::string s;
+  for (double v : StageValuesAt(shape, final_value)) s += (s.empty() ? "" : ",") + StageText(v);
+  return s;
 }
 
 std::string Values(const std::vector<double> &x) {
@@ -118,13 +134,11 @@ PetscErrorCode Evaluate(Planner &p, const std::vector<double> &x, size_t *index)
       *index = k;
       PetscFunctionReturn(0);
     }
-  for (size_t v = 0; v < x.size(); ++v) {
-    const std::string name = "-" + p.o->variables[v];
-    PetscCall(PetscOptionsSetValue(nullptr, name.c_str(), Stages(p.shape[v], x[v]).c_str()));
-  }
+  StageValues stages;
+  for (size_t v = 0; v < x.size(); ++v) stages[p.o->variables[v]] = StageValuesAt(p.shape[v], x[v]);
   PlanRunFields f;
   f.minor_is_stress = p.o->wrinkle_stress;
-  PetscCall(p.run(p.comm, p.ctx, &f));
+  PetscCall(p.run(p.comm, p.ctx, stages, &f));
   Evaluation e;
   e.x = x;
   e.completed = f.completed;
@@ -324,16 +338,15 @@ PetscErrorCode PlanRun(MPI_Comm comm, const PlanOptions &o, PlanStretchRun run, 
   PetscFunctionBeginUser;
   // The case's schedule gives the staging and the start.
   for (PetscInt v = 0; v < n; ++v) {
-    PetscReal buf[64];
-    PetscInt ns = 64;
-    PetscBool found = PETSC_FALSE;
-    const std::string name = "-" + o.variables[v];
-    PetscCall(PetscOptionsGetRealArray(nullptr, nullptr, name.c_str(), buf, &ns, &found));
-    std::vector<double> stages(buf, buf + (found ? ns : 0));
-    if (!found && o.case_arrays.count(o.variables[v])) stages = o.case_arrays.at(o.variables[v]);
+    const auto it = o.case_arrays.find(o.variables[v]);
+    PetscCheck(it != o.case_arrays.end(), comm, PETSC_ERR_USER_INPUT,
+               "plan: -%s is not a per-stage option of this case's scene: -plan_variables names the options "
+               "searched (the saddle stretch offers saddle_draw_a,b,c,d and saddle_pressure_cycle)",
+               o.variables[v].c_str());
+    const std::vector<double> &stages = it->second;
     PetscCheck(!stages.empty() && stages.back() > 0, comm, PETSC_ERR_USER_INPUT,
-               "plan: the case must give %s with a positive final stage: the planner keeps its stages' proportions "
-               "and searches the final value (-plan_variables names the options)", name.c_str());
+               "plan: the case must give -%s with a positive final stage: the planner keeps its stages' proportions "
+               "and searches the final value (-plan_variables names the options)", o.variables[v].c_str());
     p.shape.emplace_back();
     for (double s : stages) p.shape.back().push_back(s / stages.back());
     x0[v] = std::clamp(stages.back(), o.lower, o.upper);

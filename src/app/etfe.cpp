@@ -189,8 +189,9 @@ struct StretchCase {
   LoadStepperOptions lso;
 };
 
-PetscErrorCode StretchCaseCreate(MPI_Comm comm, StretchCase *c) {
+PetscErrorCode StretchCaseCreate(MPI_Comm comm, StretchCase *c, const StageValues &stages = {}) {
   SceneSpec scene;
+  scene.stage_overrides = stages;
   SceneObserver observer;
   FormFindOptions ffo;
   PetscFunctionBeginUser;
@@ -212,13 +213,13 @@ PetscErrorCode CaseDestroy(SNES *snes, Problem **P) {
 
 PetscErrorCode StretchCaseDestroy(StretchCase *c) { return CaseDestroy(&c->snes, &c->P); }
 
-// One stretch run of the case under the current options, for the drawing planner: no results
-// file, no monitor, the per-element criteria fields gathered on every rank.
-PetscErrorCode PlanStretchOnce(MPI_Comm comm, void *, PlanRunFields *fields) {
+// One stretch run of the case, its per-stage options replaced by the drawing planner's stages: no
+// results file, no monitor, the per-element criteria fields gathered on every rank.
+PetscErrorCode PlanStretchOnce(MPI_Comm comm, void *, const StageValues &stages, PlanRunFields *fields) {
   StretchCase c;
   LoadStepperResult res;
   PetscFunctionBeginUser;
-  PetscCall(StretchCaseCreate(comm, &c));
+  PetscCall(StretchCaseCreate(comm, &c, stages));
   c.lso.monitor = 0;
   PetscCall(LoadStepperRun(c.P, c.snes, nullptr, c.lso, CheckpointOptions(), &res));
   fields->completed = res.completed && !res.stopped;

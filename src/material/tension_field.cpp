@@ -37,6 +37,8 @@ public:
     return inner->PlasticStrain(h, ep, ep_bar);
   }
   void ElasticConstants(double *e, double *n) const override { inner->ElasticConstants(e, n); }
+  // The wrapped law's plastic parameters: the relaxed film yields where the inner law does.
+  const PlasticMaterial *PlasticLaw() const override { return inner->PlasticLaw(); }
 
   bool Wrinkling(const double E[3], const double *hist, WrinkleInfo *info) const override {
     if (const PlasticMaterial *pm = inner->PlasticLaw()) {

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "etfe/assembly.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/scene_registry.h"
 #include "etfe/verification/annulus_closed_form.h"
 
@@ -114,7 +115,6 @@ PetscErrorCode AnnulusReport(Problem *P, void *vctx) {
 
 PetscErrorCode SceneBuild_Annulus(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal a = 100.0, b = 500.0, eps0 = 1e-4, phi = 5e-4;
-  PetscInt nr = 16, nt = 96;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Annulus scene: pretensioned annulus, rigid hub rotated", "Scene");
   PetscCall(PetscOptionsReal("-annulus_inner_radius", "Hub radius a [mm]", "", a, &a, nullptr));
@@ -123,9 +123,11 @@ PetscErrorCode SceneBuild_Annulus(MPI_Comm comm, SceneSpec *scene, SceneObserver
                              "Radial strain eps0 of both edges (stage 1): pretension E eps0/(1-nu)", "", eps0,
                              &eps0, nullptr));
   PetscCall(PetscOptionsReal("-annulus_rotation", "Hub rotation phi [rad] (stage 2)", "", phi, &phi, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_rings", "Element rings between hub and outer edge", "", nr, &nr, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_sectors", "Elements around (two triangles each per ring)", "", nt, &nt, nullptr));
   PetscOptionsEnd();
+  MeshOptions mesh;
+  mesh.keys = kMeshRings | kMeshSectors, mesh.rings = 16, mesh.sectors = 96;
+  PetscCall(MeshOptionsFromCommandLine(comm, "annulus scene", &mesh));
+  const PetscInt nr = mesh.rings, nt = mesh.sectors;
   PetscCheck(a > 0 && b > a, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-annulus_inner_radius %g / -annulus_outer_radius %g: need 0 < a < b", a, b);
   PetscCheck(eps0 > 0 && eps0 < 0.05, comm, PETSC_ERR_ARG_OUTOFRANGE,

@@ -12,6 +12,7 @@
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
 #include "etfe/mesh/generators.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/scene_registry.h"
 
 namespace etfe {
@@ -99,7 +100,6 @@ PetscErrorCode CapstanReport(Problem *P, void *vctx) {
 
 PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal radius = 21.35, angle = 180.0, width = 50.0, t1 = 2.5, pull = 1.0;
-  PetscInt nx = 60, ny = 4, refine = 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Capstan scene: film strip over a fixed pipe", "Scene");
   PetscCall(PetscOptionsReal("-capstan_radius", "Pipe radius [mm] (JIS G3452 pipe: 42.7/2)", "", radius, &radius, nullptr));
@@ -107,10 +107,12 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm comm, SceneSpec *scene, SceneObserver
   PetscCall(PetscOptionsReal("-capstan_width", "Strip width [mm]", "", width, &width, nullptr));
   PetscCall(PetscOptionsReal("-capstan_t1", "Tension T1 held on end A [N]", "", t1, &t1, nullptr));
   PetscCall(PetscOptionsReal("-capstan_pull", "Pull of end B along its tangent in stage 2 [mm]", "", pull, &pull, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_nx", "Cells along the wrap", "", nx, &nx, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_ny", "Cells across the strip", "", ny, &ny, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine, &refine, nullptr));
   PetscOptionsEnd();
+  MeshOptions mesh;
+  mesh.keys = kMeshGrid | kMeshRefine, mesh.nx = 60, mesh.ny = 4;
+  PetscCall(MeshOptionsFromCommandLine(comm, "capstan scene", &mesh));
+  PetscInt nx = mesh.nx, ny = mesh.ny;
+  const PetscInt refine = mesh.refine;
   PetscCheck(radius > 0 && width > 0 && t1 > 0 && pull > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "capstan: -capstan_radius, -capstan_width, -capstan_t1 and -capstan_pull must be positive");
   PetscCheck(angle > 0 && angle <= 350, comm, PETSC_ERR_ARG_OUTOFRANGE,

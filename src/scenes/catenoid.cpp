@@ -9,6 +9,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/scene_registry.h"
 
 namespace etfe {
@@ -55,15 +56,16 @@ PetscErrorCode CatenoidReport(Problem *P, void *vctx) {
 
 PetscErrorCode SceneBuild_Catenoid(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal radius = 1000.0, separation = 1000.0;
-  PetscInt ntheta = 48, nz = 16, refine = 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Catenoid scene: film between two coaxial rings", "Scene");
   PetscCall(PetscOptionsReal("-catenoid_radius", "Ring radius R [mm]", "", radius, &radius, nullptr));
   PetscCall(PetscOptionsReal("-catenoid_separation", "Ring separation H [mm]", "", separation, &separation, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_ntheta", "Cells around", "", ntheta, &ntheta, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_nz", "Cells along the axis (even)", "", nz, &nz, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine, &refine, nullptr));
   PetscOptionsEnd();
+  MeshOptions mesh;
+  mesh.keys = kMeshTube | kMeshRefine, mesh.ntheta = 48, mesh.nz = 16;
+  PetscCall(MeshOptionsFromCommandLine(comm, "catenoid scene", &mesh));
+  PetscInt ntheta = mesh.ntheta, nz = mesh.nz;
+  const PetscInt refine = mesh.refine;
   PetscCheck(radius > 0 && separation > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-catenoid_radius and -catenoid_separation must be positive");
   PetscCheck(ntheta >= 6 && nz >= 2 && nz % 2 == 0 && refine >= 0 && refine < 8, comm, PETSC_ERR_ARG_OUTOFRANGE,

@@ -11,6 +11,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/scene_registry.h"
 #include "etfe/verification/hencky_closed_form.h"
 
@@ -74,7 +75,6 @@ PetscErrorCode HenckyReport(Problem *P, void *vctx) {
 
 PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal radius = 500.0, pressure = 2e-4, bulge = -1.0;
-  PetscInt rings = 16, refine = 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Hencky scene: clamped circular membrane under pressure", "Scene");
   PetscCall(PetscOptionsReal("-hencky_radius", "Radius a [mm]", "", radius, &radius, nullptr));
@@ -82,11 +82,12 @@ PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene, SceneObserver 
   PetscCall(PetscOptionsReal("-hencky_initial_bulge",
                              "Centre height of the paraboloid initial guess [mm] (default a/10)", "",
                              bulge, &bulge, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_rings", "Rings of nodes of the disc mesh (6 rings^2 triangles)",
-                            "", rings, &rings, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine,
-                            &refine, nullptr));
   PetscOptionsEnd();
+  MeshOptions mesh;
+  mesh.keys = kMeshRings | kMeshRefine, mesh.rings = 16;
+  PetscCall(MeshOptionsFromCommandLine(comm, "hencky scene", &mesh));
+  PetscInt rings = mesh.rings;
+  const PetscInt refine = mesh.refine;
   PetscCheck(radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-hencky_radius %g must be positive", radius);
   PetscCheck(rings >= 1 && refine >= 0 && refine < 12, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-mesh_rings %" PetscInt_FMT " / -mesh_refine %" PetscInt_FMT ": need rings >= 1 and 0 <= refine < 12",

@@ -17,6 +17,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
 #include "saddle_geometry.h"
@@ -104,9 +105,6 @@ PetscErrorCode SaddleReport(Problem *P, void *vctx) {
 
 PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   PetscReal ratio_r = 0.15, ratio_mid = 1.0, ratio_corner = 3.0;
-  PetscInt n = 10, refine = 0;
-  char mesh_file[PETSC_MAX_PATH_LEN] = "";
-  PetscBool from_file = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Saddle scene (quarter model of the thesis's saddle)", "Scene");
   PetscCall(PetscOptionsReal("-saddle_rise_ratio", "Arch rise / span r (thesis: 0.10, 0.15, 0.20)", "", ratio_r, &ratio_r, nullptr));
@@ -114,12 +112,14 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
                              &ratio_mid, nullptr));
   PetscCall(PetscOptionsReal("-saddle_ratio_corner", "Form finding: MD:TD stress ratio of the corner parts", "",
                              ratio_corner, &ratio_corner, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_n", "Cells per 1000 mm (quarter: 2n x n cells)", "", n, &n, nullptr));
-  PetscCall(PetscOptionsInt("-mesh_refine", "Double the mesh density this many times", "", refine, &refine, nullptr));
-  PetscCall(PetscOptionsString("-mesh_file",
-                               "Start from this surface (e.g. a form-found .msh: the DD specimens) instead of the "
-                               "PD initial shape", "", mesh_file, mesh_file, sizeof mesh_file, &from_file));
   PetscOptionsEnd();
+  MeshOptions mesh;
+  mesh.keys = kMeshPerQuarter | kMeshRefine | kMeshFile, mesh.n = 10;
+  PetscCall(MeshOptionsFromCommandLine(comm, "saddle scene (default: the PD initial shape)", &mesh));
+  PetscInt n = mesh.n;
+  const PetscInt refine = mesh.refine;
+  const bool from_file = !mesh.file.empty();
+  const char *mesh_file = mesh.file.c_str();
   PetscCheck(ratio_r > 0 && ratio_r <= 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-saddle_rise_ratio %g: the arch rise ratio must lie in (0, 0.5]", ratio_r);
   PetscCheck(ratio_mid > 0 && ratio_corner > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "saddle: stress ratios must be positive");
