@@ -9,6 +9,7 @@ static const char help[] =
 
 #include <petscsnes.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -67,6 +68,7 @@ PetscErrorCode ProgramOptions(MPI_Comm comm) {
                              "", heap_release, &heap_release, nullptr));
   PetscOptionsEnd();
   ErrorHandlersUseTraceback(traceback);
+  CheckUnusedOptionsAllow(allow);
   PetscCheck(!heap_release || HeapReleaseLargeBlocks(), comm, PETSC_ERR_SYS,
              "-etfe_heap_release: the C library refused mallopt (run with -etfe_heap_release 0)");
   PetscFunctionReturn(0);
@@ -150,6 +152,17 @@ PetscErrorCode ReportAndCloseResults(const Case &c, const OutputOptions &oo, con
   PetscFunctionReturn(0);
 }
 
+// A run that did not complete is an error exit, after its results are closed.
+PetscErrorCode CheckCompleted(MPI_Comm comm, bool formfind, const LoadStepperResult &res) {
+  PetscFunctionBeginUser;
+  PetscCheck(res.completed, comm, PETSC_ERR_NOT_CONVERGED, "%s. %s", res.failure.c_str(),
+             formfind ? "The last iterate is in the results (status \"failed\")."
+                      : "The last converged increment is in the results. Ways out: more increments "
+                        "(-load_increments), more cut-backs (-load_max_cutbacks), or check the supports and "
+                        "loads of the scene");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Run() {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscBool help_only = PETSC_FALSE, list = PETSC_FALSE;
@@ -175,22 +188,27 @@ PetscErrorCode Run() {
   // 3. The analysis first (a scene that offers both builds the one asked for); the drawing
   //    planner and the cutting patterns have drivers of their own.
   PetscCall(AnalysisFromOptions(comm, &analysis));
-  if (analysis == Analysis::plan && !list) PetscCall(RunPlan(comm, help_only));
-  if (analysis == Analysis::cutpattern && !list) PetscCall(RunCutPattern(comm, help_only));
-  if ((analysis == Analysis::plan || analysis == Analysis::cutpattern) && !list) PetscFunctionReturn(0);
+  if (!list && (analysis == Analysis::plan || analysis == Analysis::cutpattern)) {
+    PetscCall(analysis == Analysis::plan ? RunPlan(comm, help_only) : RunCutPattern(comm, help_only));
+    PetscFunctionReturn(0);
+  }
 
   // 4. The scene: mesh, supports, loads, schedule. -help without one lists every component.
   scene.form_finding = analysis == Analysis::formfind;
   PetscCall(SceneCreateFromOptions(comm, &scene, &observer));
   if (list) PetscFunctionReturn(0);
-  if (help_only && scene.name.empty()) PetscCall(ListEveryOption(comm));
-  if (help_only && scene.name.empty()) PetscFunctionReturn(0);
+  if (help_only && scene.name.empty()) {
+    PetscCall(ListEveryOption(comm));
+    PetscFunctionReturn(0);
+  }
 
   // 5. The case (material, membrane, problem, contact, solver, load stepping) and its results.
   PetscCall(CreateCase(comm, analysis == Analysis::formfind, std::move(scene), observer, &c));
   PetscCall(ResultsOptionsFromCommandLine(c, &oo, &cko));
-  if (help_only) PetscCall(CaseDestroy(&c));
-  if (help_only) PetscFunctionReturn(0);
+  if (help_only) {
+    PetscCall(CaseDestroy(&c));
+    PetscFunctionReturn(0);
+  }
   PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));
   PetscCall(PrintHeader(c.P, c.snes));
 
@@ -202,12 +220,7 @@ PetscErrorCode Run() {
   // 7. The scene's own quantities of interest, then close the results; a failure is an error.
   PetscCall(ReportAndCloseResults(c, oo, cko, res, &out));
   PetscCall(CaseDestroy(&c));
-  PetscCheck(res.completed, comm, PETSC_ERR_NOT_CONVERGED, "%s. %s", res.failure.c_str(),
-             analysis == Analysis::formfind
-                 ? "The last iterate is in the results (status \"failed\")."
-                 : "The last converged increment is in the results. Ways out: more increments "
-                   "(-load_increments), more cut-backs (-load_max_cutbacks), or check the supports and "
-                   "loads of the scene");
+  PetscCall(CheckCompleted(comm, analysis == Analysis::formfind, res));
   PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
