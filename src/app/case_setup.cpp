@@ -3,14 +3,15 @@
 
 #include <memory>
 
-#include "solver_defaults.h"
 #include "etfe/checkpoint.h"
 #include "etfe/contact.h"
 #include "etfe/material.h"
+#include "solver_defaults.h"
 
 namespace etfe {
 
-PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const SceneObserver &observer, Case *c) {
+PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
+                          const SceneObserver &observer, Case *c) {
   std::unique_ptr<Material> material;
   PetscFunctionBeginUser;
   c->formfind = formfind;
@@ -24,9 +25,10 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const
   c->P = P;
   P->thickness = scene.thickness;
   PetscCall(MembraneOptionsFromCommandLine(comm, P));
-  PetscCheck(!(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
-             "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
-             "prescribes the stress: drop the option for -analysis formfind");
+  PetscCheck(
+      !(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
+      "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
+      "prescribes the stress: drop the option for -analysis formfind");
   if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
   PetscCall(CheckpointFingerprintScene(comm, scene, P));
   // A load history keeps only each rank's part (form finding keeps the global description on
@@ -39,7 +41,7 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const
     PetscCall(ProblemSetContact(P, contact));
   }
   if (P->observer.setup) PetscCall(P->observer.setup(P, P->observer.ctx));
-  P->tangent_shift *= P->AxialStiffness();  // relative -> N/mm
+  P->tangent_shift *= P->AxialStiffness(); // relative -> N/mm
   PetscCall(CreateSolver(P, &c->snes));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, &c->lso));
   PetscCall(LoadStepperSetConvergenceTest(P, c->snes, c->lso));

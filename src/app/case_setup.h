@@ -12,16 +12,17 @@
 namespace etfe {
 
 struct Case {
-  Problem *P = nullptr;  // null while no scene is named
+  Problem *P = nullptr; // null while no scene is named
   SNES snes = nullptr;
   LoadStepperOptions lso;
-  FormFindOptions ffo;  // -analysis formfind only
+  FormFindOptions ffo; // -analysis formfind only
   bool formfind = false;
 };
 
 // The analysis's material (stretch: from -material_*; formfind: the prescribed stress of
 // -formfind_*), the membrane options, then the problem, the solver and the load-stepping options.
-PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const SceneObserver &observer, Case *c);
+PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
+                          const SceneObserver &observer, Case *c);
 // What CreateCase made (nothing when no scene was named).
 PetscErrorCode CaseDestroy(Case *c);
 

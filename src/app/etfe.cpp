@@ -17,18 +17,18 @@ static const char help[] =
 
 #include "case_setup.h"
 #include "error_handlers.h"
-#include "heap_policy.h"
-#include "help_listing.h"
-#include "options_check.h"
-#include "options_files.h"
-#include "plan_driver.h"
-#include "run_report.h"
 #include "etfe/checkpoint.h"
 #include "etfe/cutpattern.h"
 #include "etfe/linesearch.h"
 #include "etfe/material.h"
 #include "etfe/output.h"
 #include "etfe/scene_registry.h"
+#include "heap_policy.h"
+#include "help_listing.h"
+#include "options_check.h"
+#include "options_files.h"
+#include "plan_driver.h"
+#include "run_report.h"
 
 using namespace etfe;
 
@@ -43,11 +43,12 @@ PetscErrorCode AnalysisFromOptions(MPI_Comm comm, Analysis *analysis) {
   PetscInt kind = 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "Analysis", "Analysis");
-  PetscCall(PetscOptionsEList("-analysis",
-                              "stretch (load stepping), formfind (prescribed-stress shape), cutpattern (flatten "
-                              "the physical surfaces of -mesh_file, no scene) or plan (search the drawing schedule "
-                              "of a stretch case, -plan_*)",
-                              "", kinds, 4, kinds[0], &kind, nullptr));
+  PetscCall(PetscOptionsEList(
+      "-analysis",
+      "stretch (load stepping), formfind (prescribed-stress shape), cutpattern (flatten "
+      "the physical surfaces of -mesh_file, no scene) or plan (search the drawing schedule "
+      "of a stretch case, -plan_*)",
+      "", kinds, 4, kinds[0], &kind, nullptr));
   PetscOptionsEnd();
   *analysis = (Analysis)kind;
   PetscFunctionReturn(0);
@@ -58,14 +59,17 @@ PetscErrorCode ProgramOptions(MPI_Comm comm) {
   PetscBool traceback = PETSC_FALSE, allow = PETSC_FALSE, heap_release = PETSC_TRUE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, nullptr, "etfe", "etfe");
-  PetscCall(PetscOptionsBool("-etfe_traceback", "Errors with PETSc's full report instead of one line", "", traceback,
+  PetscCall(PetscOptionsBool("-etfe_traceback",
+                             "Errors with PETSc's full report instead of one line", "", traceback,
                              &traceback, nullptr));
-  PetscCall(PetscOptionsBool("-options_allow_unused", "Accept option names this project does not know (typos)", "",
-                             allow, &allow, nullptr));
-  PetscCall(PetscOptionsBool("-etfe_heap_release",
-                             "Return freed blocks of 32 MB and more to the system (undoes SuperLU_DIST's "
-                             "mallopt; off: a 10^6-triangle rank's memory grows ~1 GB with MUMPS refactoring)",
-                             "", heap_release, &heap_release, nullptr));
+  PetscCall(PetscOptionsBool("-options_allow_unused",
+                             "Accept option names this project does not know (typos)", "", allow,
+                             &allow, nullptr));
+  PetscCall(PetscOptionsBool(
+      "-etfe_heap_release",
+      "Return freed blocks of 32 MB and more to the system (undoes SuperLU_DIST's "
+      "mallopt; off: a 10^6-triangle rank's memory grows ~1 GB with MUMPS refactoring)",
+      "", heap_release, &heap_release, nullptr));
   PetscOptionsEnd();
   ErrorHandlersUseTraceback(traceback);
   CheckUnusedOptionsAllow(allow);
@@ -87,13 +91,16 @@ PetscErrorCode RunCutPattern(MPI_Comm comm, PetscBool help_only) {
 }
 
 // Where the case's results and checkpoints go (-output_*, -checkpoint_*, -restart).
-PetscErrorCode ResultsOptionsFromCommandLine(const Case &c, OutputOptions *oo, CheckpointOptions *cko) {
+PetscErrorCode ResultsOptionsFromCommandLine(const Case &c, OutputOptions *oo,
+                                             CheckpointOptions *cko) {
   MPI_Comm comm = c.P->comm;
   PetscFunctionBeginUser;
   PetscCall(OutputOptionsFromCommandLine(comm, c.P->scene.name.c_str(), oo));
-  PetscCall(CheckpointOptionsFromCommandLine(comm, std::filesystem::path(oo->path).replace_extension("").string(), cko));
+  PetscCall(CheckpointOptionsFromCommandLine(
+      comm, std::filesystem::path(oo->path).replace_extension("").string(), cko));
   PetscCheck(!(c.formfind && (cko->restart[0] || cko->every > 0)), comm, PETSC_ERR_SUP,
-             "checkpoint/restart is for load histories (-analysis stretch); form finding restarts from its "
+             "checkpoint/restart is for load histories (-analysis stretch); form finding restarts "
+             "from its "
              "Gmsh output instead");
   PetscFunctionReturn(0);
 }
@@ -101,7 +108,8 @@ PetscErrorCode ResultsOptionsFromCommandLine(const Case &c, OutputOptions *oo, C
 // Opens the results file (null when -output 0). A refused restart must leave every file as it
 // was: the checkpoint is checked completely before the results file is opened (and truncated to
 // the checkpoint's step).
-PetscErrorCode OpenResults(const Case &c, const OutputOptions &oo, const CheckpointOptions &cko, OutputFile **out) {
+PetscErrorCode OpenResults(const Case &c, const OutputOptions &oo, const CheckpointOptions &cko,
+                           OutputFile **out) {
   PetscInt restart_step = -1;
   std::string run_id;
   PetscFunctionBeginUser;
@@ -114,7 +122,8 @@ PetscErrorCode OpenResults(const Case &c, const OutputOptions &oo, const Checkpo
 
 // The schedule (load stepping) or the form finding, writing results as it goes; form finding's
 // outcome in the load stepper's terms.
-PetscErrorCode RunAnalysis(Case &c, OutputFile *out, const CheckpointOptions &cko, LoadStepperResult *res) {
+PetscErrorCode RunAnalysis(Case &c, OutputFile *out, const CheckpointOptions &cko,
+                           LoadStepperResult *res) {
   FormFindResult ffr;
   PetscLogDouble t0, t1;
   PetscFunctionBeginUser;
@@ -136,15 +145,20 @@ PetscErrorCode RunAnalysis(Case &c, OutputFile *out, const CheckpointOptions &ck
 
 // The scene's own quantities of interest (after a complete run), then the results file closed
 // with its status.
-PetscErrorCode ReportAndCloseResults(const Case &c, const OutputOptions &oo, const CheckpointOptions &cko,
-                                     const LoadStepperResult &res, OutputFile **out) {
+PetscErrorCode ReportAndCloseResults(const Case &c, const OutputOptions &oo,
+                                     const CheckpointOptions &cko, const LoadStepperResult &res,
+                                     OutputFile **out) {
   MPI_Comm comm = c.P->comm;
   PetscFunctionBeginUser;
-  if (c.P->observer.report && res.completed && !res.stopped) PetscCall(c.P->observer.report(c.P, c.P->observer.ctx));
-  if (res.stopped) PetscCall(PetscPrintf(comm, "etfe: checkpoint %s; continue with -restart %s\n", cko.file, cko.file));
+  if (c.P->observer.report && res.completed && !res.stopped)
+    PetscCall(c.P->observer.report(c.P, c.P->observer.ctx));
+  if (res.stopped)
+    PetscCall(
+        PetscPrintf(comm, "etfe: checkpoint %s; continue with -restart %s\n", cko.file, cko.file));
   if (!*out) PetscFunctionReturn(0);
-  const std::string status = res.stopped ? "stopped at increment " + std::to_string((long long)res.steps) +
-                                               " (checkpoint " + cko.file + ")"
+  const std::string status = res.stopped
+                                 ? "stopped at increment " + std::to_string((long long)res.steps) +
+                                       " (checkpoint " + cko.file + ")"
                              : res.completed ? std::string("complete")
                                              : "failed: " + res.failure;
   PetscCall(OutputClose(out, status));
@@ -155,11 +169,13 @@ PetscErrorCode ReportAndCloseResults(const Case &c, const OutputOptions &oo, con
 // A run that did not complete is an error exit, after its results are closed.
 PetscErrorCode CheckCompleted(MPI_Comm comm, bool formfind, const LoadStepperResult &res) {
   PetscFunctionBeginUser;
-  PetscCheck(res.completed, comm, PETSC_ERR_NOT_CONVERGED, "%s. %s", res.failure.c_str(),
-             formfind ? "The last iterate is in the results (status \"failed\")."
-                      : "The last converged increment is in the results. Ways out: more increments "
-                        "(-load_increments), more cut-backs (-load_max_cutbacks), or check the supports and "
-                        "loads of the scene");
+  PetscCheck(
+      res.completed, comm, PETSC_ERR_NOT_CONVERGED, "%s. %s", res.failure.c_str(),
+      formfind
+          ? "The last iterate is in the results (status \"failed\")."
+          : "The last converged increment is in the results. Ways out: more increments "
+            "(-load_increments), more cut-backs (-load_max_cutbacks), or check the supports and "
+            "loads of the scene");
   PetscFunctionReturn(0);
 }
 
@@ -189,7 +205,8 @@ PetscErrorCode Run() {
   //    planner and the cutting patterns have drivers of their own.
   PetscCall(AnalysisFromOptions(comm, &analysis));
   if (!list && (analysis == Analysis::plan || analysis == Analysis::cutpattern)) {
-    PetscCall(analysis == Analysis::plan ? RunPlan(comm, help_only) : RunCutPattern(comm, help_only));
+    PetscCall(analysis == Analysis::plan ? RunPlan(comm, help_only)
+                                         : RunCutPattern(comm, help_only));
     PetscFunctionReturn(0);
   }
 
@@ -246,13 +263,14 @@ int main(int argc, char **argv) {
   // Before MPI starts (heap_policy.h): huge pages for the large blocks -etfe_heap_release maps.
   if (HeapReleaseWanted(expanded)) HeapRestartWithHugePages(argv);
   std::vector<char *> new_argv{argv[0]};
-  for (std::string &a : expanded) new_argv.push_back(a.data());
+  for (std::string &a : expanded)
+    new_argv.push_back(a.data());
   new_argv.push_back(nullptr);
   argc = (int)expanded.size() + 1;
   argv = new_argv.data();
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
   PetscCall(ErrorHandlersPush(requirements));
-  MPI_Comm agree;  // where the ranks meet on an error exit (error_handlers.h)
+  MPI_Comm agree; // where the ranks meet on an error exit (error_handlers.h)
   PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &agree));
   const PetscErrorCode ierr = Run();
   if (ierr) return ErrorExit(agree, ierr);

@@ -5,7 +5,6 @@
 
 #include <memory>
 
-#include "solver_defaults.h"
 #include "etfe/checkpoint.h"
 #include "etfe/contact.h"
 #include "etfe/formfind.h"
@@ -14,6 +13,7 @@
 #include "etfe/material.h"
 #include "etfe/output.h"
 #include "etfe/problem.h"
+#include "solver_defaults.h"
 
 namespace etfe {
 

@@ -4,12 +4,12 @@
 #include <filesystem>
 
 #include "case_setup.h"
-#include "options_check.h"
-#include "run_report.h"
 #include "etfe/checkpoint.h"
 #include "etfe/output.h"
 #include "etfe/plan.h"
 #include "etfe/scene_registry.h"
+#include "options_check.h"
+#include "run_report.h"
 
 namespace etfe {
 
@@ -53,10 +53,12 @@ PetscErrorCode RunPlan(MPI_Comm comm, PetscBool help_only) {
   PetscFunctionBeginUser;
   PetscCall(StretchCaseCreate(comm, &c));
   PetscCheck(c.P || help_only, comm, PETSC_ERR_USER_INPUT,
-             "-analysis plan needs a stretch case: -options_file options/saddle/dd1511.opts -analysis plan");
+             "-analysis plan needs a stretch case: -options_file options/saddle/dd1511.opts "
+             "-analysis plan");
   if (!c.P) PetscFunctionReturn(0);
   PetscCall(OutputOptionsFromCommandLine(comm, c.P->scene.name.c_str(), &oo));
-  PetscCall(PlanOptionsFromCommandLine(comm, std::filesystem::path(oo.path).replace_extension("").string(), &po));
+  PetscCall(PlanOptionsFromCommandLine(
+      comm, std::filesystem::path(oo.path).replace_extension("").string(), &po));
   po.case_arrays = c.P->scene.stage_options;
   if (!help_only) {
     PetscCall(CheckUnusedOptions(comm, PETSC_TRUE));

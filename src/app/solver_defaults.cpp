@@ -12,10 +12,11 @@ PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof) {
   PetscFunctionBeginUser;
   *max_dof = 0;
   PetscOptionsBegin(comm, nullptr, "Linear solver", "PC");
-  PetscCall(PetscOptionsInt("-etfe_lu_native_max_dof",
-                            "On one rank, systems up to this many DOF are factored with PETSc's own LU (AMD ordering) "
-                            "unless -pc_factor_mat_solver_type names a package; 0: always MUMPS",
-                            "", *max_dof, max_dof, nullptr));
+  PetscCall(PetscOptionsInt(
+      "-etfe_lu_native_max_dof",
+      "On one rank, systems up to this many DOF are factored with PETSc's own LU (AMD ordering) "
+      "unless -pc_factor_mat_solver_type names a package; 0: always MUMPS",
+      "", *max_dof, max_dof, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(0);
 }
@@ -31,7 +32,8 @@ PetscErrorCode ChooseLUPackage(Problem *P, PC pc) {
   PetscInt max_dof;
   PetscFunctionBeginUser;
   PetscCall(LUNativeMaxDofFromOptions(P->comm, &max_dof));
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_factor_mat_solver_type", pkg, sizeof pkg, &pkg_set));
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_factor_mat_solver_type", pkg, sizeof pkg,
+                                  &pkg_set));
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pctype, sizeof pctype, &pc_set));
   const bool native = P->size == 1 && 3 * P->mesh.num_nodes_global <= max_dof;
   if (!pkg_set) {
