@@ -38,28 +38,16 @@ PetscErrorCode PrintPeakMemory(MPI_Comm comm, const char *when, bool now) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PrintHeader(Problem *P, SNES snes) {
-  KSP ksp;
-  PC pc;
-  KSPType ktype;
-  PCType ptype;
-  MatSolverType stype = nullptr;
-  SNESLineSearch ls;
-  SNESLineSearchType lstype;
+namespace {
+
+// The mesh and how METIS shared it over the ranks.
+PetscErrorCode PrintMeshAndRanks(Problem *P) {
   PetscInt emin, emax, nmin, nmax;
   PetscFunctionBeginUser;
-  PetscCall(SNESGetKSP(snes, &ksp));
-  PetscCall(KSPGetType(ksp, &ktype));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCGetType(pc, &ptype));
-  PetscCall(PCFactorGetMatSolverType(pc, &stype));
-  PetscCall(SNESGetLineSearch(snes, &ls));
-  PetscCall(SNESLineSearchGetType(ls, &lstype));
   PetscCallMPI(MPI_Allreduce(&P->mesh.num_elements, &emin, 1, MPIU_INT, MPI_MIN, P->comm));
   PetscCallMPI(MPI_Allreduce(&P->mesh.num_elements, &emax, 1, MPIU_INT, MPI_MAX, P->comm));
   PetscCallMPI(MPI_Allreduce(&P->mesh.num_owned, &nmin, 1, MPIU_INT, MPI_MIN, P->comm));
   PetscCallMPI(MPI_Allreduce(&P->mesh.num_owned, &nmax, 1, MPIU_INT, MPI_MAX, P->comm));
-  PetscCall(PetscPrintf(P->comm, "etfe: scene %s\n", P->scene.name.c_str()));
   PetscCall(PetscPrintf(P->comm,
                         "  mesh: %s, %" PetscInt_FMT " nodes, %" PetscInt_FMT
                         " triangles, %" PetscInt_FMT " DOF\n",
@@ -71,15 +59,45 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
                   ", owned nodes per rank %" PetscInt_FMT "-%" PetscInt_FMT " (imbalance %.3f)\n",
                   P->size, emin, emax, nmin, nmax,
                   emax * (double)P->size / std::max<PetscInt>(1, P->mesh.num_elements_global)));
+  PetscFunctionReturn(0);
+}
+
+// The solver as the options left it (types, not the defaults of solver_defaults.h).
+PetscErrorCode PrintSolver(MPI_Comm comm, SNES snes) {
+  KSP ksp;
+  PC pc;
+  KSPType ktype;
+  PCType ptype;
+  MatSolverType stype = nullptr;
+  SNESLineSearch ls;
+  SNESLineSearchType lstype;
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetType(ksp, &ktype));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCGetType(pc, &ptype));
+  PetscCall(PCFactorGetMatSolverType(pc, &stype));
+  PetscCall(SNESGetLineSearch(snes, &ls));
+  PetscCall(SNESLineSearchGetType(ls, &lstype));
+  PetscCall(PetscPrintf(comm, "  solver: SNES newtonls, line search %s, KSP %s, PC %s%s%s\n",
+                        lstype, ktype, ptype, stype ? " " : "", stype ? stype : ""));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode PrintHeader(Problem *P, SNES snes) {
   PetscInt ncon = (PetscInt)P->con_owned_dof.size(), ncon_all;
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(P->comm, "etfe: scene %s\n", P->scene.name.c_str()));
+  PetscCall(PrintMeshAndRanks(P));
   PetscCallMPI(MPI_Allreduce(&ncon, &ncon_all, 1, MPIU_INT, MPI_SUM, P->comm));
   PetscCall(PetscPrintf(
       P->comm,
       "  physics: membrane (TL, h0 = %g mm), %s material%s, %" PetscInt_FMT " constrained DOF\n",
       P->thickness, P->material->Name(), P->has_pressure ? ", follower pressure" : "", ncon_all));
   PetscCall(P->material->View(P->comm));
-  PetscCall(PetscPrintf(P->comm, "  solver: SNES newtonls, line search %s, KSP %s, PC %s%s%s\n",
-                        lstype, ktype, ptype, stype ? " " : "", stype ? stype : ""));
+  PetscCall(PrintSolver(P->comm, snes));
   {
     // The streamed set-up: rank 0 alone held the global mesh and description and sent each rank
     // its share (src/mesh/distribute.cpp).
