@@ -101,7 +101,6 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], d
 // After a converged increment: status update and cone correction (lagged), new committed state.
 // Counts over all ranks: open, stick, slip, and pairs that lifted off in this increment.
 PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[4]);
-const char *FrictionLawName(FrictionLaw law);
 // The law in force at load time t (stage s covers t in (s, s+1]).
 FrictionLaw ContactLawAt(const ContactSet &c, double time);
 ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);

@@ -145,6 +145,10 @@ struct Problem {
 // dropped as soon as it is distributed (ProblemReleaseScene); form finding keeps it.
 PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material, bool keep_scene,
                              Problem *problem);
+// The membrane element's options (-membrane_*: thickness, collapse ratio, tangent shift and
+// tension-only tangent, near-null space, wrinkling model) into problem, whose values are the
+// defaults; read before ProblemCreate (src/assembly/membrane_options.cpp).
+PetscErrorCode MembraneOptionsFromCommandLine(MPI_Comm comm, Problem *problem);
 // Frees the scene's global description on rank 0 (mesh, constraints, forces, pressure elements,
 // initial guess, element ratios and stress-free shapes: O(global mesh)); every small field stays.
 // A form-finding run keeps it (rank 0 writes the found shape with the scene's topology and cuts

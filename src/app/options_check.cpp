@@ -60,14 +60,16 @@ std::string Closest(const std::string &name) {
   return d <= std::max<size_t>(2, name.size() / 4) ? best : "";
 }
 
+PetscBool allow = PETSC_FALSE;
+
 } // namespace
+
+void CheckUnusedOptionsAllow(PetscBool allow_unused) { allow = allow_unused; }
 
 PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool before_run) {
   PetscInt n;
   char **names, **values;
-  PetscBool allow = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-options_allow_unused", &allow, nullptr));
   PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
   std::string typos, unused, petsc;
   for (PetscInt i = 0; i < n; ++i) {

@@ -10,6 +10,8 @@
 
 namespace etfe {
 
+// -options_allow_unused as the program's options read it (once): unknown names are accepted.
+void CheckUnusedOptionsAllow(PetscBool allow);
 // before_run: the check before computing (errors for typos); otherwise the end-of-run warning.
 PetscErrorCode CheckUnusedOptions(MPI_Comm comm, PetscBool before_run);
 

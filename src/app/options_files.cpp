@@ -47,8 +47,21 @@ fs::path ResolveInclude(const fs::path &including, const std::string &name) {
   return fs::absolute(including).parent_path() / g;  // for the message
 }
 
+// "# requires: FILE from MAKER" (the form scripts/run reads), or false.
+bool ParseRequirement(const std::string &line, const std::string &options_file, OptionsFileRequirement *r) {
+  static const std::string lead = "# requires: ", from = " from ";
+  if (line.compare(0, lead.size(), lead) != 0) return false;
+  const size_t at = line.rfind(from);
+  if (at == std::string::npos || at < lead.size()) return false;
+  r->file = line.substr(lead.size(), at - lead.size());
+  r->maker = line.substr(at + from.size());
+  while (!r->maker.empty() && std::isspace((unsigned char)r->maker.back())) r->maker.pop_back();
+  r->options_file = options_file;
+  return !r->file.empty() && !r->maker.empty();
+}
+
 bool ExpandFile(const fs::path &file, std::vector<std::string> *out, std::set<std::string> *open, int depth,
-                std::string *error) {
+                std::string *error, std::vector<OptionsFileRequirement> *requirements) {
   const std::string shown = file.string();
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) {
@@ -66,6 +79,8 @@ bool ExpandFile(const fs::path &file, std::vector<std::string> *out, std::set<st
   while (std::getline(in, line)) {
     ++lineno;
     const std::string where = shown + ":" + std::to_string(lineno);
+    OptionsFileRequirement r;
+    if (requirements && ParseRequirement(line, shown, &r)) requirements->push_back(r);
     const size_t hash = line.find_first_of("#!%");
     if (hash != std::string::npos) line.erase(hash);
     std::vector<std::string> tokens;
@@ -86,7 +101,7 @@ bool ExpandFile(const fs::path &file, std::vector<std::string> *out, std::set<st
           *error = where + ": -options_file needs a file name";
           return false;
         }
-        if (!ExpandFile(ResolveInclude(file, tokens[k + 1]), out, open, depth + 1, error)) {
+        if (!ExpandFile(ResolveInclude(file, tokens[k + 1]), out, open, depth + 1, error, requirements)) {
           *error = where + ": in -options_file " + tokens[k + 1] + ": " + *error;
           return false;
         }
@@ -104,7 +119,7 @@ bool ExpandFile(const fs::path &file, std::vector<std::string> *out, std::set<st
 } // namespace
 
 bool ExpandOptionsFiles(const std::vector<std::string> &args, std::vector<std::string> *expanded,
-                        std::string *error) {
+                        std::string *error, std::vector<OptionsFileRequirement> *requirements) {
   expanded->clear();
   for (size_t k = 0; k < args.size(); ++k) {
     if (args[k] != "-options_file") {
@@ -116,7 +131,7 @@ bool ExpandOptionsFiles(const std::vector<std::string> &args, std::vector<std::s
       return false;
     }
     std::set<std::string> open;
-    if (!ExpandFile(fs::path(args[++k]), expanded, &open, 0, error)) return false;
+    if (!ExpandFile(fs::path(args[++k]), expanded, &open, 0, error, requirements)) return false;
   }
   return true;
 }

@@ -10,8 +10,16 @@
 
 namespace etfe {
 
-// args: argv[1..]; on success *expanded holds the new argument list (without argv[0]).
+// A "# requires: FILE from MAKER" comment of an options file: the case reads FILE (a form-found
+// surface), which the options file MAKER writes; scripts/run makes a missing one first. Kept so
+// that an error about a missing FILE can say how to make it (error_handlers.h).
+struct OptionsFileRequirement {
+  std::string file, maker, options_file;
+};
+
+// args: argv[1..]; on success *expanded holds the new argument list (without argv[0]) and
+// *requirements (if given) the "# requires:" comments of every options file read.
 bool ExpandOptionsFiles(const std::vector<std::string> &args, std::vector<std::string> *expanded,
-                        std::string *error);
+                        std::string *error, std::vector<OptionsFileRequirement> *requirements = nullptr);
 
 } // namespace etfe

@@ -27,16 +27,6 @@ double SupportProject(const SupportSpec &s, const double p[3], double M[3], doub
 
 } // namespace
 
-const char *FrictionLawName(FrictionLaw law) {
-  switch (law) {
-  case FrictionLaw::Lagged: return "lagged (thesis: status from the forces at the step start)";
-  case FrictionLaw::Implicit: return "implicit (Coulomb return map at every Newton iterate)";
-  case FrictionLaw::None: return "none (frictionless)";
-  case FrictionLaw::Fixed: return "fixed (no slide, bilateral: the thesis's closed contact, eq. 4.25)";
-  }
-  return "?";
-}
-
 FrictionLaw ContactLawAt(const ContactSet &c, double time) {
   if (c.stage_laws.empty()) return c.law;
   // Stage s (0-based) covers load times (s, s+1]; the tolerance keeps a stage end that the

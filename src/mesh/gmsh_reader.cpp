@@ -146,7 +146,8 @@ class Reader {
     if (in_.AtEnd()) return in_.FailAt(0, "empty file, expected $MeshFormat");
     if (!in_.Token(&tok, "$MeshFormat")) return false;
     if (tok != "$MeshFormat") {
-      return in_.Fail("not a Gmsh MSH file: expected $MeshFormat, found " + Quote(tok));
+      return in_.Fail("not a Gmsh MSH file: expected $MeshFormat, found " + Quote(tok) +
+                      "; an OBJ or STL surface converts with scripts/surface2msh SURFACE OUT.msh");
     }
     std::string_view ver;
     if (!in_.Token(&ver, "the MSH version")) return false;

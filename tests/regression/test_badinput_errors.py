@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Bad input and failed runs: every case must exit non-zero with an error message that names the
-offending thing, and must not leave a results file whose status is "complete". A run that
+offending thing and the way out, without the source location (only -etfe_traceback shows it), and
+must not leave a results file whose status is "complete". A run that
 diverges with its cut-backs exhausted must name the increment and the SNES reason, and leave a
 results file with status "failed: ..." holding the last converged step (serial and 2 ranks)."""
 import os
@@ -55,6 +56,14 @@ def main_test(etfe, chk):
         write_msh(good)
         write_msh(zero, [(1, 5, 2)])      # three collinear nodes on the bottom edge
         write_msh(badid, [(1, 2, 99)])    # node 99 does not exist
+        # A surface in OBJ given as the mesh, and a case whose "# requires:" surface is missing.
+        obj, missing = os.path.join(tmp, "surface.obj"), os.path.join(tmp, "not_made_yet.msh")
+        with open(obj, "w") as f:
+            f.write("v 0 0 0\nv 1000 0 0\nv 0 1000 0\nf 1 2 3\n")
+        needs = os.path.join(tmp, "needs_surface.opts")
+        with open(needs, "w") as f:
+            f.write("# requires: %s from options/saddle/ff_r15_s11_n19.opts\n-options_file %s\n-mesh_file %s\n"
+                    % (missing, os.path.abspath(T.opts("patch")), missing))
         # The mesh writer itself is right: the valid mesh runs and passes the patch test.
         rc, out = T.run(etfe, ["-options_file", T.opts("patch"), "-mesh_file", good,
                                "-output_file", os.path.join(tmp, "good.h5"), "-load_monitor", "0"])
@@ -74,6 +83,10 @@ def main_test(etfe, chk):
             ("non-finite schedule", patch + ["-patch_schedule", "nan"], [r"schedule"]),
             ("unknown material type", patch + ["-material_type", "nosuch"], [r"-material_type nosuch"]),
             ("Poisson's ratio 0.7", patch + ["-material_poisson", "0.7"], [r"-material_poisson 0\.7", r"Poisson"]),
+            ("OBJ surface as the mesh", patch + ["-mesh_file", obj], [re.escape(obj), r"scripts/surface2msh"]),
+            ("missing required surface", ["-options_file", needs],
+             [re.escape(missing), r"cannot open", re.escape(needs) + r" requires it",
+              r"etfe -options_file options/saddle/ff_r15_s11_n19\.opts"]),
         ]
         for k, (what, args, patterns) in enumerate(cases):
             h5 = os.path.join(tmp, "case%02d.h5" % k)
@@ -89,6 +102,14 @@ def main_test(etfe, chk):
             st = T.status(h5) if os.path.exists(h5) else None
             chk.check(st != "complete", "%s: no results file with status 'complete' (%s)" % (
                 what, "no file" if st is None else "status %r" % st))
+            chk.check(not re.search(r"\.(cpp|c|h):\d+", out) and out.count("-etfe_traceback") <= 1,
+                      "%s: no source location, at most one -etfe_traceback hint" % what)
+
+        # -etfe_traceback gives where the error was raised (PETSc's full report).
+        rc, out = T.run(etfe, patch + ["-membrane_thickness", "-1", "-output", "0", "-etfe_traceback"],
+                        expect_fail=True, timeout=120)
+        chk.check(re.search(r"#1 \w+\(\) at \S+\.cpp:\d+", out) is not None,
+                  "-etfe_traceback: the report names the function and source line")
 
         diverging(etfe, chk, tmp, 1)
         diverging(etfe, chk, tmp, 2)

@@ -1,0 +1,60 @@
+// A case built from the options (case_setup.h).
+#include "case_setup.h"
+
+#include <memory>
+
+#include "etfe/checkpoint.h"
+#include "etfe/contact.h"
+#include "etfe/material.h"
+#include "solver_defaults.h"
+
+namespace etfe {
+
+PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
+                          const SceneObserver &observer, Case *c) {
+  std::unique_ptr<Material> material;
+  PetscFunctionBeginUser;
+  c->formfind = formfind;
+  if (formfind) {
+    PetscCall(FormFindOptionsFromCommandLine(comm, &c->ffo));
+    material = MaterialCreatePrescribedStress(c->ffo.ratio * c->ffo.stress, c->ffo.stress);
+  } else {
+    PetscCall(MaterialCreateFromOptions(comm, &material));
+  }
+  auto *P = new Problem();
+  c->P = P;
+  P->thickness = scene.thickness;
+  PetscCall(MembraneOptionsFromCommandLine(comm, P));
+  PetscCheck(
+      !(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
+      "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
+      "prescribes the stress: drop the option for -analysis formfind");
+  if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
+  PetscCall(CheckpointFingerprintScene(comm, scene, P));
+  // A load history keeps only each rank's part (form finding keeps the global description on
+  // rank 0, which writes the found shape with the scene's topology).
+  PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), formfind, P));
+  P->observer = observer;
+  if (P->scene.contact.active) {
+    ContactSet *contact;
+    PetscCall(ContactCreate(P, &contact));
+    PetscCall(ProblemSetContact(P, contact));
+  }
+  if (P->observer.setup) PetscCall(P->observer.setup(P, P->observer.ctx));
+  P->tangent_shift *= P->AxialStiffness(); // relative -> N/mm
+  PetscCall(CreateSolver(P, &c->snes));
+  PetscCall(LoadStepperOptionsFromCommandLine(comm, &c->lso));
+  PetscCall(LoadStepperSetConvergenceTest(P, c->snes, c->lso));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CaseDestroy(Case *c) {
+  PetscFunctionBeginUser;
+  PetscCall(SNESDestroy(&c->snes));
+  if (c->P) PetscCall(ProblemDestroy(c->P));
+  delete c->P;
+  c->P = nullptr;
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

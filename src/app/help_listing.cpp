@@ -1,0 +1,52 @@
+// -help without a scene (help_listing.h).
+#include "help_listing.h"
+
+#include <petscsnes.h>
+
+#include <memory>
+
+#include "etfe/checkpoint.h"
+#include "etfe/contact.h"
+#include "etfe/formfind.h"
+#include "etfe/linesearch.h"
+#include "etfe/load_stepper.h"
+#include "etfe/material.h"
+#include "etfe/output.h"
+#include "etfe/problem.h"
+#include "solver_defaults.h"
+
+namespace etfe {
+
+PetscErrorCode ListEveryOption(MPI_Comm comm) {
+  std::unique_ptr<Material> m;
+  Problem throwaway;
+  FormFindOptions ffo;
+  LoadStepperOptions lso;
+  OutputOptions oo;
+  CheckpointOptions cko;
+  ContactOptions co;
+  PetscInt lu_max_dof;
+  double young, nu;
+  SNES snes;
+  SNESLineSearch ls;
+  PetscFunctionBeginUser;
+  // The plastic law reads every -material_* option the elastic one does, and its own.
+  PetscCall(PetscOptionsSetValue(nullptr, "-material_type", "plastic"));
+  PetscCall(FormFindOptionsFromCommandLine(comm, &ffo));
+  PetscCall(MaterialCreateFromOptions(comm, &m));
+  PetscCall(MembraneOptionsFromCommandLine(comm, &throwaway));
+  PetscCall(LoadStepperOptionsFromCommandLine(comm, &lso));
+  PetscCall(OutputOptionsFromCommandLine(comm, "scene", &oo));
+  PetscCall(CheckpointOptionsFromCommandLine(comm, "results/scene/scene", &cko));
+  m->ElasticConstants(&young, &nu);
+  PetscCall(ContactOptionsFromCommandLine(comm, 1e3 * young * throwaway.thickness, 1e-6, &co));
+  PetscCall(LUNativeMaxDofFromOptions(comm, &lu_max_dof));
+  PetscCall(SNESCreate(comm, &snes));
+  PetscCall(SNESGetLineSearch(snes, &ls));
+  PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
+  PetscCall(SNESSetFromOptions(snes));
+  PetscCall(SNESDestroy(&snes));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

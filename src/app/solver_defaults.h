@@ -1,0 +1,19 @@
+// The solver a case gets unless its options say otherwise: Newton with the etfe line search, a
+// direct solve (KSP preonly + LU) and the LU package chosen by the size of the system.
+#pragma once
+#include <petscsnes.h>
+
+#include "etfe/problem.h"
+
+namespace etfe {
+
+// -etfe_lu_native_max_dof: up to this many DOF on one rank, PETSc's own LU (0: always MUMPS).
+PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof);
+// The LU package of pc when the options name none (PETSc's own LU with AMD for small systems on
+// one rank, MUMPS otherwise), and MUMPS's workspace margin when MUMPS factors.
+PetscErrorCode ChooseLUPackage(Problem *P, PC pc);
+// The SNES of P (residual, Jacobian, tolerances, KSP/PC, line search) with the defaults above,
+// then SNESSetFromOptions: options files and the command line override every default.
+PetscErrorCode CreateSolver(Problem *P, SNES *snes);
+
+} // namespace etfe
