@@ -34,6 +34,7 @@ static const char help[] =
 #include "etfe/plan.h"
 #include "etfe/problem.h"
 #include "etfe/scene_registry.h"
+#include "etfe/tangent_shift.h"
 
 using namespace etfe;
 
@@ -125,7 +126,7 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(VecDuplicate(P->U, &F));
   PetscCall(SNESSetFunction(*snes, F, FormResidual, P));
   PetscCall(VecDestroy(&F));
-  PetscCall(SNESSetJacobian(*snes, P->J, P->J, FormJacobian, P));
+  PetscCall(SNESSetJacobian(*snes, P->J, P->J, FormShiftedJacobian, P));
   PetscCall(SNESSetType(*snes, SNESNEWTONLS));
   PetscCall(SNESSetTolerances(*snes, 1e-9, 1e-10, 1e-14, 30, 10000));
   PetscCall(SNESGetKSP(*snes, &ksp));
@@ -174,7 +175,6 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene, const
     PetscCall(ProblemSetContact(P, contact));
   }
   if (P->observer.setup) PetscCall(P->observer.setup(P, P->observer.ctx));
-  P->tangent_shift *= P->AxialStiffness();  // relative -> N/mm
   PetscCall(CreateSolver(P, snes));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, lso));
   PetscCall(LoadStepperSetConvergenceTest(P, *snes, *lso));

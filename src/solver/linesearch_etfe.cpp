@@ -108,15 +108,15 @@ PetscErrorCode Apply(SNESLineSearch ls) {
       PetscCall(CheckStep(P, X, W, &ok));
       if (!ok) {
         PetscCall(PetscInfo(ls, "lambda %g refused: element %" PetscInt_FMT " would collapse or flip\n",
-                            (double)lambda, P->bad_element));
+                            (double)lambda, P->diagnostics.bad_element));
         continue;
       }
-      P->in_linesearch = PETSC_TRUE;
+      P->diagnostics.in_linesearch = PETSC_TRUE;
     }
     PetscCall((*ls->ops->snesfunc)(snes, W, G));
     if (P) {
-      P->in_linesearch = PETSC_FALSE;
-      if (P->bad_status != KERNEL_OK) continue;
+      P->diagnostics.in_linesearch = PETSC_FALSE;
+      if (P->diagnostics.bad_status != KERNEL_OK) continue;
     }
     PetscCall(VecNorm(G, NORM_2, &gnorm));
     PetscViewer monitor;
@@ -138,7 +138,7 @@ PetscErrorCode Apply(SNESLineSearch ls) {
       PetscCall((*ls->ops->snesfunc)(snes, W, G));
       PetscCall(VecNorm(G, NORM_2, &gnorm));
     } else {
-      PetscCall(SNESLineSearchSetReason(ls, (P && P->bad_status != KERNEL_OK)
+      PetscCall(SNESLineSearchSetReason(ls, (P && P->diagnostics.bad_status != KERNEL_OK)
                                                 ? SNES_LINESEARCH_FAILED_DOMAIN
                                                 : SNES_LINESEARCH_FAILED_REDUCT));
       PetscFunctionReturn(0);
