@@ -463,13 +463,13 @@ void GrowIncrement(LoadStepper *s, const Increment &inc) {
   }
 }
 
-// Step-size control after a failed attempt: the increment halves. False once it has halved more
-// than -load_max_cutbacks times below the nominal one.
+// Step-size control after a failed attempt: the increment halves. True (the cut-backs are spent)
+// once it has halved more than -load_max_cutbacks times below the nominal one.
 bool CutBack(LoadStepper *s, const Increment &inc) {
   ++s->res->cutbacks;
   s->easy = 0;
   s->dt = 0.5 * inc.dt_try;
-  return !(s->dt < s->dt_nominal / std::pow(2.0, (double)s->o.max_cutbacks) * (1 - 1e-9));
+  return s->dt < s->dt_nominal / std::pow(2.0, (double)s->o.max_cutbacks) * (1 - 1e-9);
 }
 
 // A converged increment seen from outside: the progress line (every -load_monitor increments,
@@ -571,7 +571,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
       IncrementFailure failure;
       PetscCall(DiagnoseFailure(s, inc, &failure));
       PetscCall(VecCopy(s.U_committed, P->U));
-      const bool exhausted = !CutBack(&s, inc);
+      const bool exhausted = CutBack(&s, inc);
       PetscCall(ReportFailedIncrement(&s, inc, failure, exhausted));
       if (exhausted) break;
       continue;
