@@ -18,6 +18,8 @@ PetscErrorCode ProblemSetLoadTime(Problem *problem, double t, Vec U);
 PetscErrorCode ProblemUpdateReactions(Problem *problem, Vec U);
 
 PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
+// The assembled tangent dR/dU (constrained rows and columns replaced by the identity); SNES
+// solves with it plus the tangent shift (FormShiftedJacobian, tangent_shift.h).
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 // The film's internal nodal forces at U with the committed history (the membrane part of the
 // residual, constrained DOFs included): its work along an increment is the work done on the film.
@@ -37,7 +39,7 @@ PetscErrorCode StabilizationDestroy(Problem *problem);
 PetscErrorCode LargestPlasticStrain(Problem *problem, double *value, PetscInt *element, double centroid[3]);
 PetscErrorCode FormInternalForce(Problem *problem, Vec U, Vec F);
 // Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
-// collapse. Collective; *ok false names the element in problem->bad_element.
+// collapse. Collective; *ok false names the element in problem->diagnostics.bad_element.
 PetscErrorCode CheckStep(Problem *problem, Vec X, Vec W, PetscBool *ok);
 // The largest relative change of an element edge an update Y would make to first order,
 // max over edges |Y_a - Y_b| / |X_a - X_b| (reference edge lengths): the size of a Newton step in

@@ -60,9 +60,11 @@ struct LoadStepperResult {
 PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptions *o);
 // Adds the force-balance test to SNES's own (rtol/atol/stol): |R| <= force_rtol * (size of the
 // reactions and external loads), which stays reachable when stiff penalties put the round-off
-// floor of |R| above any fixed atol.
+// floor of |R| above any fixed atol (load_stepper_convergence.cpp); and the monitor of the tangent
+// shift's work that the progress lines report (tangent_shift.h).
 PetscErrorCode LoadStepperSetConvergenceTest(Problem *problem, SNES snes, const LoadStepperOptions &o);
-// Runs the schedule. On failure writes the last converged state (if not yet written) and
+// Runs the schedule, one increment after the other: attempt, then commit or cut back
+// (load_stepper.cpp). On failure writes the last converged state (if not yet written) and
 // returns with result->completed false and the reason; the caller decides the exit code.
 // With ck.restart set, continues from that checkpoint; writes checkpoints as ck asks.
 PetscErrorCode LoadStepperRun(Problem *problem, SNES snes, OutputFile *out,

@@ -13,6 +13,7 @@
 #include "etfe/material.h"
 #include "etfe/mesh/local_mesh.h"
 #include "etfe/scene.h"
+#include "etfe/solve_diagnostics.h"
 
 namespace etfe {
 
@@ -67,24 +68,18 @@ struct Problem {
   LocalMesh mesh;
   double thickness = 0.25;  // mm
   double min_area_ratio = 1e-4;
-  double tangent_shift = 0.0;  // N/mm added to the tangent's diagonal (-membrane_tangent_shift x E h)
+  // -membrane_tangent_shift: a tangent-only diagonal shift relative to E h (dimensionless); the
+  // solver layer adds TangentShiftAbsolute() N/mm, scaled per Newton iteration when adaptive
+  // (tangent_shift.h).
+  double tangent_shift = 0.0;
   PetscBool tangent_shift_adaptive = PETSC_FALSE;  // shift x |F_k|/|F_0| (vanishes at convergence)
-  double shift_fnorm0 = 0.0;
   // E h0 [N/mm]: the film's axial stiffness, the scale relative shifts and penalties are given in.
   double AxialStiffness() const {
     double young = 0.0, nu = 0.0;
     material->ElasticConstants(&young, &nu);
     return young * thickness;
   }
-  // The shift as a pseudo-transient (proximal) term: the diagonal of the last assembled tangent
-  // (N/mm, 0 without a shift) and, over the Newton iterations of the last solve, the energy that
-  // term would dissipate, sum_k shift_k |x_{k+1} - x_k|^2 over all DOFs (N mm; the load stepper
-  // reports it per increment next to the increment's work, issue 13).
-  double shift_applied = 0.0;
-  double shift_work = 0.0;
-  // Of the last converged increment: the work done on the film by the prescribed boundary,
-  // pressure, loads and contact (= its internal work, trapezoid rule) and the shift work (N mm).
-  double increment_work = 0.0, increment_shift_work = 0.0;
+  double TangentShiftAbsolute() const { return tangent_shift * AxialStiffness(); }  // N/mm
   Stabilization stabilization;
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
@@ -118,9 +113,6 @@ struct Problem {
   // Load time at which residual and Jacobian are evaluated; set with ProblemSetLoadTime only, so
   // that the prescribed values of the iterate always belong to it.
   double time = 0.0;
-  // Size of the forces in play at the last residual (reactions and external loads) [N]: the
-  // scale for the force-balance convergence test (-load_force_rtol).
-  double force_scale = 0.0;
 
   ISLocalToGlobalMapping l2g = nullptr;  // block mapping, local node -> PETSc node id
   Vec U = nullptr;        // solution (ghosted, block size 3)
@@ -129,12 +121,9 @@ struct Problem {
   Vec reaction = nullptr; // internal force at constrained DOFs after the last residual
   Mat J = nullptr;
 
-  // What went wrong in the last evaluation (for messages): element natural id and status.
-  PetscInt bad_element = -1;
-  int bad_status = 0;
-  // While the line search evaluates trial points it handles domain errors itself, so the
-  // residual does not flag them to SNES (the flag would outlive the refused trial).
-  PetscBool in_linesearch = PETSC_FALSE;
+  // What the last evaluations and solves left for their readers (element failures, force scale,
+  // tangent shift, increment work): not part of the model.
+  SolveDiagnostics diagnostics;
 
   PetscInt NumDofsLocal() const { return 3 * mesh.NumLocal(); }
 };

@@ -142,9 +142,10 @@ PetscErrorCode IterateShape(Problem *P, SNES snes, const FormFindOptions &o, dou
                     "fits these boundaries (or the mesh folded): check the boundary positions, "
                     "the stress ratio, or refine the mesh",
                     (long long)it, SNESConvergedReasons[reason],
-                    P->bad_status ? " at element " : "",
-                    P->bad_status ? (std::to_string((long long)P->bad_element) + " (" +
-                                     KernelStatusName(P->bad_status) + ")").c_str() : "");
+                    P->diagnostics.bad_status ? " at element " : "",
+                    P->diagnostics.bad_status ? (std::to_string((long long)P->diagnostics.bad_element) + " (" +
+                                                 KernelStatusName(P->diagnostics.bad_status) + ")").c_str()
+                                              : "");
       res->failure = why;
       break;
     }
@@ -154,9 +155,9 @@ PetscErrorCode IterateShape(Problem *P, SNES snes, const FormFindOptions &o, dou
     PetscCall(VecMaxNodalNorm(P->U, &all));
     PetscCall(VecAXPY(U_total, 1.0, P->U));
     PetscCall(UpdateReference(P, P->U));
-    if (P->bad_status != KERNEL_OK) {
+    if (P->diagnostics.bad_status != KERNEL_OK) {
       res->failure = "form finding iteration " + std::to_string((long long)it) + ": element " +
-                     std::to_string((long long)P->bad_element) +
+                     std::to_string((long long)P->diagnostics.bad_element) +
                      " collapsed (the surface pinches off: no equilibrium shape spans these "
                      "boundaries, e.g. catenoid rings beyond the Goldschmidt limit)";
       break;

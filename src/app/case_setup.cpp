@@ -41,7 +41,6 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
     PetscCall(ProblemSetContact(P, contact));
   }
   if (P->observer.setup) PetscCall(P->observer.setup(P, P->observer.ctx));
-  P->tangent_shift *= P->AxialStiffness(); // relative -> N/mm
   PetscCall(CreateSolver(P, &c->snes));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, &c->lso));
   PetscCall(LoadStepperSetConvergenceTest(P, c->snes, c->lso));

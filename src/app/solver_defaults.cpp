@@ -5,6 +5,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/linesearch.h"
+#include "etfe/tangent_shift.h"
 
 namespace etfe {
 
@@ -57,7 +58,7 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(VecDuplicate(P->U, &F));
   PetscCall(SNESSetFunction(*snes, F, FormResidual, P));
   PetscCall(VecDestroy(&F));
-  PetscCall(SNESSetJacobian(*snes, P->J, P->J, FormJacobian, P));
+  PetscCall(SNESSetJacobian(*snes, P->J, P->J, FormShiftedJacobian, P));
   PetscCall(SNESSetType(*snes, SNESNEWTONLS));
   PetscCall(SNESSetTolerances(*snes, 1e-9, 1e-10, 1e-14, 30, 10000));
   PetscCall(SNESGetKSP(*snes, &ksp));

@@ -99,13 +99,13 @@ PetscErrorCode ReduceStatus(Problem *P, int status, PetscInt element) {
   int local[2] = {status, (int)element}, global[2];
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Allreduce(local, global, 1, MPI_2INT, MPI_MAXLOC, P->comm));
-  P->bad_status = global[0];
-  P->bad_element = -1;
+  P->diagnostics.bad_status = global[0];
+  P->diagnostics.bad_element = -1;
   if (global[0] != KERNEL_OK) {
     // MAXLOC returned the rank holding the worst status; fetch its element id from there.
     PetscInt id = status == global[0] ? element : -1, g;
     PetscCallMPI(MPI_Allreduce(&id, &g, 1, MPIU_INT, MPI_MAX, P->comm));
-    P->bad_element = g;
+    P->diagnostics.bad_element = g;
   }
   PetscFunctionReturn(0);
 }
@@ -229,9 +229,10 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
     PetscCall(VecRestoreArray(Fout, &fo));
   }
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ext2, 1, MPI_DOUBLE, MPI_SUM, P->comm));
-  P->force_scale = std::sqrt(ext2);
+  P->diagnostics.force_scale = std::sqrt(ext2);
   PetscCall(ReduceStatus(P, status, bad));
-  if (P->bad_status != KERNEL_OK && snes && !P->in_linesearch) PetscCall(SNESSetFunctionDomainError(snes));
+  if (P->diagnostics.bad_status != KERNEL_OK && snes && !P->diagnostics.in_linesearch)
+    PetscCall(SNESSetFunctionDomainError(snes));
   PetscFunctionReturn(0);
 }
 
@@ -314,30 +315,14 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   PetscCall(MatAssemblyBegin(Pmat, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Pmat, MAT_FINAL_ASSEMBLY));
   if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationTangent(P, Pmat));
-  // Slack starts: a shift of the tangent's diagonal (not of the residual) lets Newton take its
-  // first steps where a stress-free film has no out-of-plane stiffness; the converged answer is
-  // unchanged, the convergence rate slightly lowered while the shift matters.
-  if (P->tangent_shift > 0) {
-    double shift = P->tangent_shift;
-    if (snes && P->tangent_shift_adaptive) {
-      PetscInt it;
-      PetscReal fnorm;
-      PetscCall(SNESGetIterationNumber(snes, &it));
-      PetscCall(SNESGetFunctionNorm(snes, &fnorm));
-      if (it == 0) P->shift_fnorm0 = fnorm;
-      if (P->shift_fnorm0 > 0) shift *= std::min(1.0, (double)(fnorm / P->shift_fnorm0));
-    }
-    PetscCall(MatShift(Pmat, shift));
-    P->shift_applied = shift;
-  }
   if (J != Pmat) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   }
   PetscCall(ReduceStatus(P, status, bad));
-  PetscCheck(P->bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
+  PetscCheck(P->diagnostics.bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
              "Jacobian: element %" PetscInt_FMT ": %s (the residual at the same state passed)",
-             P->bad_element, KernelStatusName(P->bad_status));
+             P->diagnostics.bad_element, KernelStatusName(P->diagnostics.bad_status));
   PetscFunctionReturn(0);
 }
 
@@ -366,7 +351,7 @@ PetscErrorCode CheckStep(Problem *P, Vec X, Vec W, PetscBool *ok) {
   PetscCall(RestoreLocalArray(P->U_work, &Wl, &wa));
   PetscCall(RestoreLocalArray(P->F_work, &Xl, &xa));
   PetscCall(ReduceStatus(P, status, bad));
-  *ok = P->bad_status == KERNEL_OK ? PETSC_TRUE : PETSC_FALSE;
+  *ok = P->diagnostics.bad_status == KERNEL_OK ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -434,9 +419,9 @@ PetscErrorCode CommitHistory(Problem *P, Vec U) {
   }
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   PetscCall(ReduceStatus(P, status, bad));
-  PetscCheck(P->bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
-             "committing the history: element %" PetscInt_FMT ": %s", P->bad_element,
-             KernelStatusName(P->bad_status));
+  PetscCheck(P->diagnostics.bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
+             "committing the history: element %" PetscInt_FMT ": %s", P->diagnostics.bad_element,
+             KernelStatusName(P->diagnostics.bad_status));
   P->history.swap(P->history_trial);
   PetscFunctionReturn(0);
 }

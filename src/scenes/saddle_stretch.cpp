@@ -147,7 +147,7 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
     for (double x : v.slide) std::fprintf(out, ",%.8e", x);
     std::fprintf(out, ",%lld,%lld,%lld", (long long)status_all[0], (long long)status_all[1], (long long)status_all[2]);
     // The increment's work on the film and what the tangent shift would dissipate (N mm, issue 13).
-    std::fprintf(out, ",%.8e,%.8e\n", P->increment_work, P->increment_shift_work);
+    std::fprintf(out, ",%.8e,%.8e\n", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
     std::fclose(out);
   }
   PetscFunctionReturn(0);

@@ -60,12 +60,90 @@ PetscErrorCode CheckLinearResidual(SNESLineSearch ls, EtfeLineSearch *d, Vec F, 
   PetscFunctionReturn(0);
 }
 
+// The first step length: 1, capped so that no node moves more than max_update (mm) and no edge
+// changes its length by more than max_strain_update.
+PetscErrorCode InitialStepLength(SNESLineSearch ls, EtfeLineSearch *d, Vec Y, PetscReal *lambda) {
+  Problem *P = d->problem;
+  PetscFunctionBeginUser;
+  *lambda = 1.0;
+  if (d->max_update > 0.0) {
+    PetscReal ymax;
+    PetscCall(VecMaxNodalNorm(Y, &ymax));
+    if (ymax > d->max_update) {
+      *lambda = d->max_update / ymax;
+      PetscCall(PetscInfo(ls, "step capped: largest nodal update %g > %g\n", (double)ymax,
+                          (double)d->max_update));
+    }
+  }
+  if (d->max_strain_update > 0.0 && P) {
+    PetscReal g;
+    PetscCall(LargestUpdateGradient(P, Y, &g));
+    if (*lambda * g > d->max_strain_update) {
+      PetscCall(PetscInfo(ls, "step capped: largest edge strain update %g > %g\n", (double)(*lambda * g),
+                          (double)d->max_strain_update));
+      *lambda = d->max_strain_update / g;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// What backtracking found: the accepted step (lambda, |F| there) or, when none passed the
+// Armijo test, the trial with the smallest finite |F|.
+struct Backtracking {
+  PetscBool accepted = PETSC_FALSE;
+  PetscReal lambda = 1.0, gnorm = 0.0;
+  PetscReal best_lambda = -1.0, best_norm = PETSC_MAX_REAL;
+};
+
+// Halves the step from b->lambda while the trial W = X - lambda Y collapses or flips an element,
+// makes the residual G non-finite, or does not decrease |F| sufficiently (Armijo).
+PetscErrorCode Backtrack(SNESLineSearch ls, EtfeLineSearch *d, Vec X, Vec Y, Vec W, Vec G, PetscReal fnorm,
+                         Backtracking *b) {
+  Problem *P = d->problem;
+  SNES snes;
+  PetscBool ok;
+  PetscFunctionBeginUser;
+  PetscCall(SNESLineSearchGetSNES(ls, &snes));
+  for (PetscInt it = 0; it <= ls->max_its && !b->accepted; ++it, b->lambda *= 0.5) {
+    PetscCall(VecWAXPY(W, -b->lambda, Y, X));
+    if (P) {
+      PetscCall(CheckStep(P, X, W, &ok));
+      if (!ok) {
+        PetscCall(PetscInfo(ls, "lambda %g refused: element %" PetscInt_FMT " would collapse or flip\n",
+                            (double)b->lambda, P->diagnostics.bad_element));
+        continue;
+      }
+      P->diagnostics.in_linesearch = PETSC_TRUE;
+    }
+    PetscCall((*ls->ops->snesfunc)(snes, W, G));
+    if (P) {
+      P->diagnostics.in_linesearch = PETSC_FALSE;
+      if (P->diagnostics.bad_status != KERNEL_OK) continue;
+    }
+    PetscCall(VecNorm(G, NORM_2, &b->gnorm));
+    PetscViewer monitor;
+    PetscCall(SNESLineSearchGetDefaultMonitor(ls, &monitor));
+    if (monitor)
+      PetscCall(PetscViewerASCIIPrintf(monitor, "    Line search etfe: lambda %g |F| %.6e -> %.6e\n",
+                                       (double)b->lambda, (double)fnorm, (double)b->gnorm));
+    if (PetscIsInfOrNanReal(b->gnorm)) continue;
+    if (b->gnorm <= (1.0 - d->armijo * b->lambda) * fnorm) {
+      b->accepted = PETSC_TRUE;
+      break;
+    }
+    if (b->gnorm < b->best_norm) b->best_norm = b->gnorm, b->best_lambda = b->lambda;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode Apply(SNESLineSearch ls) {
   EtfeLineSearch *d = (EtfeLineSearch *)ls->data;
+  Problem *P = d->problem;
   SNES snes;
   Vec X, F, Y, W, G;
-  PetscReal fnorm, xnorm, ynorm, lambda = 1.0, gnorm = 0.0;
+  PetscReal fnorm, xnorm, ynorm;
   PetscBool ok;
+  Backtracking b;
   PetscFunctionBeginUser;
   PetscCall(SNESLineSearchGetSNES(ls, &snes));
   PetscCall(SNESLineSearchGetVecs(ls, &X, &F, &Y, &W, &G));
@@ -80,65 +158,16 @@ PetscErrorCode Apply(SNESLineSearch ls) {
       PetscFunctionReturn(0);
     }
   }
-  if (d->max_update > 0.0) {
-    PetscReal ymax;
-    PetscCall(VecMaxNodalNorm(Y, &ymax));
-    if (ymax > d->max_update) {
-      lambda = d->max_update / ymax;
-      PetscCall(PetscInfo(ls, "step capped: largest nodal update %g > %g\n", (double)ymax,
-                          (double)d->max_update));
-    }
-  }
-
-  Problem *P = d->problem;
-  if (d->max_strain_update > 0.0 && P) {
-    PetscReal g;
-    PetscCall(LargestUpdateGradient(P, Y, &g));
-    if (lambda * g > d->max_strain_update) {
-      PetscCall(PetscInfo(ls, "step capped: largest edge strain update %g > %g\n", (double)(lambda * g),
-                          (double)d->max_strain_update));
-      lambda = d->max_strain_update / g;
-    }
-  }
-  PetscReal best_lambda = -1.0, best_norm = PETSC_MAX_REAL;
-  PetscBool accepted = PETSC_FALSE;
-  for (PetscInt it = 0; it <= ls->max_its && !accepted; ++it, lambda *= 0.5) {
-    PetscCall(VecWAXPY(W, -lambda, Y, X));
-    if (P) {
-      PetscCall(CheckStep(P, X, W, &ok));
-      if (!ok) {
-        PetscCall(PetscInfo(ls, "lambda %g refused: element %" PetscInt_FMT " would collapse or flip\n",
-                            (double)lambda, P->bad_element));
-        continue;
-      }
-      P->in_linesearch = PETSC_TRUE;
-    }
-    PetscCall((*ls->ops->snesfunc)(snes, W, G));
-    if (P) {
-      P->in_linesearch = PETSC_FALSE;
-      if (P->bad_status != KERNEL_OK) continue;
-    }
-    PetscCall(VecNorm(G, NORM_2, &gnorm));
-    PetscViewer monitor;
-    PetscCall(SNESLineSearchGetDefaultMonitor(ls, &monitor));
-    if (monitor)
-      PetscCall(PetscViewerASCIIPrintf(monitor, "    Line search etfe: lambda %g |F| %.6e -> %.6e\n",
-                                       (double)lambda, (double)fnorm, (double)gnorm));
-    if (PetscIsInfOrNanReal(gnorm)) continue;
-    if (gnorm <= (1.0 - d->armijo * lambda) * fnorm) {
-      accepted = PETSC_TRUE;
-      break;
-    }
-    if (gnorm < best_norm) best_norm = gnorm, best_lambda = lambda;
-  }
-  if (!accepted) {
-    if (best_lambda > 0.0 && best_norm < fnorm) {
-      lambda = best_lambda;
-      PetscCall(VecWAXPY(W, -lambda, Y, X));
+  PetscCall(InitialStepLength(ls, d, Y, &b.lambda));
+  PetscCall(Backtrack(ls, d, X, Y, W, G, fnorm, &b));
+  if (!b.accepted) {
+    if (b.best_lambda > 0.0 && b.best_norm < fnorm) {
+      b.lambda = b.best_lambda;
+      PetscCall(VecWAXPY(W, -b.lambda, Y, X));
       PetscCall((*ls->ops->snesfunc)(snes, W, G));
-      PetscCall(VecNorm(G, NORM_2, &gnorm));
+      PetscCall(VecNorm(G, NORM_2, &b.gnorm));
     } else {
-      PetscCall(SNESLineSearchSetReason(ls, (P && P->bad_status != KERNEL_OK)
+      PetscCall(SNESLineSearchSetReason(ls, (P && P->diagnostics.bad_status != KERNEL_OK)
                                                 ? SNES_LINESEARCH_FAILED_DOMAIN
                                                 : SNES_LINESEARCH_FAILED_REDUCT));
       PetscFunctionReturn(0);
@@ -146,10 +175,10 @@ PetscErrorCode Apply(SNESLineSearch ls) {
   }
   PetscCall(VecCopy(W, X));
   PetscCall(VecCopy(G, F));
-  PetscCall(SNESLineSearchSetLambda(ls, lambda));
+  PetscCall(SNESLineSearchSetLambda(ls, b.lambda));
   PetscCall(VecNorm(X, NORM_2, &xnorm));
   PetscCall(VecNorm(Y, NORM_2, &ynorm));
-  PetscCall(SNESLineSearchSetNorms(ls, xnorm, gnorm, lambda * ynorm));
+  PetscCall(SNESLineSearchSetNorms(ls, xnorm, b.gnorm, b.lambda * ynorm));
   PetscFunctionReturn(0);
 }
 

@@ -1,8 +1,20 @@
-// Load stepping (see load_stepper.h). Committed state = (U, material history, load time); a
-// failed Newton solve restores U from the committed copy (history is untouched until commit),
-// so a cut-back repeats the increment from exactly the state it started from.
-#include <cmath>
+// Load stepping (see load_stepper.h): a time loop over the load time, as PETSc's TSSolve.
+// Each increment is
+//   NextIncrement     step-size control: the next increment, ending no later than its stage;
+//   AttemptIncrement  predictor and Newton solve from the committed state (it commits nothing,
+//                     so the same increment can be attempted again);
+// and then, converged:
+//   CommitIncrement   material history, contact states, work, U and load time committed;
+//   GrowIncrement     step-size control: a cut increment grows again after easy ones;
+//   ReportIncrement, WriteIncrementResults  progress line and monitors; output and checkpoints;
+// or failed:
+//   IncrementFailure  why (SNES's reason, the element or node at fault, the way out);
+//   CutBack           (U back at the committed state) the increment halved, the run stopped
+//                     once -load_max_cutbacks halvings are spent.
+// Committed state = (U, material history, contact states, load time): a failed attempt leaves
+// history and contact untouched, so a cut-back repeats the increment from exactly its start.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -10,6 +22,7 @@
 #include "etfe/contact.h"
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
+#include "etfe/tangent_shift.h"
 
 namespace etfe {
 
@@ -94,112 +107,13 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
 
 namespace {
 
-struct ForceTest {
-  Problem *problem;
-  PetscReal rtol;
-  PetscReal roundoff;        // factor of the membrane round-off floor (0: off)
-  PetscReal floor = -1.0;    // N, computed at the first test
-};
-
-// eps |x|max E h0 sqrt(n): a force from element edges x_a - x_b of coordinates of size |x|
-// carries a strain round-off eps |x| / l_e, i.e. eps |x| E h0 per element (l_e cancels), summed
-// in 2-norm over n elements. Measured floors of |R| (DD1511 increment 1): 1.1e-8 N at 10^5,
-// 3.5e-8 at 10^6 triangles; this estimate gives 1.4e-8 and 4.4e-8.
-PetscErrorCode MembraneRoundoffFloor(Problem *P, PetscReal *floor) {
-  PetscReal xmax = 0.0;
-  PetscFunctionBeginUser;
-  for (double x : P->mesh.X) xmax = std::max(xmax, (PetscReal)std::fabs(x));
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &xmax, 1, MPIU_REAL, MPIU_MAX, P->comm));
-  *floor = PETSC_MACHINE_EPSILON * xmax * P->AxialStiffness() * std::sqrt((double)P->mesh.num_elements_global);
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, PetscReal ynorm,
-                                     PetscReal fnorm, SNESConvergedReason *reason, void *ctx) {
-  auto *t = (ForceTest *)ctx;
-  PetscFunctionBeginUser;
-  PetscCall(SNESConvergedDefault(snes, it, xnorm, ynorm, fnorm, reason, nullptr));
-  if (*reason != SNES_CONVERGED_ITERATING || it == 0) PetscFunctionReturn(0);
-  Problem *P = t->problem;
-  PetscReal tol = t->rtol * P->force_scale;
-  if (P->contact) {
-    // A penalty force k w is computed from displacements of size |u|, so it carries a
-    // round-off of about eps k |u| per pair: no Newton iterate can balance below that.
-    Vec X;
-    PetscReal umax;
-    PetscCall(SNESGetSolution(snes, &X));
-    PetscCall(VecNorm(X, NORM_INFINITY, &umax));
-    const double k = std::max(P->contact->params.kn, P->contact->params.kt) * P->contact->k_scale_max;
-    const double floor = PenaltyRoundoffFloor(k, umax, P->contact->num_global);
-    // Accepting on a floor that is a visible part of the forces would report a wrong answer as
-    // converged; ContactCreate refuses most such penalties up front, this catches the rest.
-    PetscCheck(!(fnorm > tol && fnorm <= floor && floor > kPenaltyFloorMax * P->force_scale), P->comm,
-               PETSC_ERR_ARG_OUTOFRANGE,
-               "-contact_kn %g / -contact_kt %g: the round-off of the penalty forces (%.3g N) is %.2g of the forces "
-               "balanced (%.3g N), above the force tolerance of the test (%g of them), so this answer cannot be "
-               "checked; the largest usable penalty here is ~%.1e N/mm",
-               P->contact->params.kn, P->contact->params.kt, floor, floor / P->force_scale, P->force_scale,
-               kPenaltyFloorMax, k * kPenaltyFloorMax * P->force_scale / floor);
-    tol = std::max(tol, floor);
-  }
-  if (t->roundoff > 0) {
-    if (t->floor < 0) PetscCall(MembraneRoundoffFloor(P, &t->floor));
-    tol = std::max(tol, t->roundoff * t->floor);
-  }
-  if (fnorm <= tol) *reason = SNES_CONVERGED_FNORM_ABS;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode DestroyForceTest(void *ctx) {
-  delete (ForceTest *)ctx;
-  return 0;
-}
-
-// The tangent shift read as a pseudo-transient (proximal-point) term: Newton's step from x_k
-// solves (K + s_k I) dx = -R, the step of a system with a viscous force s_k (x - x_k) that is
-// gone at convergence. The energy it would dissipate in a solve is sum_k s_k |x_{k+1} - x_k|^2,
-// with s_k the diagonal of the tangent the step was solved with and x_{k+1} the iterate the line
-// search accepted (all DOFs; the constrained ones do not move in a solve). The predictor's extra
-// shift is not in it: the predictor only chooses where Newton starts.
-struct ShiftWorkMonitor {
-  Problem *problem;
-  Vec x_prev = nullptr;
-};
-
-PetscErrorCode ShiftWorkMonitorCall(SNES snes, PetscInt it, PetscReal, void *ctx) {
-  auto *m = (ShiftWorkMonitor *)ctx;
-  Problem *P = m->problem;
-  Vec X;
-  PetscFunctionBeginUser;
-  PetscCall(SNESGetSolution(snes, &X));
-  if (!m->x_prev) PetscCall(VecDuplicate(X, &m->x_prev));
-  if (it == 0) {
-    P->shift_work = 0.0;
-  } else if (P->shift_applied > 0) {
-    PetscReal dx;
-    PetscCall(VecAXPY(m->x_prev, -1.0, X));
-    PetscCall(VecNorm(m->x_prev, NORM_2, &dx));
-    P->shift_work += P->shift_applied * dx * dx;
-  }
-  PetscCall(VecCopy(X, m->x_prev));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode DestroyShiftWorkMonitor(void **ctx) {
-  auto *m = (ShiftWorkMonitor *)*ctx;
-  PetscFunctionBeginUser;
-  PetscCall(VecDestroy(&m->x_prev));
-  delete m;
-  *ctx = nullptr;
-  PetscFunctionReturn(0);
-}
-
 // U = U_n + dU_c + d with K(U_n) d = -dR/de, where dR/de is the change of the residual when the
 // prescribed values and loads move from t to t_new with the free DOFs held (a one-sided
 // difference with a small fraction e of the increment: K_fc dU_c plus the load change). The
 // tangent is taken at t before the load time moves on, so the time only goes forward; the
-// caller sets t_new on U.
-PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double t_new, double shift, Vec U) {
+// caller sets t_new on U. The tangent is the solve's (FormShiftedJacobian) with extra_shift
+// (relative to E h, -load_tangent_predictor_shift) more on its diagonal.
+PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double t_new, double extra_shift, Vec U) {
   const double e = 1e-6;
   Vec R0, R1, d;
   KSP ksp;
@@ -211,8 +125,8 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
   PetscCall(VecCopy(Un, U));
   PetscCall(ProblemSetLoadTime(P, t, U));
   PetscCall(FormResidual(nullptr, U, R0, P));
-  PetscCall(FormJacobian(snes, U, P->J, P->J, P));
-  if (shift > 0) PetscCall(MatShift(P->J, shift * P->AxialStiffness()));
+  PetscCall(FormShiftedJacobian(snes, U, P->J, P->J, P));
+  if (extra_shift > 0) PetscCall(MatShift(P->J, extra_shift * P->AxialStiffness()));
   PetscCall(ProblemSetLoadTime(P, t + e * (t_new - t), U));
   PetscCall(FormResidual(nullptr, U, R1, P));
   PetscCall(VecAXPY(R1, -1.0, R0));
@@ -277,80 +191,6 @@ std::string StageDescription(const SceneSpec &scene, double t) {
   return d.empty() ? "held" : d;
 }
 
-// One Newton solve of the increment to t_new from the predicted P->U, stabilized as o asks: at
-// once (always) or after a failed plain solve, from the committed state again (failure). Returns
-// the last solve's reason and function norm and all its Newton iterations; stab_work and
-// stab_force are the stabilizing force's work and largest nodal size (0 unless stabilized).
-struct IncrementSolve {
-  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
-  PetscInt its = 0;
-  PetscReal fnorm = 0.0;
-  bool stabilized = false;
-  double stab_work = 0.0, stab_force = 0.0;
-  PetscInt passes = 0;
-};
-
-PetscErrorCode SolveIncrement(Problem *P, SNES snes, const LoadStepperOptions &o, Vec U_committed, double t_new,
-                              IncrementSolve *r) {
-  PetscInt its;
-  PetscFunctionBeginUser;
-  auto solve = [&]() -> PetscErrorCode {
-    PetscFunctionBeginUser;
-    PetscCall(SNESSolve(snes, nullptr, P->U));
-    PetscCall(SNESGetConvergedReason(snes, &r->reason));
-    PetscCall(SNESGetIterationNumber(snes, &its));
-    PetscCall(SNESGetFunctionNorm(snes, &r->fnorm));
-    r->its += its;
-    PetscFunctionReturn(0);
-  };
-  const bool always = o.stabilize_when == 2;
-  if (!always) PetscCall(solve());
-  if (always || (r->reason <= 0 && o.stabilize_when == 1)) {
-    if (!always) {
-      PetscCall(VecCopy(U_committed, P->U));
-      PetscCall(ProblemSetLoadTime(P, t_new, P->U));
-    }
-    r->stabilized = true;
-    PetscCall(StabilizationBegin(P, o.stabilize, U_committed));
-    PetscCall(solve());
-    Vec dU;
-    PetscCall(VecDuplicate(P->U, &dU));
-    for (; r->reason > 0 && o.stabilize_rtol > 0 && r->passes < o.stabilize_passes; ++r->passes) {
-      PetscReal size;
-      PetscCall(VecWAXPY(dU, -1.0, P->stabilization.anchor, P->U));
-      PetscCall(VecPointwiseMult(dU, dU, P->stabilization.diagonal));
-      PetscCall(VecNorm(dU, NORM_2, &size));
-      if (size <= o.stabilize_rtol * P->force_scale) break;
-      PetscCall(StabilizationMoveAnchor(P, P->U));
-      PetscCall(solve());
-    }
-    PetscCall(VecDestroy(&dU));
-    if (r->reason > 0) PetscCall(StabilizationMeasure(P, P->U, &r->stab_work, &r->stab_force));
-    StabilizationEnd(P);
-  }
-  PetscFunctionReturn(0);
-}
-
-// Once per run: the first increment whose committed plastic strain passes the limit.
-PetscErrorCode WarnPlasticStrain(Problem *P, const LoadStepperOptions &o, PetscInt step, double t, bool *warned) {
-  double ep, x[3];
-  PetscInt element;
-  PetscFunctionBeginUser;
-  if (*warned || o.plastic_strain_limit <= 0 || !P->material->HasPlasticStrain()) PetscFunctionReturn(0);
-  PetscCall(LargestPlasticStrain(P, &ep, &element, x));
-  if (ep <= o.plastic_strain_limit) PetscFunctionReturn(0);
-  *warned = true;
-  PetscCall(PetscPrintf(P->comm,
-                        "etfe: WARNING increment %" PetscInt_FMT " (load time %.5f): element %" PetscInt_FMT
-                        " at (%.0f, %.0f, %.0f) mm has an equivalent plastic strain of %.3f, beyond "
-                        "-load_plastic_strain_limit %g: the small-strain yield law (additive split of the "
-                        "Green-Lagrange strain) no longer describes the film there. It is drawn far past its yield "
-                        "stress: look for a support that holds the film next to a drawn edge, or smaller drawing "
-                        "values\n",
-                        step, t, element, x[0], x[1], x[2], ep, (double)o.plastic_strain_limit));
-  PetscFunctionReturn(0);
-}
-
 std::string Clock(double seconds) {
   const long s = (long)std::llround(std::max(0.0, seconds));
   char buf[32];
@@ -358,15 +198,127 @@ std::string Clock(double seconds) {
   return buf;
 }
 
+constexpr double kTimeEps = 1e-12;  // load times closer than this are the same
+
+// The load history between increments: the committed state (what a checkpoint saves: load time,
+// increment sizes, counters, the last two converged U) and the run's accounting.
+struct LoadStepper {
+  Problem *P;
+  SNES snes;
+  OutputFile *out;
+  const LoadStepperOptions &o;
+  const CheckpointOptions &ck;
+  LoadStepperResult *res;
+  // The schedule: stages of unit load time, per_stage nominal increments in each.
+  int nstages;
+  double t_end;
+  PetscInt per_stage;
+  double dt_nominal;
+  // Committed: load time, the size of the next increment and of the last converged one.
+  double t = 0.0, dt, dt_last = 0.0;
+  PetscInt step = 0, easy = 0;  // easy: easy increments in a row
+  // Extrapolate only from converged states: a scene's initial guess is not one.
+  PetscInt converged_states;
+  Vec U_committed = nullptr, U_previous = nullptr;  // converged states n and n-1
+  // The film's internal forces at U_committed (committed history), and scratch for the work.
+  Vec Fint_committed = nullptr, Fint = nullptr, dU = nullptr;
+  Vec F = nullptr;  // SNES's residual (not owned), for failure messages
+  double work_total = 0.0, shift_work_total = 0.0;
+  double stab_work_total = 0.0, stab_force_max = 0.0;  // of the stabilized increments
+  bool strain_warned = false;  // -load_plastic_strain_limit passed (warned once)
+  // Progress lines: cut-backs shown so far, pair lift-offs since the last line.
+  PetscInt cutbacks_printed = 0, lifted_since_print = 0;
+  PetscLogDouble t0 = 0.0;
+  // SNES's own tolerances, restored at the end (-load_max_it lowers max_it per increment).
+  PetscReal snes_atol = 0.0, snes_rtol = 0.0, snes_stol = 0.0;
+  PetscInt snes_max_it = 0, snes_max_f = 0;
+
+  LoadStepper(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o, const CheckpointOptions &ck,
+              LoadStepperResult *res)
+      : P(P), snes(snes), out(out), o(o), ck(ck), res(res), nstages(P->scene.NumStages()), t_end(nstages),
+        per_stage((o.increments + nstages - 1) / nstages), dt_nominal(1.0 / per_stage), dt(dt_nominal),
+        converged_states(P->has_initial_guess ? 0 : 1) {}
+  bool Finished() const { return t >= t_end - kTimeEps; }
+  bool AtStageEnd() const { return std::fabs(t - std::round(t)) < kTimeEps; }
+};
+
+// One attempt at the increment from the committed load time t to t_new, and how its Newton solve
+// ended. An attempt changes only the iterate (P->U, at load time t_new) and the trial states the
+// residual leaves, never the committed state, so it can be made again for the same increment.
+struct Increment {
+  double t = 0.0, dt_try = 0.0, t_new = 0.0;
+  PetscInt max_it = 0;  // Newton iteration limit of this attempt
+  PetscLogDouble start = 0.0;
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  PetscInt its = 0;
+  PetscReal fnorm = 0.0;
+  // Stabilized (-load_stabilize_when): the stabilizing force's work and largest nodal size.
+  bool stabilized = false;
+  double stab_work = 0.0, stab_force = 0.0;
+  bool Converged() const { return reason > 0; }
+};
+
+// Why an increment's Newton solve failed, with what it usually means and the way out.
+struct IncrementFailure {
+  SNESConvergedReason reason;
+  PetscInt its;
+  PetscInt worst_node;  // scene id of the largest residual entry, and its size
+  double worst;
+  PetscInt bad_element;  // the last element problem (SolveDiagnostics)
+  int bad_status;
+  bool stiff_penalty;  // contact penalties far stiffer than the film
+  bool load_max_it;    // the attempt's iteration limit was -load_max_it, not -snes_max_it
+
+  std::string Message() const {
+    char why[512];
+    const char *name = SNESConvergedReasons[reason];
+    if (reason == SNES_DIVERGED_LINE_SEARCH && bad_status == KERNEL_OK)
+      std::snprintf(why, sizeof why,
+                    "%s (no step along the Newton direction reduced the residual; largest residual %.3e at node %lld%s)",
+                    name, worst, (long long)worst_node,
+                    stiff_penalty ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt"
+                                  : "");
+    else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
+      std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual %.3e at node %lld)",
+                    name, (long long)bad_element, KernelStatusName(bad_status), worst, (long long)worst_node);
+    else if (reason == SNES_DIVERGED_LINEAR_SOLVE)
+      std::snprintf(why, sizeof why,
+                    "%s (the linear solver failed: a singular tangent, e.g. an unsupported rigid motion, or MUMPS out "
+                    "of workspace with stiff penalties: -mat_mumps_icntl_14 400, -ksp_error_if_not_converged shows "
+                    "its error; largest residual %.3e at node %lld)",
+                    name, worst, (long long)worst_node);
+    else
+      std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at node %lld%s)", name,
+                    (long long)its, worst, (long long)worst_node,
+                    reason == SNES_DIVERGED_MAX_IT && load_max_it ? "; the limit after the first increment is -load_max_it"
+                                                                  : "");
+    return why;
+  }
+};
+
+// Collective: gathers what IncrementFailure needs after a failed attempt (F: its last residual).
+PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, IncrementFailure *f) {
+  Problem *P = s.P;
+  PetscFunctionBeginUser;
+  f->reason = inc.reason;
+  f->its = inc.its;
+  PetscCall(WorstNode(P, s.F, &f->worst_node, &f->worst));
+  f->bad_element = P->diagnostics.bad_element;
+  f->bad_status = P->diagnostics.bad_status;
+  f->stiff_penalty = P->contact && P->contact->params.kn > 1e5 * P->AxialStiffness();
+  f->load_max_it = inc.max_it < s.snes_max_it;
+  PetscFunctionReturn(0);
+}
+
 // One line per increment: where the load history is (step k/N, %, the stage's meaning), how the
 // increment went (Newton iterations, residual, contact states inline) and the time to the end.
-PetscErrorCode PrintProgress(Problem *P, PetscInt step, PetscInt nominal, double t, double t_end, PetscInt its,
-                             PetscReal fnorm, const PetscInt counts[4], double increment_s, double elapsed_s,
-                             PetscInt cutbacks) {
+PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const PetscInt counts[4], double now) {
+  Problem *P = s.P;
+  const SolveDiagnostics &d = P->diagnostics;
+  const double t = s.t;
   PetscFunctionBeginUser;
-  const int nstages = P->scene.NumStages();
-  const int stage = std::min((int)std::floor(t - 1e-9), nstages - 1) + 1;
-  const double done = t / t_end;
+  const int stage = std::min((int)std::floor(t - 1e-9), s.nstages - 1) + 1;
+  const double done = t / s.t_end, elapsed_s = now - s.t0;
   std::string contact;
   if (P->contact) {
     char buf[128], lifted[64] = "";
@@ -376,231 +328,323 @@ PetscErrorCode PrintProgress(Problem *P, PetscInt step, PetscInt nominal, double
     contact = buf;
   }
   char cut[48] = "";
-  if (cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)cutbacks);
+  if (s.res->cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)s.res->cutbacks);
   // With a tangent shift: the increment's work on the film and what the shift would dissipate.
-  if (P->tangent_shift > 0) {
+  if (P->TangentShiftAbsolute() > 0) {
     char buf[128];
-    std::snprintf(buf, sizeof buf, "  work %.3e N mm shift %.1e (%.1e of it)", P->increment_work,
-                  P->increment_shift_work,
-                  P->increment_work != 0 ? P->increment_shift_work / std::fabs(P->increment_work) : 0.0);
+    std::snprintf(buf, sizeof buf, "  work %.3e N mm shift %.1e (%.1e of it)", d.increment_work,
+                  d.increment_shift_work,
+                  d.increment_work != 0 ? d.increment_shift_work / std::fabs(d.increment_work) : 0.0);
     contact += buf;
   }
   PetscCall(PetscPrintf(P->comm,
                         "step %5" PetscInt_FMT "/%" PetscInt_FMT " %5.1f%%  t %.5f  stage %d/%d %s  newton %2" PetscInt_FMT
                         "  |R| %.2e%s%s  %.2f s  elapsed %s  ETA %s\n",
-                        step, nominal, 100.0 * done, t, stage, nstages, StageDescription(P->scene, t).c_str(), its,
-                        (double)fnorm, contact.c_str(), cut, increment_s, Clock(elapsed_s).c_str(),
+                        s.step, s.per_stage * s.nstages, 100.0 * done, t, stage, s.nstages,
+                        StageDescription(P->scene, t).c_str(), inc.its, (double)inc.fnorm, contact.c_str(), cut,
+                        now - inc.start, Clock(elapsed_s).c_str(),
                         done > 0 ? Clock(elapsed_s * (1.0 - done) / done).c_str() : "-"));
   PetscFunctionReturn(0);
 }
 
-} // namespace
-
-PetscErrorCode LoadStepperSetConvergenceTest(Problem *P, SNES snes, const LoadStepperOptions &o) {
+PetscErrorCode WriteCheckpoint(const LoadStepper &s) {
+  StepperState st;
   PetscFunctionBeginUser;
-  PetscCall(SNESSetConvergenceTest(snes, ConvergedForceBalance, new ForceTest{P, o.force_rtol, o.force_roundoff},
-                                   DestroyForceTest));
-  PetscCall(SNESMonitorSet(snes, ShiftWorkMonitorCall, new ShiftWorkMonitor{P}, DestroyShiftWorkMonitor));
+  st.t = s.t, st.dt = s.dt, st.dt_last = s.dt_last, st.step = s.step, st.converged_states = s.converged_states;
+  st.easy = s.easy, st.cutbacks = s.res->cutbacks, st.newton = s.res->newton_iterations;
+  PetscCall(CheckpointWrite(s.P, s.ck.file, st, s.U_committed, s.U_previous, OutputRunId(s.out)));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o,
-                              const CheckpointOptions &ck, LoadStepperResult *res) {
-  const int nstages = P->scene.NumStages();
-  const double t_end = nstages;
-  const PetscInt per_stage = (o.increments + nstages - 1) / nstages;
-  const double dt_nominal = 1.0 / per_stage, eps = 1e-12;
-  double t = 0.0, dt = dt_nominal, dt_last = 0.0;
-  // Extrapolate only from converged states: a scene's initial guess is not one.
-  PetscInt converged_states = P->has_initial_guess ? 0 : 1;
-  PetscInt step = 0, easy = 0, cutbacks_printed = 0, lifted_since_print = 0;
-  Vec U_committed, U_previous, F, Fint, Fint_committed, dU;
-  bool strain_warned = false;
-  double work_total = 0.0, shift_work_total = 0.0, stab_work_total = 0.0, stab_force_max = 0.0;
-  PetscLogDouble t0, t_inc;
-  PetscReal snes_atol, snes_rtol, snes_stol;
-  PetscInt snes_max_it, snes_max_f;
+PetscErrorCode RestartFromCheckpoint(LoadStepper *s) {
+  StepperState st;
   PetscFunctionBeginUser;
-  PetscCall(PetscTime(&t0));
-  PetscCall(SNESGetTolerances(snes, &snes_atol, &snes_rtol, &snes_stol, &snes_max_it, &snes_max_f));
-  PetscCall(VecDuplicate(P->U, &U_committed));
-  PetscCall(VecDuplicate(P->U, &U_previous));
+  PetscCall(CheckpointRead(s->P, s->ck.restart, &st, s->U_committed, s->U_previous));
+  s->t = st.t, s->dt = st.dt, s->dt_last = st.dt_last;
+  s->step = st.step, s->converged_states = st.converged_states, s->easy = st.easy;
+  s->res->cutbacks = st.cutbacks, s->res->newton_iterations = st.newton;
+  PetscCall(VecCopy(s->U_committed, s->P->U));
+  PetscCall(PetscPrintf(s->P->comm, "restart: from %s at increment %" PetscInt_FMT ", load time %g\n", s->ck.restart,
+                        s->step, s->t));
+  PetscFunctionReturn(0);
+}
+
+// The start state (load time 0, or the checkpoint's), written as step 0 when it is one.
+PetscErrorCode LoadStepperBegin(LoadStepper *s) {
+  Problem *P = s->P;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&s->t0));
+  PetscCall(SNESGetTolerances(s->snes, &s->snes_atol, &s->snes_rtol, &s->snes_stol, &s->snes_max_it, &s->snes_max_f));
+  PetscCall(VecDuplicate(P->U, &s->U_committed));
+  PetscCall(VecDuplicate(P->U, &s->U_previous));
   PetscCall(ProblemSetLoadTime(P, 0.0, P->U));
-  PetscCall(VecCopy(P->U, U_committed));
-  PetscCall(VecCopy(P->U, U_previous));
-  PetscCall(SNESGetFunction(snes, &F, nullptr, nullptr));
+  PetscCall(VecCopy(P->U, s->U_committed));
+  PetscCall(VecCopy(P->U, s->U_previous));
+  PetscCall(SNESGetFunction(s->snes, &s->F, nullptr, nullptr));
   // Reactions of the initial state, then the initial state itself as step 0. A scene's initial
   // guess is not an equilibrium state: only a true start state is step 0.
   PetscCall(ProblemUpdateReactions(P, P->U));
-  if (!P->has_initial_guess && !ck.restart[0]) PetscCall(OutputWriteStep(out, P, P->U, 0, 0.0));
-  if (ck.restart[0]) {
-    StepperState st;
-    PetscCall(CheckpointRead(P, ck.restart, &st, U_committed, U_previous));
-    t = st.t, dt = st.dt, dt_last = st.dt_last;
-    step = st.step, converged_states = st.converged_states, easy = st.easy;
-    res->cutbacks = st.cutbacks, res->newton_iterations = st.newton;
-    PetscCall(VecCopy(U_committed, P->U));
-    PetscCall(PetscPrintf(P->comm, "restart: from %s at increment %" PetscInt_FMT ", load time %g\n", ck.restart,
-                          step, t));
+  if (!P->has_initial_guess && !s->ck.restart[0]) PetscCall(OutputWriteStep(s->out, P, P->U, 0, 0.0));
+  if (s->ck.restart[0]) PetscCall(RestartFromCheckpoint(s));
+  // The work of an increment is the trapezoid of the internal forces along its displacement (a
+  // restart recomputes them bit for bit from the checkpoint's U and history).
+  PetscCall(VecDuplicate(P->U, &s->Fint));
+  PetscCall(VecDuplicate(P->U, &s->Fint_committed));
+  PetscCall(VecDuplicate(P->U, &s->dU));
+  PetscCall(FormInternalForce(P, s->U_committed, s->Fint_committed));
+  s->res->completed = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+// Step-size control, forward: the next increment is dt long but ends no later than its stage.
+Increment NextIncrement(const LoadStepper &s) {
+  Increment inc;
+  const double stage_end = std::floor(s.t + kTimeEps) + 1.0;
+  inc.t = s.t;
+  inc.dt_try = std::min(s.dt, stage_end - s.t);
+  inc.t_new = (stage_end - (s.t + inc.dt_try) < kTimeEps) ? stage_end : s.t + inc.dt_try;
+  return inc;
+}
+
+// Where Newton starts: the committed state, extrapolated along the last increment or moved by
+// the tangent predictor.
+PetscErrorCode PredictIncrement(LoadStepper *s, const Increment &inc) {
+  Problem *P = s->P;
+  const LoadStepperOptions &o = s->o;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(s->U_committed, P->U));
+  // Extrapolate only within a stage: at a stage end the load path turns (loading -> unloading).
+  // (increments never cross a stage end, so away from one the last increment is in this stage)
+  const bool same_stage = std::fabs(s->t - std::round(s->t)) > kTimeEps;
+  // Within a stage the extrapolation carries the path's curvature; where there is none to
+  // extrapolate (first increment, a new stage) the tangent predictor takes the jump.
+  if (o.extrapolate && s->dt_last > 0.0 && s->converged_states >= 2 && same_stage) {
+    const double ratio = (inc.t_new - inc.t) / s->dt_last;
+    PetscCall(VecAXPBYPCZ(P->U, ratio, -ratio, 1.0, s->U_committed, s->U_previous));
+  } else if (o.tangent_predictor && s->converged_states >= 1)
+    PetscCall(TangentPredictor(P, s->snes, s->U_committed, inc.t, inc.t_new, o.tangent_predictor_shift, P->U));
+  PetscFunctionReturn(0);
+}
+
+// One Newton solve from P->U; its iterations add to the increment's and the run's.
+PetscErrorCode NewtonSolve(LoadStepper *s, Increment *inc) {
+  PetscInt its;
+  PetscFunctionBeginUser;
+  PetscCall(SNESSolve(s->snes, nullptr, s->P->U));
+  PetscCall(SNESGetConvergedReason(s->snes, &inc->reason));
+  PetscCall(SNESGetIterationNumber(s->snes, &its));
+  PetscCall(SNESGetFunctionNorm(s->snes, &inc->fnorm));
+  inc->its += its;
+  s->res->newton_iterations += its;
+  PetscFunctionReturn(0);
+}
+
+// The increment solved with the viscous stabilization (stabilization.cpp) anchored at the
+// committed state: from the committed state again after a failed plain solve (restart), else
+// from the prediction. Proximal passes move the anchor to the answer and solve again until the
+// stabilizing force is at most -load_stabilize_rtol of the reactions and loads.
+PetscErrorCode StabilizedSolve(LoadStepper *s, Increment *inc, bool restart) {
+  Problem *P = s->P;
+  const LoadStepperOptions &o = s->o;
+  PetscFunctionBeginUser;
+  if (restart) {
+    PetscCall(VecCopy(s->U_committed, P->U));
+    PetscCall(ProblemSetLoadTime(P, inc->t_new, P->U));
   }
-  // The film's internal forces at the committed state (committed history): the work of an
-  // increment is the trapezoid of them along its displacement (a restart recomputes them bit for
-  // bit from the checkpoint's U and history).
-  PetscCall(VecDuplicate(P->U, &Fint));
-  PetscCall(VecDuplicate(P->U, &Fint_committed));
-  PetscCall(VecDuplicate(P->U, &dU));
-  PetscCall(FormInternalForce(P, U_committed, Fint_committed));
-  auto checkpoint = [&]() -> PetscErrorCode {
-    StepperState st;
-    st.t = t, st.dt = dt, st.dt_last = dt_last, st.step = step, st.converged_states = converged_states;
-    st.easy = easy, st.cutbacks = res->cutbacks, st.newton = res->newton_iterations;
-    return CheckpointWrite(P, ck.file, st, U_committed, U_previous, OutputRunId(out));
-  };
-  res->completed = PETSC_FALSE;
-  while (t < t_end - eps) {
-    const double stage_end = std::floor(t + eps) + 1.0;
-    const double dt_try = std::min(dt, stage_end - t);
-    const double t_new = (stage_end - (t + dt_try) < eps) ? stage_end : t + dt_try;
-    PetscCall(PetscTime(&t_inc));
-    // Predictor: extrapolate the last converged increment, then impose the new prescribed values.
-    PetscCall(VecCopy(U_committed, P->U));
-    // ... and only within a stage: at a stage end the load path turns (loading -> unloading).
-    // (increments never cross a stage end, so away from one the last increment is in this stage)
-    const bool same_stage = std::fabs(t - std::round(t)) > eps;
-    // Within a stage the extrapolation carries the path's curvature; where there is none to
-    // extrapolate (first increment, a new stage) the tangent predictor takes the jump.
-    if (o.extrapolate && dt_last > 0.0 && converged_states >= 2 && same_stage)
-      PetscCall(VecAXPBYPCZ(P->U, (t_new - t) / dt_last, -(t_new - t) / dt_last, 1.0,
-                            U_committed, U_previous));
-    else if (o.tangent_predictor && converged_states >= 1)
-      PetscCall(TangentPredictor(P, snes, U_committed, t, t_new, o.tangent_predictor_shift, P->U));
-    PetscCall(ProblemSetLoadTime(P, t_new, P->U));
-    const PetscInt max_it = (step > 0 && o.max_it > 0) ? std::min(o.max_it, snes_max_it) : snes_max_it;
-    PetscCall(SNESSetTolerances(snes, snes_atol, snes_rtol, snes_stol, max_it, snes_max_f));
-    IncrementSolve solved;
-    PetscCall(SolveIncrement(P, snes, o, U_committed, t_new, &solved));
-    const SNESConvergedReason reason = solved.reason;
-    const PetscInt its = solved.its;
-    const PetscReal fnorm = solved.fnorm;
-    res->newton_iterations += its;
-    if (reason > 0 && solved.stabilized) {
-      ++res->stabilized;
-      stab_work_total += solved.stab_work;
-      stab_force_max = std::max(stab_force_max, solved.stab_force);
-    }
-    if (reason > 0) {
-      PetscCall(CommitHistory(P, P->U));
-      PetscCall(WarnPlasticStrain(P, o, step + 1, t_new, &strain_warned));
-      {
-        PetscScalar w;
-        PetscCall(FormInternalForce(P, P->U, Fint));
-        PetscCall(VecAXPY(Fint_committed, 1.0, Fint));
-        PetscCall(VecWAXPY(dU, -1.0, U_committed, P->U));
-        PetscCall(VecDot(Fint_committed, dU, &w));
-        P->increment_work = 0.5 * PetscRealPart(w);
-        P->increment_shift_work = P->shift_work;
-        work_total += P->increment_work;
-        shift_work_total += P->shift_work;
-        PetscCall(VecCopy(Fint, Fint_committed));
-      }
-      PetscInt contact_counts[4] = {0, 0, 0, 0};
-      if (P->contact) PetscCall(ContactCommit(P, contact_counts));
-      // Pairs that lift off between two printed lines are counted, not each printed.
-      lifted_since_print += contact_counts[3];
-      contact_counts[3] = lifted_since_print;
-      PetscCall(VecCopy(U_committed, U_previous));
-      PetscCall(VecCopy(P->U, U_committed));
-      dt_last = t_new - t;
-      t = t_new;
-      ++converged_states;
-      ++step;
-      PetscLogDouble now;
-      PetscCall(PetscTime(&now));
-      const bool stage_end_reached = std::fabs(t - std::round(t)) < eps;
-      if (o.monitor > 0 && (step % o.monitor == 0 || step == 1 || stage_end_reached || t >= t_end - eps ||
-                            res->cutbacks != cutbacks_printed)) {
-        cutbacks_printed = res->cutbacks;
-        PetscCall(PrintProgress(P, step, per_stage * nstages, t, t_end, its, fnorm, contact_counts, now - t_inc,
-                                now - t0, res->cutbacks));
-        lifted_since_print = 0;
-      }
-      if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, step, t, o.monitor));
-      if (P->contact && out) PetscCall(ContactWriteProbes(P, OutputStem(out), step, t));
-      const bool last = t >= t_end - eps;
-      const bool stop = o.stop_after >= 0 && step >= o.stop_after;
-      if (out && (last || stop || step % OutputEvery(out) == 0))
-        PetscCall(OutputWriteStep(out, P, P->U, step, t));
-      if (its <= o.easy_iterations && dt < dt_nominal && ++easy >= o.grow_after) {
-        dt = std::min(2.0 * dt, dt_nominal);
-        easy = 0;
-      }
-      if ((ck.every > 0 && step % ck.every == 0) || (stop && !last)) PetscCall(checkpoint());
-      if (stop && !last) {
-        res->stopped = PETSC_TRUE;
-        break;
-      }
-      continue;
-    }
-    // Divergence: restore the committed state and halve the increment.
-    ++res->cutbacks;
-    easy = 0;
-    PetscInt node;
-    double worst = 0.0;
-    PetscCall(WorstNode(P, F, &node, &worst));
-    char why[512];
-    const bool stiff_penalty = P->contact && P->contact->params.kn > 1e5 * P->AxialStiffness();
-    if (reason == SNES_DIVERGED_LINE_SEARCH && P->bad_status == KERNEL_OK)
-      std::snprintf(why, sizeof why, "%s (no step along the Newton direction reduced the residual; "
-                    "largest residual %.3e at node %lld%s)",
-                    SNESConvergedReasons[reason], worst, (long long)node,
-                    stiff_penalty ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt" : "");
-    else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
-      std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual "
-                    "%.3e at node %lld)",
-                    SNESConvergedReasons[reason], (long long)P->bad_element,
-                    KernelStatusName(P->bad_status), worst, (long long)node);
-    else if (reason == SNES_DIVERGED_LINEAR_SOLVE)
-      std::snprintf(why, sizeof why, "%s (the linear solver failed: a singular tangent, e.g. an "
-                    "unsupported rigid motion, or MUMPS out of workspace with stiff penalties: "
-                    "-mat_mumps_icntl_14 400, -ksp_error_if_not_converged shows its error; largest "
-                    "residual %.3e at node %lld)",
-                    SNESConvergedReasons[reason], worst, (long long)node);
-    else
-      std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at "
-                    "node %lld%s)",
-                    SNESConvergedReasons[reason], (long long)its, worst, (long long)node,
-                    reason == SNES_DIVERGED_MAX_IT && max_it < snes_max_it
-                        ? "; the limit after the first increment is -load_max_it" : "");
-    PetscCall(VecCopy(U_committed, P->U));
-    dt = 0.5 * dt_try;
-    if (o.monitor)
-      PetscCall(PetscPrintf(P->comm, "step %5" PetscInt_FMT "  t %8.5f -> %.5f failed: %s; cutting back to dt %.3e\n",
-                            step + 1, t, t_new, why, dt));
-    if (dt < dt_nominal / std::pow(2.0, (double)o.max_cutbacks) * (1 - 1e-9)) {
-      res->failure = std::string("increment ") + std::to_string(step + 1) + " (load time " +
-                     std::to_string(t) + " -> " + std::to_string(t_new) +
-                     ") did not converge after " + std::to_string(o.max_cutbacks) +
-                     " cut-backs: " + why;
-      break;
-    }
+  inc->stabilized = true;
+  PetscCall(StabilizationBegin(P, o.stabilize, s->U_committed));
+  PetscCall(NewtonSolve(s, inc));
+  for (PetscInt pass = 0; inc->Converged() && o.stabilize_rtol > 0 && pass < o.stabilize_passes; ++pass) {
+    PetscReal size;
+    PetscCall(VecWAXPY(s->dU, -1.0, P->stabilization.anchor, P->U));
+    PetscCall(VecPointwiseMult(s->dU, s->dU, P->stabilization.diagonal));
+    PetscCall(VecNorm(s->dU, NORM_2, &size));
+    if (size <= o.stabilize_rtol * P->diagnostics.force_scale) break;
+    PetscCall(StabilizationMoveAnchor(P, P->U));
+    PetscCall(NewtonSolve(s, inc));
   }
-  // The last converged state is always in the results.
-  PetscCall(VecCopy(U_committed, P->U));
-  PetscCall(ProblemSetLoadTime(P, t, P->U));
-  PetscCall(ProblemUpdateReactions(P, P->U));
-  if (OutputLastStep(out) != step) PetscCall(OutputWriteStep(out, P, P->U, step, t));
-  res->completed = res->failure.empty() ? PETSC_TRUE : PETSC_FALSE;
-  res->steps = step;
-  res->time = t;
+  if (inc->Converged()) PetscCall(StabilizationMeasure(P, P->U, &inc->stab_work, &inc->stab_force));
+  StabilizationEnd(P);
+  PetscFunctionReturn(0);
+}
+
+// Once per run: the first increment whose committed plastic strain passes the limit.
+PetscErrorCode WarnPlasticStrain(LoadStepper *s) {
+  Problem *P = s->P;
+  const LoadStepperOptions &o = s->o;
+  double ep, x[3];
+  PetscInt element;
+  PetscFunctionBeginUser;
+  if (s->strain_warned || o.plastic_strain_limit <= 0 || !P->material->HasPlasticStrain()) PetscFunctionReturn(0);
+  PetscCall(LargestPlasticStrain(P, &ep, &element, x));
+  if (ep <= o.plastic_strain_limit) PetscFunctionReturn(0);
+  s->strain_warned = true;
+  PetscCall(PetscPrintf(P->comm,
+                        "etfe: WARNING increment %" PetscInt_FMT " (load time %.5f): element %" PetscInt_FMT
+                        " at (%.0f, %.0f, %.0f) mm has an equivalent plastic strain of %.3f, beyond "
+                        "-load_plastic_strain_limit %g: the small-strain yield law (additive split of the "
+                        "Green-Lagrange strain) no longer describes the film there. It is drawn far past its yield "
+                        "stress: look for a support that holds the film next to a drawn edge, or smaller drawing "
+                        "values\n",
+                        s->step, s->t, element, x[0], x[1], x[2], ep, (double)o.plastic_strain_limit));
+  PetscFunctionReturn(0);
+}
+
+// An attempt at the increment: predictor, the prescribed values of t_new, and the Newton solve.
+// It starts from the committed state and commits nothing, so it can be made again.
+PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
+  Problem *P = s->P;
+  const LoadStepperOptions &o = s->o;
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&inc->start));
+  PetscCall(PredictIncrement(s, *inc));
+  PetscCall(ProblemSetLoadTime(P, inc->t_new, P->U));
+  inc->max_it = (s->step > 0 && o.max_it > 0) ? std::min(o.max_it, s->snes_max_it) : s->snes_max_it;
+  PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, inc->max_it, s->snes_max_f));
+  inc->its = 0;
+  const bool always = o.stabilize_when == 2;
+  if (!always) PetscCall(NewtonSolve(s, inc));
+  if (always || (!inc->Converged() && o.stabilize_when == 1)) PetscCall(StabilizedSolve(s, inc, !always));
+  PetscFunctionReturn(0);
+}
+
+// The work done on the film over the converged increment (trapezoid of the internal forces at its
+// two ends, the end's with the just committed history) and the tangent shift's work.
+PetscErrorCode AccountIncrementWork(LoadStepper *s) {
+  Problem *P = s->P;
+  SolveDiagnostics &d = P->diagnostics;
+  PetscScalar w;
+  PetscFunctionBeginUser;
+  PetscCall(FormInternalForce(P, P->U, s->Fint));
+  PetscCall(VecAXPY(s->Fint_committed, 1.0, s->Fint));
+  PetscCall(VecWAXPY(s->dU, -1.0, s->U_committed, P->U));
+  PetscCall(VecDot(s->Fint_committed, s->dU, &w));
+  d.increment_work = 0.5 * PetscRealPart(w);
+  d.increment_shift_work = d.shift_work;
+  s->work_total += d.increment_work;
+  s->shift_work_total += d.shift_work;
+  PetscCall(VecCopy(s->Fint, s->Fint_committed));
+  PetscFunctionReturn(0);
+}
+
+// Commits a converged attempt: material history and contact states (history is committed here
+// only), the work, and U and the load time as the new committed state. contact_counts: the
+// pairs open, stick, slip and lifted off in this increment (ContactCommit).
+PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]) {
+  Problem *P = s->P;
+  PetscFunctionBeginUser;
+  PetscCall(CommitHistory(P, P->U));
+  PetscCall(AccountIncrementWork(s));
+  for (int i = 0; i < 4; ++i) contact_counts[i] = 0;
+  if (P->contact) PetscCall(ContactCommit(P, contact_counts));
+  PetscCall(VecCopy(s->U_committed, s->U_previous));
+  PetscCall(VecCopy(P->U, s->U_committed));
+  s->dt_last = inc.t_new - inc.t;
+  s->t = inc.t_new;
+  ++s->converged_states;
+  ++s->step;
+  if (inc.stabilized) {
+    ++s->res->stabilized;
+    s->stab_work_total += inc.stab_work;
+    s->stab_force_max = std::max(s->stab_force_max, inc.stab_force);
+  }
+  PetscCall(WarnPlasticStrain(s));
+  PetscFunctionReturn(0);
+}
+
+// Step-size control after a converged increment: a cut increment doubles again (up to the
+// nominal one) after -load_grow_after easy increments in a row.
+void GrowIncrement(LoadStepper *s, const Increment &inc) {
+  if (inc.its <= s->o.easy_iterations && s->dt < s->dt_nominal && ++s->easy >= s->o.grow_after) {
+    s->dt = std::min(2.0 * s->dt, s->dt_nominal);
+    s->easy = 0;
+  }
+}
+
+// Step-size control after a failed attempt: the increment halves. True (the cut-backs are spent)
+// once it has halved more than -load_max_cutbacks times below the nominal one.
+bool CutBack(LoadStepper *s, const Increment &inc) {
+  ++s->res->cutbacks;
+  s->easy = 0;
+  s->dt = 0.5 * inc.dt_try;
+  return s->dt < s->dt_nominal / std::pow(2.0, (double)s->o.max_cutbacks) * (1 - 1e-9);
+}
+
+// A converged increment seen from outside: the progress line (every -load_monitor increments,
+// the first, a stage's end, the last and after a cut-back), the scene's monitor, contact probes.
+PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]) {
+  Problem *P = s->P;
+  const LoadStepperOptions &o = s->o;
+  PetscLogDouble now;
+  PetscFunctionBeginUser;
+  // Pairs that lift off between two printed lines are counted, not each printed.
+  s->lifted_since_print += contact_counts[3];
+  contact_counts[3] = s->lifted_since_print;
+  PetscCall(PetscTime(&now));
+  if (o.monitor > 0 && (s->step % o.monitor == 0 || s->step == 1 || s->AtStageEnd() || s->Finished() ||
+                        s->res->cutbacks != s->cutbacks_printed)) {
+    s->cutbacks_printed = s->res->cutbacks;
+    PetscCall(PrintProgress(*s, inc, contact_counts, now));
+    s->lifted_since_print = 0;
+  }
+  if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, s->step, s->t, o.monitor));
+  if (P->contact && s->out) PetscCall(ContactWriteProbes(P, OutputStem(s->out), s->step, s->t));
+  PetscFunctionReturn(0);
+}
+
+// A failed attempt seen from outside: the cut-back line, and the run's failure once the
+// cut-backs are spent.
+PetscErrorCode ReportFailedIncrement(LoadStepper *s, const Increment &inc, const IncrementFailure &failure,
+                                     bool exhausted) {
+  const std::string why = failure.Message();
+  PetscFunctionBeginUser;
+  if (s->o.monitor)
+    PetscCall(PetscPrintf(s->P->comm,
+                          "step %5" PetscInt_FMT "  t %8.5f -> %.5f failed: %s; cutting back to dt %.3e\n",
+                          s->step + 1, inc.t, inc.t_new, why.c_str(), s->dt));
+  if (exhausted)
+    s->res->failure = std::string("increment ") + std::to_string(s->step + 1) + " (load time " +
+                      std::to_string(inc.t) + " -> " + std::to_string(inc.t_new) + ") did not converge after " +
+                      std::to_string(s->o.max_cutbacks) + " cut-backs: " + why;
+  PetscFunctionReturn(0);
+}
+
+// Output and checkpoint timing after a converged increment: results every -output_every
+// increments, at the end and where -load_stop_after stops the run; checkpoints every
+// -checkpoint_every and at such a stop. *stop: the run ends here cleanly.
+PetscErrorCode WriteIncrementResults(LoadStepper *s, bool *stop) {
+  PetscFunctionBeginUser;
+  const bool last = s->Finished();
+  const bool stop_here = s->o.stop_after >= 0 && s->step >= s->o.stop_after;
+  if (s->out && (last || stop_here || s->step % OutputEvery(s->out) == 0))
+    PetscCall(OutputWriteStep(s->out, s->P, s->P->U, s->step, s->t));
+  if ((s->ck.every > 0 && s->step % s->ck.every == 0) || (stop_here && !last)) PetscCall(WriteCheckpoint(*s));
+  *stop = stop_here && !last;
+  PetscFunctionReturn(0);
+}
+
+// The last converged state is always in the results; the result and the work summary.
+PetscErrorCode LoadStepperEnd(LoadStepper *s) {
+  Problem *P = s->P;
+  LoadStepperResult *res = s->res;
   PetscLogDouble t1;
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(s->U_committed, P->U));
+  PetscCall(ProblemSetLoadTime(P, s->t, P->U));
+  PetscCall(ProblemUpdateReactions(P, P->U));
+  if (OutputLastStep(s->out) != s->step) PetscCall(OutputWriteStep(s->out, P, P->U, s->step, s->t));
+  res->completed = res->failure.empty() ? PETSC_TRUE : PETSC_FALSE;
+  res->steps = s->step;
+  res->time = s->t;
   PetscCall(PetscTime(&t1));
-  res->wall = t1 - t0;
-  if (o.monitor > 0 && P->tangent_shift > 0)
+  res->wall = t1 - s->t0;
+  if (s->o.monitor > 0 && P->TangentShiftAbsolute() > 0)
     PetscCall(PetscPrintf(P->comm,
                           "etfe: work done on the film %.6e N mm; the tangent shift as a pseudo-transient term would "
                           "dissipate %.3e N mm (%.2e of it, sum over Newton iterations of shift |dx|^2)%s\n",
-                          work_total, shift_work_total, work_total != 0 ? shift_work_total / std::fabs(work_total) : 0.0,
-                          ck.restart[0] ? " since the restart" : ""));
+                          s->work_total, s->shift_work_total,
+                          s->work_total != 0 ? s->shift_work_total / std::fabs(s->work_total) : 0.0,
+                          s->ck.restart[0] ? " since the restart" : ""));
   if (res->stabilized) {
     PetscReal reaction_max;
     PetscCall(VecMaxNodalNorm(P->reaction, &reaction_max));
@@ -608,17 +652,52 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                           "etfe: %" PetscInt_FMT " increments stabilized (-load_stabilize %g, -load_stabilize_when %s): "
                           "the stabilizing force did %.3e N mm of work (%.2e of the work done on the film), largest "
                           "nodal stabilizing force %.3e N (%.2e of the largest reaction)%s\n",
-                          res->stabilized, (double)o.stabilize, kStabilizeWhen[o.stabilize_when], stab_work_total,
-                          work_total != 0 ? stab_work_total / std::fabs(work_total) : 0.0, stab_force_max,
-                          reaction_max > 0 ? stab_force_max / reaction_max : 0.0,
-                          ck.restart[0] ? " since the restart" : ""));
+                          res->stabilized, (double)s->o.stabilize, kStabilizeWhen[s->o.stabilize_when],
+                          s->stab_work_total, s->work_total != 0 ? s->stab_work_total / std::fabs(s->work_total) : 0.0,
+                          s->stab_force_max, reaction_max > 0 ? s->stab_force_max / reaction_max : 0.0,
+                          s->ck.restart[0] ? " since the restart" : ""));
   }
-  PetscCall(SNESSetTolerances(snes, snes_atol, snes_rtol, snes_stol, snes_max_it, snes_max_f));
-  PetscCall(VecDestroy(&Fint));
-  PetscCall(VecDestroy(&Fint_committed));
-  PetscCall(VecDestroy(&dU));
-  PetscCall(VecDestroy(&U_committed));
-  PetscCall(VecDestroy(&U_previous));
+  PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, s->snes_max_it, s->snes_max_f));
+  PetscCall(VecDestroy(&s->Fint));
+  PetscCall(VecDestroy(&s->Fint_committed));
+  PetscCall(VecDestroy(&s->dU));
+  PetscCall(VecDestroy(&s->U_committed));
+  PetscCall(VecDestroy(&s->U_previous));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o,
+                              const CheckpointOptions &ck, LoadStepperResult *res) {
+  LoadStepper s(P, snes, out, o, ck, res);
+  PetscFunctionBeginUser;
+  PetscCall(LoadStepperBegin(&s));
+  while (!s.Finished()) {
+    Increment inc = NextIncrement(s);
+    PetscCall(AttemptIncrement(&s, &inc));
+    if (!inc.Converged()) {
+      // The committed state back (history and contact were never touched), the increment halved.
+      IncrementFailure failure;
+      PetscCall(DiagnoseFailure(s, inc, &failure));
+      PetscCall(VecCopy(s.U_committed, P->U));
+      const bool exhausted = CutBack(&s, inc);
+      PetscCall(ReportFailedIncrement(&s, inc, failure, exhausted));
+      if (exhausted) break;
+      continue;
+    }
+    PetscInt contact_counts[4];
+    PetscCall(CommitIncrement(&s, inc, contact_counts));
+    GrowIncrement(&s, inc);
+    PetscCall(ReportIncrement(&s, inc, contact_counts));
+    bool stop = false;
+    PetscCall(WriteIncrementResults(&s, &stop));
+    if (stop) {
+      res->stopped = PETSC_TRUE;
+      break;
+    }
+  }
+  PetscCall(LoadStepperEnd(&s));
   PetscFunctionReturn(0);
 }
 

@@ -1,0 +1,87 @@
+// The load stepper's convergence test (see LoadStepperSetConvergenceTest in load_stepper.h):
+// SNES's own test, plus force balance against the size of the forces in play, with the
+// round-off floors of the contact penalties and of the membrane forces as the tolerance's lower
+// bounds where they are set.
+#include <algorithm>
+#include <cmath>
+
+#include "etfe/contact.h"
+#include "etfe/load_stepper.h"
+#include "etfe/tangent_shift.h"
+
+namespace etfe {
+
+namespace {
+
+struct ForceTest {
+  Problem *problem;
+  PetscReal rtol;
+  PetscReal roundoff;        // factor of the membrane round-off floor (0: off)
+  PetscReal floor = -1.0;    // N, computed at the first test
+};
+
+// eps |x|max E h0 sqrt(n): a force from element edges x_a - x_b of coordinates of size |x|
+// carries a strain round-off eps |x| / l_e, i.e. eps |x| E h0 per element (l_e cancels), summed
+// in 2-norm over n elements. Measured floors of |R| (DD1511 increment 1): 1.1e-8 N at 10^5,
+// 3.5e-8 at 10^6 triangles; this estimate gives 1.4e-8 and 4.4e-8.
+PetscErrorCode MembraneRoundoffFloor(Problem *P, PetscReal *floor) {
+  PetscReal xmax = 0.0;
+  PetscFunctionBeginUser;
+  for (double x : P->mesh.X) xmax = std::max(xmax, (PetscReal)std::fabs(x));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &xmax, 1, MPIU_REAL, MPIU_MAX, P->comm));
+  *floor = PETSC_MACHINE_EPSILON * xmax * P->AxialStiffness() * std::sqrt((double)P->mesh.num_elements_global);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, PetscReal ynorm,
+                                     PetscReal fnorm, SNESConvergedReason *reason, void *ctx) {
+  auto *t = (ForceTest *)ctx;
+  PetscFunctionBeginUser;
+  PetscCall(SNESConvergedDefault(snes, it, xnorm, ynorm, fnorm, reason, nullptr));
+  if (*reason != SNES_CONVERGED_ITERATING || it == 0) PetscFunctionReturn(0);
+  Problem *P = t->problem;
+  PetscReal tol = t->rtol * P->diagnostics.force_scale;
+  if (P->contact) {
+    // A penalty force k w is computed from displacements of size |u|, so it carries a
+    // round-off of about eps k |u| per pair: no Newton iterate can balance below that.
+    Vec X;
+    PetscReal umax;
+    PetscCall(SNESGetSolution(snes, &X));
+    PetscCall(VecNorm(X, NORM_INFINITY, &umax));
+    const double k = std::max(P->contact->params.kn, P->contact->params.kt) * P->contact->k_scale_max;
+    const double floor = PenaltyRoundoffFloor(k, umax, P->contact->num_global);
+    // Accepting on a floor that is a visible part of the forces would report a wrong answer as
+    // converged; ContactCreate refuses most such penalties up front, this catches the rest.
+    PetscCheck(!(fnorm > tol && fnorm <= floor && floor > kPenaltyFloorMax * P->diagnostics.force_scale), P->comm,
+               PETSC_ERR_ARG_OUTOFRANGE,
+               "-contact_kn %g / -contact_kt %g: the round-off of the penalty forces (%.3g N) is %.2g of the forces "
+               "balanced (%.3g N), above the force tolerance of the test (%g of them), so this answer cannot be "
+               "checked; the largest usable penalty here is ~%.1e N/mm",
+               P->contact->params.kn, P->contact->params.kt, floor, floor / P->diagnostics.force_scale, P->diagnostics.force_scale,
+               kPenaltyFloorMax, k * kPenaltyFloorMax * P->diagnostics.force_scale / floor);
+    tol = std::max(tol, floor);
+  }
+  if (t->roundoff > 0) {
+    if (t->floor < 0) PetscCall(MembraneRoundoffFloor(P, &t->floor));
+    tol = std::max(tol, t->roundoff * t->floor);
+  }
+  if (fnorm <= tol) *reason = SNES_CONVERGED_FNORM_ABS;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode DestroyForceTest(void *ctx) {
+  delete (ForceTest *)ctx;
+  return 0;
+}
+
+} // namespace
+
+PetscErrorCode LoadStepperSetConvergenceTest(Problem *P, SNES snes, const LoadStepperOptions &o) {
+  PetscFunctionBeginUser;
+  PetscCall(SNESSetConvergenceTest(snes, ConvergedForceBalance, new ForceTest{P, o.force_rtol, o.force_roundoff},
+                                   DestroyForceTest));
+  PetscCall(TangentShiftWorkMonitorSet(P, snes));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
