@@ -1,4 +1,4 @@
-// Cutting patterns of a surface (SPEC §7, issue 5): the surface is split into strips (element
+// Cutting patterns of a surface (SPEC §7): the surface is split into strips (element
 // sets: the saddle's "middle" and "corner" parts, split at the cutting line X = 0 and the weld
 // line over the arch), each strip is flattened by least squares of its link lengths
 // (flatten_strip.h) and written as DXF, SVG and a Gmsh .msh (the 2D mesh for a stretch
@@ -15,7 +15,7 @@
 
 namespace etfe {
 
-// Compensation (issue 17, etfe/kernels/compensation.h): the pattern is cut smaller so that the
+// Compensation (etfe/kernels/compensation.h): the pattern is cut smaller so that the
 // film drawn back to the design shape carries the design prestress. MD is the pattern's long
 // axis (x of the DXF), TD across it.
 enum class Compensation { None, Uniform, Stress };
@@ -46,7 +46,7 @@ MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o,
                              const std::string &dir, const std::string &stem);
 
-// -analysis cutpattern (issue 17, cutpattern_surface.cpp): the strips of any surface mesh.
+// -analysis cutpattern (cutpattern_surface.cpp): the strips of any surface mesh.
 struct CutPatternSurfaceOptions {
   std::string mesh_file;     // -mesh_file: Gmsh surface, physical surfaces = strips
   std::string results_path;  // -output_file: the pattern files go beside it, named by its stem

@@ -55,7 +55,7 @@ struct FlattenOptions {
   std::vector<std::string> line_sets;
   std::vector<std::string> line_prefixes = {"cut_", "weld_"};
   // Target plane lengths per link, in the order of FlattenResult::links of the same strip
-  // (compensation, issue 17): when given, the links fit these instead of their 3D lengths.
+  // (compensation): when given, the links fit these instead of their 3D lengths.
   // The lines' length3d stays the 3D (design) length; link_error is against the target.
   std::vector<double> link_target;
 };
@@ -126,7 +126,7 @@ bool WritePatternSvg(const std::string &path, const FlattenResult &r,
 // CSV table of the named line lengths of several strips, one row per line plus one row
 // "(outline)" per strip: strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,
 // expansion_pct.
-// With compensation (issue 17) result is the compensated pattern (what is cut) and
+// With compensation result is the compensated pattern (what is cut) and
 // uncompensated the design pattern; two more columns then compare them:
 // length2d_uncompensated_mm, compensation_pct (without compensation: length2d_mm and 0).
 struct PatternTableEntry {

@@ -1,4 +1,4 @@
-// Strips of a given width cut by geodesic lines (issue 17, -cutpattern_strip_width): the surface
+// Strips of a given width cut by geodesic lines (-cutpattern_strip_width): the surface
 // (its one physical surface, or all its triangles when it has none) is cut by straightest
 // geodesics (etfe/kernels/geodesic.h) into strips, which -analysis cutpattern then flattens.
 //

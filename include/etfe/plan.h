@@ -1,4 +1,4 @@
-// The drawing planner (-analysis plan, issue 17): searches a stretch case's drawing schedule with
+// The drawing planner (-analysis plan): searches a stretch case's drawing schedule with
 // PETSc's TAO so that the drawn film meets the fabrication criteria (kernels/plan_criteria.h) with
 // the least drawing, and writes the schedule as an options file ready to run.
 //

@@ -1,4 +1,4 @@
-// -analysis cutpattern (issue 17): cutting patterns of any surface mesh, with no scene and no
+// -analysis cutpattern: cutting patterns of any surface mesh, with no scene and no
 // form finding. The strips are the surface's physical groups (element sets); the cutting lines
 // between them are the edges two groups share, measured as node sets cut_<a>_<b> (besides any
 // named curve groups: cut_*, weld_* and -cutpattern_lines). Each strip must be a disc: connected,

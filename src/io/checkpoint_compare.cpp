@@ -153,7 +153,7 @@ std::uint64_t PhysicsFingerprint(const Problem *P) {
     const ContactSet &c = *P->contact;
     h.Add(c.params.kn), h.Add(c.params.kt), h.Add(c.params.mu), h.Add(c.law), h.Add(c.follow);
     h.Add(c.frictionless_until), h.Add(c.num_global);
-    // A law per stage (issue 16); a single law adds nothing, so its fingerprint is unchanged.
+    // A law per stage; a single law adds nothing, so its fingerprint is unchanged.
     if (!c.stage_laws.empty()) {
       h.Add(std::string("stage_laws")), h.Add(c.stage_laws.size());
       for (FrictionLaw l : c.stage_laws) h.Add((int)l);

@@ -1,4 +1,4 @@
-// Tension-field membrane: relaxed plane-stress St. Venant-Kirchhoff law (issue 15). The
+// Tension-field membrane: relaxed plane-stress St. Venant-Kirchhoff law. The
 // formulation, the state criterion and the tangent are in include/etfe/kernels/wrinkling.h.
 // Called once per element per Newton iteration: plain arithmetic, no allocation.
 #include "etfe/kernels/wrinkling.h"

@@ -1,5 +1,5 @@
 // Tension-field membrane around any law with an elastic part (-membrane_wrinkling
-// tension_field, issue 15). The kernel (src/kernels/wrinkling.cpp) decides taut / wrinkled /
+// tension_field). The kernel (src/kernels/wrinkling.cpp) decides taut / wrinkled /
 // slack from the elastic strain Ee = E - Ep (Ep the committed plastic strain, 0 for the elastic
 // law) with the mixed stress/strain criterion:
 //  * taut: the wrapped law runs unchanged (the same call, so an element that never wrinkles

@@ -1,4 +1,4 @@
-// Annulus scene (issue 15): a pretensioned annular film, outer edge held, a rigid hub rotated in
+// Annulus scene: a pretensioned annular film, outer edge held, a rigid hub rotated in
 // its plane; with -membrane_wrinkling tension_field a wrinkled zone grows around the hub. The
 // report compares the radius of the wrinkled zone and the torque-rotation pair with the closed
 // form of Stein & Hedgepeth (1961) / Mikulas (1964) for these boundary conditions

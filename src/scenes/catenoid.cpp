@@ -1,4 +1,4 @@
-// Catenoid (issue 5 check of form finding): a soap film between two coaxial rings of radius R a
+// Catenoid (a check of form finding): a soap film between two coaxial rings of radius R a
 // distance H apart. Isotropic form finding must give the catenoid r(z) = c cosh(z/c) with
 // R = c cosh(H/(2c)) (the larger root: the stable one). Beyond the Goldschmidt limit
 // (H/R > 1.3255) no catenoid exists and the run must end with an error, not a shape.

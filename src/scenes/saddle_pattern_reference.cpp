@@ -1,4 +1,4 @@
-// -saddle_reference pattern (issue 16): the film's stress-free state is the flat cutting pattern
+// -saddle_reference pattern: the film's stress-free state is the flat cutting pattern
 // of its strips, as in the experiments (the specimens were welded from flat strips: thesis L267,
 // L692, L1666), not the form-found surface the thesis's own analysis started from (L1689).
 // Each strip (element sets "middle" and "corner" of a form-found mesh) is flattened with the

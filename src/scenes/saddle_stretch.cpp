@@ -127,8 +127,8 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f, false));
   PetscCall(Measure(P, c, f, &v));
-  // Arch pairs open / sticking / slipping after this increment (the lagged law's stick-slip,
-  // issue 16; the progress line prints the same counts).
+  // Arch pairs open / sticking / slipping after this increment (the lagged law's stick-slip;
+  // the progress line prints the same counts).
   PetscInt status[3] = {0, 0, 0}, status_all[3];
   if (P->contact)
     for (const ContactPair &pr : P->contact->pairs) status[pr.committed.status]++;
@@ -146,7 +146,7 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
     std::fprintf(out, ",%.8e,%.8e,%.8e,%.8e", v.i_smin, v.i_emin, v.ii_smin, v.ii_emin);
     for (double x : v.slide) std::fprintf(out, ",%.8e", x);
     std::fprintf(out, ",%lld,%lld,%lld", (long long)status_all[0], (long long)status_all[1], (long long)status_all[2]);
-    // The increment's work on the film and what the tangent shift would dissipate (N mm, issue 13).
+    // The increment's work on the film and what the tangent shift would dissipate (N mm).
     std::fprintf(out, ",%.8e,%.8e\n", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
     std::fclose(out);
   }

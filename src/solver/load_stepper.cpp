@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <string>
 
 #include "etfe/assembly.h"
@@ -327,8 +328,12 @@ PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const P
                   (long long)counts[1], (long long)counts[2], lifted);
     contact = buf;
   }
-  char cut[48] = "";
+  char cut[96] = "";
   if (s.res->cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)s.res->cutbacks);
+  // A stabilized increment says so, with its force's work against the increment's on the film.
+  if (inc.stabilized)
+    std::snprintf(cut + std::strlen(cut), sizeof cut - std::strlen(cut), "  stabilized (%.1e of the work)",
+                  d.increment_work != 0 ? inc.stab_work / std::fabs(d.increment_work) : 0.0);
   // With a tangent shift: the increment's work on the film and what the shift would dissipate.
   if (P->TangentShiftAbsolute() > 0) {
     char buf[128];
@@ -582,7 +587,7 @@ PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt co
   contact_counts[3] = s->lifted_since_print;
   PetscCall(PetscTime(&now));
   if (o.monitor > 0 && (s->step % o.monitor == 0 || s->step == 1 || s->AtStageEnd() || s->Finished() ||
-                        s->res->cutbacks != s->cutbacks_printed)) {
+                        s->res->cutbacks != s->cutbacks_printed || inc.stabilized)) {
     s->cutbacks_printed = s->res->cutbacks;
     PetscCall(PrintProgress(*s, inc, contact_counts, now));
     s->lifted_since_print = 0;

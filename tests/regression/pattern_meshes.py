@@ -1,4 +1,4 @@
-"""Small surface meshes for the cutting-pattern tests (issue 17), written as Gmsh 2.2 ASCII with
+"""Small surface meshes for the cutting-pattern tests, written as Gmsh 2.2 ASCII with
 physical groups, so that the tests need no Gmsh. A mesh is (nodes, triangles, groups): nodes a
 list of (x, y, z) in mm, triangles 0-based node triples, groups {name: (dim, [elements])} with
 dim 2 (triangle ids: a strip) or 1 (node pairs: a named curve)."""

@@ -1,4 +1,4 @@
-"""The front door (issue 12): PETSc users' habits work, typos of this project's options stop a
+"""The front door: PETSc users' habits work, typos of this project's options stop a
 run with the closest name, options that exist but are not used by the chosen configuration only
 warn, -help is the manual, options files do not depend on the current folder and a bad line in
 one is one message naming file and line."""

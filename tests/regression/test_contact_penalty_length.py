@@ -1,4 +1,4 @@
-"""-contact_penalty_length L0 (issue 13): contact penalties per unit length of the contact line.
+"""-contact_penalty_length L0: contact penalties per unit length of the contact line.
 
 A pair's kn, kt are the given ones times its tributary length along the line over L0, so refining
 the mesh keeps the interface's stiffness (per-node penalties stiffen it as 1/h).

@@ -1,4 +1,4 @@
-"""Friction law per stage (issue 16): -contact_friction a,b gives each stage its law (the last one
+"""Friction law per stage: -contact_friction a,b gives each stage its law (the last one
 for the stages after it), on the capstan (stage 1 tensions the strip, stage 2 pulls end B).
 
 * a list that repeats one law is the single-law run, bit for bit;

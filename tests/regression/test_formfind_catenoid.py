@@ -1,4 +1,4 @@
-"""Form finding against closed forms (issue 5).
+"""Form finding against closed forms.
 
 * catenoid (options/catenoid.opts): the neck radius within 1 % of c with R = c cosh(H/2c) at
   the documented density (48 x 16), and the error shrinks under refinement;

@@ -1,4 +1,4 @@
-"""Cutting patterns of the form-found saddle (issue 5, SPEC §7): the middle and corner strips are
+"""Cutting patterns of the form-found saddle (SPEC §7): the middle and corner strips are
 flattened and written as DXF, SVG and Gmsh; with the thesis's weights (boundary 1e12) the
 boundary and cutting lines keep their 3D length; with uniform weights the doubly curved strips
 come out shorter in 2D along the weld line over the arch, by more as the rise grows; compensated
@@ -43,7 +43,7 @@ with scratch_dir() as tmp:
         print("r = %d %%, middle weld line over the arch: expansion %.4f %%" % (r, weld[r]))
     chk.check(weld[10] < 0 and weld[15] < 0 and weld[20] < 0, "uniform weights: the weld line is shorter in 2D")
     chk.check(weld[10] > weld[15] > weld[20], "and more so as the rise grows")
-    # Stress compensation from the form-finding stress (issue 17): the middle part carries 1 MPa
+    # Stress compensation from the form-finding stress: the middle part carries 1 MPa
     # isotropically, so every one of its lines is cut 1/sqrt(1 + 2 (1 - nu) S / E) of its length
     # (elastic defaults E = 800 MPa, nu = 0.43); the corner part's 3:1 stress shrinks MD lines more.
     rc, out = run(etfe, ["-options_file", os.path.join(REPO, "options/saddle/ff_r15_s11.opts"), "-formfind_monitor", 0,

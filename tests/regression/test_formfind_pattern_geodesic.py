@@ -1,4 +1,4 @@
-"""Strips of a given width cut by geodesic lines (issue 17): -analysis cutpattern -mesh_file
+"""Strips of a given width cut by geodesic lines: -analysis cutpattern -mesh_file
 surface.msh -cutpattern_strip_width W. Meshes are made here (pattern_meshes.py).
   * a cylinder (developable) cut along its generators at W: every inner strip's flattened pattern
     is a rectangle (1e-9 mm), W wide to the snap distance (a crossing within 0.1 of an edge's

@@ -1,4 +1,4 @@
-"""Surfaces from elsewhere into -analysis cutpattern (issue 17): scripts/surface2msh turns OBJ
+"""Surfaces from elsewhere into -analysis cutpattern: scripts/surface2msh turns OBJ
 groups and STL solids into physical surfaces (STL's repeated vertices merged, so neighbouring
 facets share edges), and the strips flatten as the same mesh written directly does: the same
 link errors and the cutting line between the two strips."""

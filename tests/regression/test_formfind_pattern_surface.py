@@ -1,4 +1,4 @@
-"""Cutting patterns of any surface mesh (issue 17): -analysis cutpattern -mesh_file flattens the
+"""Cutting patterns of any surface mesh: -analysis cutpattern -mesh_file flattens the
 physical surfaces of a Gmsh file, with no scene and no form finding. Meshes are made here
 (pattern_meshes.py), so the test needs no Gmsh.
   * developable strips (cylinder, cone) keep every link length to 1e-10;

@@ -1,4 +1,4 @@
-"""Saddle form finding (issue 5, thesis Table 2.1): the six cases r in {10, 15, 20 %} x middle
+"""Saddle form finding (thesis Table 2.1): the six cases r in {10, 15, 20 %} x middle
 MD:TD in {1:1, 3:1} converge; the 3:1 middle part is higher at its centre (h1) and its middle
 cutting line longer than the 1:1 one (thesis §5.3 at r = 15 %: 2042 mm vs 2009 mm); h1 is
 settled under mesh refinement. Prints the table of the six cases."""

@@ -29,7 +29,7 @@ stiffness is non-symmetric, but with the whole rim clamped the assembled free bl
 -snes_test_jacobian is read only when the Jacobian is first evaluated, so the solver's unused-
 option check flags it before the solve: the runs need -options_allow_unused.
 
-Contact (issue 12): the same free-free comparison on the capstan (a strip over a pipe; the pairs
+Contact: the same free-free comparison on the capstan (a strip over a pipe; the pairs
 are node-local, so contact only adds 3x3 blocks on the diagonal of J) and on the saddle's arch:
   * capstan, implicit law in stick (-capstan_pull 1e-4) and in gross slip, the lagged law: every
     Newton iterate of every increment agrees to FREE_LIMIT, except where the law has no
@@ -42,7 +42,7 @@ are node-local, so contact only adds 3x3 blocks on the diagonal of J) and on the
     shrinks with h (3.5e-6 with -snes_test_err 1e-9), so that increment is asserted with the
     smaller step, and at the default step only for the couplings between nodes.
   * -contact_normal follow: the tangent uses the frame of the current iterate without its
-    derivative (README). For a stuck pair the omitted terms cancel (its force is a fixed global
+    derivative (docs/design.md). For a stuck pair the omitted terms cancel (its force is a fixed global
     vector), so stick agrees to FREE_LIMIT. For a slipping or frictionless pair the omitted term
     is (f_z x0 - f_x n) x0^T / rho (x0 circumferential, rho the radial distance; see
     tests/unit/test_contact_frame.cpp for dn/dp), of norm |f| / rho. Asserted: couplings between
@@ -68,11 +68,14 @@ COMMON = ["-snes_test_jacobian", "-snes_test_jacobian_view", "::ascii_matlab", "
 CASES = {  # name: (options file, extra options)
     "hencky_rings3_pressure": ("hencky", ["-mesh_rings", "3"]),
     "patch_plastic_0.05": ("patch", ["-material_type", "plastic", "-patch_strain_x", "0.05"]),
-    # Tension field (issue 15): the shear panel (3 x 2 cells, so every element touches a displaced
+    # Tension field: the shear panel (3 x 2 cells, so every element touches a displaced
     # edge node: no element sits at E = 0, where the relaxed law has a kink) wrinkles; the relaxed
     # law's tangent includes the wrinkle direction's dependence on the strain.
     "patch_shear_tension_field": ("patch", ["-patch_mode", "shear", "-patch_strain_x", "1e-3", "-patch_shear", "0.01",
                                             "-membrane_wrinkling", "tension_field", "-mesh_nx", "3", "-mesh_ny", "2"]),
+    # Viscous stabilization on every increment: the residual's k (u - u_n) and the tangent's
+    # diagonal k on the free DOFs (constrained rows stay unit rows).
+    "hencky_stabilized": ("hencky", ["-mesh_rings", "3", "-load_stabilize_when", "always", "-load_stabilize", "0.1"]),
 }
 FREE_LIMIT = 1e-5
 
@@ -334,7 +337,8 @@ def contact_saddle_arch(etfe, chk, report):
     It shrinks with h (15x smaller h: 5e-7 and 1e-6), so the agreement is asserted with
     -snes_test_err 1e-9 and, at PETSc's default h, only for the couplings between nodes."""
     base = ["-options_file", T.opts("saddle/pd10a"), "-mesh_n", "7", "-load_increments", "8", "-output", "0",
-            "-membrane_tangent_shift", "0", "-membrane_tangent_shift_adaptive", "false", "-load_monitor", "1"]
+            "-membrane_tangent_shift", "0", "-membrane_tangent_shift_adaptive", "false", "-load_monitor", "1",
+            "-load_stabilize_when", "never"]  # the plain Newton iterates of the failing increment
     with T.scratch_dir("etfe-jacobian") as d:
         for k in (2, 4):
             cp = "%s/saddle_%d.h5" % (d, k)

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Hencky's clamped circular membrane (options/hencky.opts) at -mesh_rings 8, 16, 32 against the
-closed form: centre deflection and centre stress errors, printed as a table (README material).
+closed form: centre deflection and centre stress errors, printed as a table (docs/verification.md).
 
 Asserted: deflection error < 2% at 16 and 32 rings, < 0.5% at 32 rings, and decreasing from 8 to
 16 to 32 rings; centre stress error < 1% at every resolution and < 0.5% at 16 and 32 rings.

@@ -1,4 +1,4 @@
-"""Checkpoint/restart (issue 7): a run stopped after increment k (-load_stop_after, which writes a
+"""Checkpoint/restart: a run stopped after increment k (-load_stop_after, which writes a
 checkpoint) and continued with -restart gives the same results as the uninterrupted run, bit for
 bit, on 1 and 2 ranks (on 2 ranks with options/solvers/redundant_lu.opts: parallel MUMPS
 schedules its factorisation dynamically, so on a busy machine its round-off can differ from run

@@ -1,4 +1,4 @@
-"""Fault campaign, fast subset (issue 14): scripts/study-faults --fast kills runs (twice on purpose
+"""Fault campaign, fast subset: scripts/study-faults --fast kills runs (twice on purpose
 while a checkpoint is being written) and resumes them to the uninterrupted answer bit for bit,
 corrupts checkpoints (truncated, flipped bytes in the file and in a dataset, an edited attribute
 and value), restarts with changed physics and into another run's results, feeds bad meshes

@@ -1,4 +1,4 @@
-"""The dense-mesh levers (issue 13: the predictor shift and the round-off floor, the saddle cases'
+"""The dense-mesh levers (the predictor shift and the round-off floor, the saddle cases'
 default in options/saddle/stretch_base.opts, and the others tried) do not move the answer: DD1511
 on the form-found 1:1 saddle at 10^4 triangles, first 3 of 200 increments, part A/B Mises and the
 five slides of every step agree with the plain run (levers off) to 1e-6 of each quantity's largest

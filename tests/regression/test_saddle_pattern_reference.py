@@ -1,4 +1,4 @@
-"""-saddle_reference pattern (issue 16): DD1511 whose stress-free state is the flat cutting pattern
+"""-saddle_reference pattern: DD1511 whose stress-free state is the flat cutting pattern
 of its strips, laid on during the first drawing step (40 increments, thesis density).
 
 * the flat strips keep their outline length (the thesis's 1e12 boundary weight): 2D = 3D;

@@ -1,4 +1,4 @@
-"""Plane-strip (PD) stretch cases (issue 6, thesis ch. 3-4): the film starts stress free on the
+"""Plane-strip (PD) stretch cases (thesis ch. 3-4): the film starts stress free on the
 cylinder (the arch extruded) and must sag into a saddle in its first increment, a slack start.
 PD10a, PD15a and PD15b complete; the middle part stays free of wrinkles at elements I and II for the
 10 % rise and wrinkles (minimum principal strain < 0) for 15 % at both final d/c = 2.0 (PD15a) and

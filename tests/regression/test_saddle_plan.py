@@ -1,4 +1,4 @@
-"""The drawing planner (-analysis plan, issue 17) on DD1511 at the thesis density, on a short
+"""The drawing planner (-analysis plan) on DD1511 at the thesis density, on a short
 history (40 increments) and a small budget of stretch runs:
 
 * the search improves on the case's own schedule (Table 5.5): a lower objective;

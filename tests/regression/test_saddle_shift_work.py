@@ -1,5 +1,5 @@
-"""The adaptive tangent shift of the saddle cases read as a pseudo-transient (proximal-point) term
-(issue 13): the energy its viscous force would dissipate, sum over Newton iterations of
+"""The adaptive tangent shift of the saddle cases read as a pseudo-transient (proximal-point) term:
+the energy its viscous force would dissipate, sum over Newton iterations of
 shift_k |x_{k+1} - x_k|^2, is reported per increment (progress line and the history CSV) next to
 the work done on the film, and in total at the end; on DD1511 (thesis density, first 20
 increments) it is small against the work, smallest once the film is taut, and it is absent

@@ -1,4 +1,4 @@
-"""Stretch fabrication of the thesis's saddle (issue 6), DD1511 at the thesis density (1444
+"""Stretch fabrication of the thesis's saddle, DD1511 at the thesis density (1444
 triangles, 19 arch contacts) with 40 increments:
 
 * the drawing completes; Mises over the quarter sits in the plastic range of the film

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Annulus under torsion with the tension-field membrane (options/annulus.opts; issue 15): a
+"""Annulus under torsion with the tension-field membrane (options/annulus.opts): a
 pretensioned annulus (a = 100, b = 500 mm, eps0 = 1e-4) whose rigid hub turns by 5e-4 rad, about
 twice the wrinkling onset. Against the closed form (Stein & Hedgepeth 1961 / Mikulas 1964 for
 these boundary conditions, src/verification/annulus_closed_form.cpp):

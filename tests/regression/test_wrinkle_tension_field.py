@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Tension-field membrane (-membrane_wrinkling tension_field, issue 15) on the scenes that have a
+"""Tension-field membrane (-membrane_wrinkling tension_field) on the scenes that have a
 closed form.
 
 (a) No wrinkle forms (Hencky's pressurized membrane; the elastic biaxial patch; the plastic

@@ -1,4 +1,4 @@
-// Compensation of cutting patterns (issue 17): the pattern is cut smaller than the design surface
+// Compensation of cutting patterns: the pattern is cut smaller than the design surface
 // so that the drawn-in film reaches its design prestress. PETSc-free.
 //
 // A pattern is described per element by its rest metric M (2x2 symmetric, in the pattern's

@@ -1,4 +1,4 @@
-// Geodesic cutting lines on a triangle mesh (issue 17, -cutpattern_strip_width). PETSc-free.
+// Geodesic cutting lines on a triangle mesh (-cutpattern_strip_width). PETSc-free.
 //
 // Tracing: "straightest geodesics" (Polthier & Schmies 1998). Inside a triangle the line is
 // straight; across an edge it goes on straight in the two triangles unfolded into one plane

@@ -1,4 +1,4 @@
-// Fabrication criteria of a drawn film (issue 17, thesis L1682-1722): the drawing planner scores
+// Fabrication criteria of a drawn film (thesis L1682-1722): the drawing planner scores
 // a stretch run by how far each element is from them. PETSc-free.
 //
 // Per element three violations, each zero when the criterion is met and growing linearly with the

@@ -1,5 +1,5 @@
 // Tension-field (relaxed) membrane for an isotropic plane-stress St. Venant-Kirchhoff law: a
-// film that carries no compression (issue 15). PETSc-free. Voigt vectors as in membrane.h:
+// film that carries no compression. PETSc-free. Voigt vectors as in membrane.h:
 // E = (Exx, Eyy, 2Exy), S = (Sxx, Syy, Sxy), D = dS/dE (3x3 row-major).
 //
 // Mixed stress/strain criterion (Roddeman et al. 1987; Kang & Im 1997), E1 >= E2 the principal

@@ -1,4 +1,4 @@
-// Tension-field membrane with the ETFE elasto-plastic law (issue 15). PETSc-free. Voigt vectors
+// Tension-field membrane with the ETFE elasto-plastic law. PETSc-free. Voigt vectors
 // as in membrane.h; the plastic law and its history as in plasticity.h.
 //
 // The state is decided on the plastic law's own answer, so that the stress is continuous:
