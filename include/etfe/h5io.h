@@ -67,6 +67,8 @@ PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *nam
 PetscErrorCode H5ReadRows(const std::string &file, hid_t group, const char *name, hid_t type, hsize_t total_rows,
                           hsize_t cols, hsize_t row0, hsize_t nrows, void *data);
 PetscErrorCode H5WriteAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, const void *value);
+// A 1-D double array attribute (at least one value).
+PetscErrorCode H5WriteArrayAttribute(const std::string &file, hid_t obj, const char *name, const std::vector<double> &v);
 PetscErrorCode H5WriteString(const std::string &file, hid_t obj, const char *name, const std::string &value);
 PetscErrorCode H5ReadAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, void *value);
 PetscErrorCode H5ReadString(const std::string &file, hid_t obj, const char *name, std::string *value);

@@ -87,6 +87,10 @@ struct SceneSpec {
   // Per-stage option arrays as the builder resolved them, defaults included (name without '-'):
   // the drawing planner's start and staging (-analysis plan).
   StageValues stage_options;
+  // Inputs a reader of the results needs and cannot take from the options alone (defaults the
+  // builder chose, e.g. the saddle's part boxes and number of drawing stages): written as root
+  // attributes of the results file, one double array each (docs/results.md).
+  StageValues result_attributes;
 
   int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }
   int AddSchedule(const Schedule &s) {

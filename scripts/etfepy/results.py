@@ -6,12 +6,10 @@
     inputs = SceneInputs.of("results/dd1511/dd1511.h5")       part boxes, stages, pressure cycle, ...
     read_history("results/dd1511/dd1511.h5", r, notes)       the probe history CSV beside it
 
-A run records its options (root attribute `options`, the command line with the options files
-expanded); the scene inputs are read from there. The file does not yet record the values the
-saddle used where an option was left at its default (part boxes, arch line, number of drawing
-stages): those come from SADDLE_DEFAULTS, which mirror src/scenes/saddle_stretch.cpp and
-saddle_geometry.h. SceneInputs reads root attributes of the names in SCENE_ATTRIBUTES first, so a
-file that carries them needs no defaults.
+A saddle run writes the inputs it used, defaults included, as root attributes (SCENE_ATTRIBUTES:
+part boxes, arch line, number of drawing stages, pressure cycle); SceneInputs reads them first.
+Older files fall back to the options the run recorded (root attribute `options`) and to
+SADDLE_DEFAULTS, which mirror src/scenes/saddle_stretch.cpp and saddle_geometry.h.
 """
 import glob
 import os
@@ -23,7 +21,8 @@ from . import options as optionsfile
 
 SADDLE_DEFAULTS = {"drawing_stages": 4, "part_A": (0.0, 0.0, 400.0, 400.0), "part_B": (1300.0, 0.0, 1700.0, 400.0),
                    "arch_x": 1000.0}
-# Root attributes a results file would hold the saddle's inputs in (not written yet).
+# Root attributes in which a results file holds the saddle's inputs (files written before they
+# existed fall back to the recorded options and SADDLE_DEFAULTS).
 SCENE_ATTRIBUTES = {"drawing_stages": "saddle_drawing_stages", "part_A": "saddle_part_A",
                     "part_B": "saddle_part_B", "arch_x": "saddle_arch_x",
                     "pressure_cycle": "saddle_pressure_cycle"}
@@ -224,19 +223,19 @@ class SceneInputs:
         def saddle(key, option_values):
             name = SCENE_ATTRIBUTES[key]
             if name in a:
-                return a[name], "results"
+                return np.atleast_1d(a[name]).tolist(), "results"
             if option_values:
                 return option_values, "options"
             return SADDLE_DEFAULTS.get(key), "default"
 
         stages, _ = saddle("drawing_stages", len(floats(o.get("-saddle_draw_a"))))
-        self.drawing_stages = int(stages)
+        self.drawing_stages = int(stages[0] if isinstance(stages, list) else stages)
         part_a, how_a = saddle("part_A", tuple(floats(o.get("-saddle_part_A"))))
         part_b, how_b = saddle("part_B", tuple(floats(o.get("-saddle_part_B"))))
         self.part_A, self.part_B = tuple(map(float, part_a)), tuple(map(float, part_b))
         self.parts_default = how_a == "default" and how_b == "default"
         arch, self.arch_from = saddle("arch_x", None)
-        self.arch_x = float(arch)
+        self.arch_x = float(arch[0] if isinstance(arch, list) else arch)
         cycle, _ = saddle("pressure_cycle", floats(o.get("-saddle_pressure_cycle")))
         self.pressure_cycle = [float(x) for x in (cycle or [])]
         self.pressure_source = self.source if self.pressure_cycle else None

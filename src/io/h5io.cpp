@@ -232,6 +232,19 @@ PetscErrorCode H5WriteAttribute(const std::string &file, hid_t obj, const char *
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode H5WriteArrayAttribute(const std::string &file, hid_t obj, const char *name, const std::vector<double> &v) {
+  PetscFunctionBeginUser;
+  if (H5Aexists(obj, name) > 0) ETFE_H5CHECK(H5Adelete(obj, name), name);
+  const hsize_t n = v.size();
+  hid_t space = H5Screate_simple(1, &n, nullptr);
+  hid_t a = H5Acreate2(obj, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+  ETFE_H5CHECK(a, name);
+  ETFE_H5CHECK(H5Awrite(a, H5T_NATIVE_DOUBLE, v.data()), name);
+  H5Aclose(a);
+  H5Sclose(space);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode H5WriteString(const std::string &file, hid_t obj, const char *name, const std::string &v) {
   PetscFunctionBeginUser;
   hid_t t = H5Tcopy(H5T_C_S1);

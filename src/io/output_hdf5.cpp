@@ -453,6 +453,8 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   }
   PetscCall(WriteStatus(out->path, out->file, "running"));
   PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
+  for (const auto &[name, values] : P->scene.result_attributes)
+    if (!values.empty()) PetscCall(H5WriteArrayAttribute(out->path, out->file, name.c_str(), values));
   long long zero = 0;
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &zero));
   PetscCall(CreateGroup(out->path, out->file, "mesh"));

@@ -443,6 +443,15 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   if (in.reference == 1) PetscCall(SaddlePatternReference(comm, scene->mesh, &scene->element_reference));
   scene->stage_options = {{"saddle_draw_a", in.draw[0]}, {"saddle_draw_b", in.draw[1]}, {"saddle_draw_c", in.draw[2]},
                           {"saddle_draw_d", in.draw[3]}, {"saddle_pressure_cycle", in.pressure}};
+  // What the figures and reports read back from the results (defaults included).
+  scene->result_attributes = {{"saddle_drawing_stages", {(double)in.draw[0].size()}},
+                              {"saddle_part_A", in.part_a},
+                              {"saddle_part_B", in.part_b},
+                              {"saddle_arch_x", {g.arch_x}},
+                              {"saddle_element_I", in.elem_i},
+                              {"saddle_element_II", in.elem_ii},
+                              {"saddle_slide_points", in.slides},
+                              {"saddle_pressure_cycle", in.pressure}};
   int ids[4];
   AddStretchSchedules(in, scene, ids);
   std::vector<char> on_frame(scene->mesh.NumNodes(), 0);
