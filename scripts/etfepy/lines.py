@@ -4,6 +4,7 @@ reports), and for the PETSc -log_view / -memory_view tables and error messages t
 tests read. Each parser takes the whole output of a run and returns plain numbers; a line that is
 not there gives None (or an empty list), so the caller decides whether that is a failure.
 """
+import math
 import re
 
 NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?|[-+]?(?:inf|nan)"
@@ -215,6 +216,38 @@ def snes_histories(out):
             hist.append([])
         hist[-1].append(float(m.group(2)))
     return hist
+
+
+SLIDE = re.compile(r"saddle: slide_(\d+) \(Y = (?:%s)\) X = %s mm, Y = %s mm" % (NUMBER, N, N))
+
+
+def saddle_slides(out):
+    """|slide| = hypot(X, Y) [mm] of the report's `saddle: slide_k (Y = ..) X = .. mm, Y = .. mm`, I..V."""
+    found = SLIDE.findall(out)
+    return [math.hypot(float(x), float(y)) for _, x, y in sorted(found, key=lambda s: int(s[0]))]
+
+
+STABILIZED = re.compile(r"etfe: (\d+) increments stabilized .*?\(%s of the work done on the film\)" % N)
+
+
+def stabilized(out):
+    """(increments, work fraction) of the stabilization summary (`etfe: N increments stabilized ...`);
+    (0, None) when no increment needed it."""
+    m = STABILIZED.search(out)
+    return (int(m.group(1)), float(m.group(2))) if m else (0, None)
+
+
+FAILED_INCREMENT = re.compile(r"increment (\d+) \(.*?\) did not converge after \d+ cut-backs: (.*?)"
+                              r"(?:\. The last converged|$)", re.M)
+
+
+def failed_increment(out):
+    """(increment, reason) of a run that stopped on an increment that would not converge; else
+    (None, the first line of the error message or None)."""
+    m = FAILED_INCREMENT.search(out)
+    if m:
+        return int(m.group(1)), m.group(2).strip()
+    return None, first_error(out) or None
 
 
 def error_message(out):
