@@ -682,8 +682,8 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
   if (P->contact && P->contact->lagged_repeat > 0)
     PetscCall(PetscPrintf(P->comm,
                           "etfe: lagged law: %" PetscInt_FMT " repeated solves with revised statuses "
-                          "(-contact_lagged_repeat %" PetscInt_FMT "); %" PetscInt_FMT " increments committed with "
-                          "statuses not settled\n",
+                          "(-contact_lagged_repeat %" PetscInt_FMT "); %" PetscInt_FMT " increments committed at that "
+                          "limit or after a repeat that failed (statuses possibly not settled)\n",
                           s->lagged_repeats, P->contact->lagged_repeat, s->lagged_unsettled));
   if (res->stabilized) {
     PetscReal reaction_max;
