@@ -4,6 +4,7 @@
 //   AttemptIncrement  predictor and Newton solve from the committed state (it commits nothing,
 //                     so the same increment can be attempted again);
 // and then, converged:
+//   RepeatLaggedIncrement  (-contact_lagged_repeat) solved again while its lagged statuses change;
 //   CommitIncrement   material history, contact states, work, U and load time committed;
 //   GrowIncrement     step-size control: a cut increment grows again after easy ones;
 //   ReportIncrement, WriteIncrementResults  progress line and monitors; output and checkpoints;
@@ -538,7 +539,7 @@ PetscErrorCode RepeatLaggedIncrement(LoadStepper *s, Increment *inc) {
       break;
     }
   }
-  if (r == P->contact->lagged_repeat || !inc->Converged() || changed) ++s->lagged_unsettled;
+  if (changed) ++s->lagged_unsettled;  // the limit reached, or a repeat failed
   PetscFunctionReturn(0);
 }
 
