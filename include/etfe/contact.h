@@ -44,6 +44,10 @@ struct ContactPair {
   // displacement and f the force, both global, so they survive the frame's motion.
   ContactState committed;
   ContactState trial;     // at the last evaluation: g, f, status
+  // -contact_lagged_repeat: the committed state the increment began from, the one its last
+  // converged solve used, and how often the pair's status changed within the increment.
+  ContactState step_start, solved;
+  int step_changes = 0;
 };
 
 // What a pair reports: force in its current frame, slide since t0 in the tangent plane (local
@@ -76,6 +80,9 @@ struct ContactSet {
   PetscReal penalty_length = 0.0;
   // The smallest and largest pair's k_scale, over all ranks (round-off floors take the stiffest).
   PetscReal k_scale_min = 1.0, k_scale_max = 1.0;
+  // Lagged law: an increment whose commit would change a pair's status is solved again with the
+  // new statuses, at most this many times (0: the thesis's algorithm, statuses from time t only).
+  PetscInt lagged_repeat = 0;
 };
 
 // The -contact_* options, read and range-checked once (collective). default_kn: the penalty when
@@ -86,6 +93,7 @@ struct ContactOptions {
   std::vector<FrictionLaw> stage_laws;  // as given (a law per stage when they differ)
   bool follow = false;
   PetscReal frictionless_until = 0.0, search_tol = 1e-6, penalty_length = 0.0;
+  PetscInt lagged_repeat = 0;
   std::vector<PetscInt> probe_nodes;
 };
 PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,
@@ -101,6 +109,17 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pair, const double u[3], d
 // After a converged increment: status update and cone correction (lagged), new committed state.
 // Counts over all ranks: open, stick, slip, and pairs that lifted off in this increment.
 PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[4]);
+// Lagged law solved to a status fixed point (-contact_lagged_repeat), between a converged solve
+// of an increment and its commit. BeginStep: the increment's start state is the committed one.
+// Revise: each closed pair whose commit would find the other of stick and slip gets the
+// increment's state for that status (ContactLaggedRestartState); a pair on its second change is
+// set to slip and kept there (a status that flips back and forth has its force on the cone
+// either way, and slip puts it there without an overshoot to project). changed: pairs revised
+// over all ranks (0: settled, or the lagged law is not in force at this time). UndoRevise: the
+// states the last converged solve used (a solve with the revised statuses failed).
+PetscErrorCode ContactLaggedBeginStep(Problem *problem);
+PetscErrorCode ContactLaggedRevise(Problem *problem, PetscInt *changed);
+PetscErrorCode ContactLaggedUndoRevise(Problem *problem);
 // The law in force at load time t (stage s covers t in (s, s+1]).
 FrictionLaw ContactLawAt(const ContactSet &c, double time);
 ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);

@@ -74,10 +74,20 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
                              "along its line is this [mm] and scale with it, so refining the mesh keeps the interface's "
                              "stiffness (0: the same kn, kt for every pair, the thesis's)",
                              "", o->penalty_length, &o->penalty_length, nullptr));
+  PetscCall(PetscOptionsInt("-contact_lagged_repeat",
+                            "Lagged law solved to a status fixed point: an increment is solved again, at most this many "
+                            "times, while the stick/slip statuses its commit finds differ from those it was solved with "
+                            "(a pair that changes twice slips), and a slipping pair keeps its direction; converges in the "
+                            "increment count (20 is ample; 0: the thesis's algorithm, each increment solved once with the "
+                            "statuses of its start)",
+                            "", o->lagged_repeat, &o->lagged_repeat, nullptr));
   PetscCall(PetscOptionsIntArray("-contact_probe_nodes",
                                  "Film node ids whose contact history is written as CSV beside the results (none by default)",
                                  "", probes, &nprobe, nullptr));
   PetscOptionsEnd();
+  PetscCheck(o->lagged_repeat >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_lagged_repeat %" PetscInt_FMT ": use 0 (the thesis's lagged law) or a positive limit",
+             o->lagged_repeat);
   o->probe_nodes.assign(probes, probes + nprobe);
   o->stage_laws.clear();
   if (!law_set) nlaw = 0;
@@ -189,6 +199,7 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
     if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->params.mu > 0)
       PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));
   c->frictionless_until = o.frictionless_until;
+  c->lagged_repeat = o.lagged_repeat;
   c->probe_nodes = o.probe_nodes;
   c->penalty_length = o.penalty_length;
   const PetscReal tol = o.search_tol;
@@ -367,7 +378,8 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
     ContactEvaluate(c, pr, &u[3 * l], P->time, fg, nullptr);
     const int before = pr.committed.status;
     if (ContactLawAt(c, P->time) == FrictionLaw::Lagged)
-      ContactLaggedCommit(PairParameters(c, pr), pr.committed, pr.trial.g, pr.trial.f, &pr.committed);
+      (c.lagged_repeat > 0 ? ContactLaggedCommitSettled : ContactLaggedCommit)(PairParameters(c, pr), pr.committed,
+                                                                               pr.trial.g, pr.trial.f, &pr.committed);
     else pr.committed = pr.trial;
     local[pr.committed.status]++;
     if (pr.committed.status == CONTACT_OPEN && before != CONTACT_OPEN) local[3]++;
@@ -376,6 +388,62 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
   PetscInt global[4];
   PetscCallMPI(MPI_Allreduce(local, global, 4, MPIU_INT, MPI_SUM, P->comm));
   for (int i = 0; i < 4; ++i) counts[i] = global[i];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactLaggedBeginStep(Problem *P) {
+  PetscFunctionBeginUser;
+  for (ContactPair &pr : P->contact->pairs) {
+    pr.step_start = pr.solved = pr.committed;
+    pr.step_changes = 0;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactLaggedUndoRevise(Problem *P) {
+  PetscFunctionBeginUser;
+  for (ContactPair &pr : P->contact->pairs) pr.committed = pr.solved;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactLaggedRevise(Problem *P, PetscInt *changed) {
+  ContactSet &c = *P->contact;
+  const PetscScalar *u;
+  PetscInt local = 0;
+  PetscFunctionBeginUser;
+  *changed = 0;
+  // Frictionless tensioning runs the return map whatever the law: no statuses to settle.
+  const bool frictionless = P->time <= c.frictionless_until + 1e-12;
+  if (frictionless || ContactLawAt(c, P->time) != FrictionLaw::Lagged) PetscFunctionReturn(0);
+  PetscCall(VecGetArrayRead(P->U, &u));
+  for (ContactPair &pr : c.pairs) {
+    pr.solved = pr.committed;
+    if (pr.committed.status == CONTACT_OPEN || pr.step_changes >= 2) continue;
+    double fg[3];
+    ContactEvaluate(c, pr, &u[3 * pr.local_node], P->time, fg, nullptr);
+    const ContactParameters p = PairParameters(c, pr);
+    ContactState next;
+    ContactLaggedCommitSettled(p, pr.committed, pr.trial.g, pr.trial.f, &next);
+    // A slip status without a direction ran the stick springs: it counts as stick.
+    const int ran = ContactLaggedRunsSlip(p, pr.committed) || p.mu == 0.0 ? CONTACT_SLIP : CONTACT_STICK;
+    if (next.status == CONTACT_OPEN) {
+      // Lifted off at the end of the step: open for the whole of it. The lagged law keeps a pair
+      // closed at f_z = 0 exactly, so a pair with no pressure (one at a grip, re-closed by
+      // round-off) would otherwise carry its tangential springs through the step unbounded.
+      if (pr.trial.f[0] == 0.0 && pr.trial.f[1] == 0.0 && pr.trial.f[2] == 0.0) continue;
+      pr.committed = pr.step_start;
+      pr.committed.status = CONTACT_OPEN;
+      ++local;
+      continue;
+    }
+    if (next.status == ran) continue;
+    const int status = ++pr.step_changes >= 2 ? CONTACT_SLIP : next.status;
+    if (status == ran) continue;
+    ContactLaggedRestartState(p, pr.step_start, status, next.f, &pr.committed);
+    ++local;
+  }
+  PetscCall(VecRestoreArrayRead(P->U, &u));
+  PetscCallMPI(MPI_Allreduce(&local, changed, 1, MPIU_INT, MPI_SUM, P->comm));
   PetscFunctionReturn(0);
 }
 

@@ -89,6 +89,10 @@ void ContactLaggedForce(const ContactParameters &p, const ContactState &committe
   }
 }
 
+bool ContactLaggedRunsSlip(const ContactParameters &p, const ContactState &committed) {
+  return committed.status == CONTACT_SLIP && p.mu > 0.0 && std::hypot(committed.f[0], committed.f[1]) > 0.0;
+}
+
 // The Fig. 4.4 narrative (thesis L1342): a pair whose friction force exceeds mu |f_z| at t_i
 // slides and its force is corrected onto the yield surface; "this correction will be stopped when
 // the correction of friction force at t_j is smaller than the yield mu |f_z(t_j)|", and from t_j
@@ -114,9 +118,7 @@ void ContactLaggedForce(const ContactParameters &p, const ContactState &committe
 //   adds no out-of-balance force; only the projection of an overshoot does, as in the thesis.
 void ContactLaggedCommit(const ContactParameters &p, const ContactState &committed, const double g[3],
                          const double f[3], ContactState *next) {
-  // The step ran the slip law (4.29) only for a directed slip with friction (ContactLaggedForce).
-  const bool ran_slip = committed.status == CONTACT_SLIP && p.mu > 0.0 &&
-                        std::hypot(committed.f[0], committed.f[1]) > 0.0;
+  const bool ran_slip = ContactLaggedRunsSlip(p, committed);
   double trial[2] = {f[0], f[1]};
   bool reversed = false;
   if (ran_slip) {
@@ -155,6 +157,28 @@ void ContactLaggedCommit(const ContactParameters &p, const ContactState &committ
   } else {
     next->status = CONTACT_STICK;
   }
+}
+
+void ContactLaggedCommitSettled(const ContactParameters &p, const ContactState &committed, const double g[3],
+                                const double f[3], ContactState *next) {
+  const bool ran_slip = ContactLaggedRunsSlip(p, committed);
+  ContactLaggedCommit(p, committed, g, f, next);
+  if (ran_slip && next->status == CONTACT_SLIP) next->f[0] = f[0], next->f[1] = f[1];
+}
+
+// Why the start's pressure: the step's force is f_n + K dg with K the slip tangent, so a force
+// on the cone at the start stays on it at the end whatever dw the solve finds; the start's
+// tangential force inside the cone (a sticking pair) is raised to the cone, the O(dt) error of
+// deciding the status for the whole step.
+void ContactLaggedRestartState(const ContactParameters &p, const ContactState &start, int status, const double dir[2],
+                               ContactState *step) {
+  *step = start;
+  step->status = status;
+  const double size = std::hypot(dir[0], dir[1]);
+  if (status != CONTACT_SLIP || size <= 0.0 || start.f[2] >= 0.0) return;
+  const double scale = p.mu * (-start.f[2]) / size;
+  step->f[0] = scale * dir[0];
+  step->f[1] = scale * dir[1];
 }
 
 int ContactImplicitForce(const ContactParameters &p, const ContactState &committed,

@@ -4,6 +4,7 @@
 //   AttemptIncrement  predictor and Newton solve from the committed state (it commits nothing,
 //                     so the same increment can be attempted again);
 // and then, converged:
+//   RepeatLaggedIncrement  (-contact_lagged_repeat) solved again while its lagged statuses change;
 //   CommitIncrement   material history, contact states, work, U and load time committed;
 //   GrowIncrement     step-size control: a cut increment grows again after easy ones;
 //   ReportIncrement, WriteIncrementResults  progress line and monitors; output and checkpoints;
@@ -224,6 +225,10 @@ struct LoadStepper {
   // The film's internal forces at U_committed (committed history), and scratch for the work.
   Vec Fint_committed = nullptr, Fint = nullptr, dU = nullptr;
   Vec F = nullptr;  // SNES's residual (not owned), for failure messages
+  // -contact_lagged_repeat: the last converged solve of the increment, and the repeated solves
+  // and the increments whose statuses did not settle (over the run).
+  Vec U_solved = nullptr;
+  PetscInt lagged_repeats = 0, lagged_unsettled = 0;
   double work_total = 0.0, shift_work_total = 0.0;
   double stab_work_total = 0.0, stab_force_max = 0.0;  // of the stabilized increments
   bool strain_warned = false;  // -load_plastic_strain_limit passed (warned once)
@@ -513,6 +518,36 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   PetscFunctionReturn(0);
 }
 
+// Lagged law with -contact_lagged_repeat: a converged increment is solved again, from its answer,
+// while the statuses its commit would set differ from those it was solved with
+// (ContactLaggedRevise), at most that many times. A repeat that fails to converge leaves the last
+// converged solve and its statuses, which the commit then treats as the thesis's law does: a
+// repeat never cuts an increment back.
+PetscErrorCode RepeatLaggedIncrement(LoadStepper *s, Increment *inc) {
+  Problem *P = s->P;
+  PetscInt changed = 0, r = 0;
+  PetscFunctionBeginUser;
+  if (!P->contact || P->contact->lagged_repeat <= 0) PetscFunctionReturn(0);
+  if (!s->U_solved) PetscCall(VecDuplicate(P->U, &s->U_solved));
+  PetscCall(ContactLaggedBeginStep(P));
+  for (; r < P->contact->lagged_repeat; ++r) {
+    PetscCall(ContactLaggedRevise(P, &changed));
+    if (!changed) break;
+    ++s->lagged_repeats;
+    PetscCall(VecCopy(P->U, s->U_solved));
+    const SNESConvergedReason solved = inc->reason;
+    PetscCall(NewtonSolve(s, inc));
+    if (!inc->Converged()) {
+      PetscCall(VecCopy(s->U_solved, P->U));
+      PetscCall(ContactLaggedUndoRevise(P));
+      inc->reason = solved;
+      break;
+    }
+  }
+  if (changed) ++s->lagged_unsettled;  // the limit reached, or a repeat failed
+  PetscFunctionReturn(0);
+}
+
 // The work done on the film over the converged increment (trapezoid of the internal forces at its
 // two ends, the end's with the just committed history) and the tangent shift's work.
 PetscErrorCode AccountIncrementWork(LoadStepper *s) {
@@ -650,6 +685,12 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
                           s->work_total, s->shift_work_total,
                           s->work_total != 0 ? s->shift_work_total / std::fabs(s->work_total) : 0.0,
                           s->ck.restart[0] ? " since the restart" : ""));
+  if (P->contact && P->contact->lagged_repeat > 0)
+    PetscCall(PetscPrintf(P->comm,
+                          "etfe: lagged law: %" PetscInt_FMT " repeated solves with revised statuses "
+                          "(-contact_lagged_repeat %" PetscInt_FMT "); %" PetscInt_FMT " increments committed at that "
+                          "limit or after a repeat that failed (statuses possibly not settled)\n",
+                          s->lagged_repeats, P->contact->lagged_repeat, s->lagged_unsettled));
   if (res->stabilized) {
     PetscReal reaction_max;
     PetscCall(VecMaxNodalNorm(P->reaction, &reaction_max));
@@ -668,6 +709,7 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
   PetscCall(VecDestroy(&s->dU));
   PetscCall(VecDestroy(&s->U_committed));
   PetscCall(VecDestroy(&s->U_previous));
+  PetscCall(VecDestroy(&s->U_solved));
   PetscFunctionReturn(0);
 }
 
@@ -691,6 +733,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
       if (exhausted) break;
       continue;
     }
+    PetscCall(RepeatLaggedIncrement(&s, &inc));
     PetscInt contact_counts[4];
     PetscCall(CommitIncrement(&s, inc, contact_counts));
     GrowIncrement(&s, inc);

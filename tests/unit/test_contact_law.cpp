@@ -693,6 +693,78 @@ void TestBlockOnPlane() {
 
 } // namespace
 
+// A lagged step from s to the gap g, committed by the thesis's rule and by the settled one.
+void BothCommits(const ContactParameters &p, const ContactState &s, const double g[3], ContactState *plain,
+                 ContactState *settled) {
+  double f[3];
+  ContactLaggedForce(p, s, g, f, nullptr);
+  ContactLaggedCommit(p, s, g, f, plain);
+  ContactLaggedCommitSettled(p, s, g, f, settled);
+}
+
+// Lagged law solved to a status fixed point (-contact_lagged_repeat): which law a step runs, the
+// state a step is solved again from, and the commit that keeps a slipping pair's direction.
+// kn = 1000, kt = 500, mu = 0.3.
+void TestLaggedSettled() {
+  const ContactParameters p{1000.0, 500.0, 0.3};
+  const double tol = 1e-13;
+  // Only a directed slip with friction runs the slip law.
+  CHECK(ContactLaggedRunsSlip(p, State(0, 0, 0, 30, 0, -100, CONTACT_SLIP)), "directed slip runs 4.29");
+  CHECK(!ContactLaggedRunsSlip(p, State(0, 0, 0, 0, 0, -100, CONTACT_SLIP)), "slip without direction: springs");
+  CHECK(!ContactLaggedRunsSlip(p, State(0, 0, 0, 10, 0, -100, CONTACT_STICK)), "stick: springs");
+  CHECK(!ContactLaggedRunsSlip(ContactParameters{1000.0, 500.0, 0.0}, State(0, 0, 0, 1, 0, -100, CONTACT_SLIP)),
+        "frictionless: no slip law");
+
+  // Restart in slip: the start's tangential force (10, 0) raised to the cone of its pressure,
+  // 0.3 * 100 = 30, along the direction the commit found (3, 4) -> (18, 24); g and f_z kept.
+  const ContactState start = State(0.5, 0.25, -0.1, 10, 0, -100, CONTACT_STICK);
+  ContactState step;
+  const double dir[2] = {3.0, 4.0};
+  ContactLaggedRestartState(p, start, CONTACT_SLIP, dir, &step);
+  CHECK(step.status == CONTACT_SLIP, "restart status slip");
+  CHECK_CLOSE(step.f[0], 18.0, tol, 0.0);
+  CHECK_CLOSE(step.f[1], 24.0, tol, 0.0);
+  CHECK_CLOSE(step.f[2], -100.0, tol, 0.0);
+  CHECK(step.g[0] == 0.5 && step.g[1] == 0.25 && step.g[2] == -0.1, "restart keeps the start's gap");
+  // The slip law from there keeps the force on the cone through the step: pressed to 120 -> 36.
+  {
+    const double g[3] = {0.9, 0.0, -0.12};
+    double f[3];
+    ContactLaggedForce(p, step, g, f, nullptr);
+    CHECK_CLOSE(std::hypot(f[0], f[1]), 36.0, tol, 0.0);
+  }
+  // Restart in stick: the start as it was; no direction or no pressure: tangential force kept.
+  ContactLaggedRestartState(p, State(0.5, 0, -0.1, 30, 0, -100, CONTACT_SLIP), CONTACT_STICK, dir, &step);
+  CHECK(step.status == CONTACT_STICK && step.f[0] == 30.0 && step.f[1] == 0.0, "restart in stick: the start");
+  const double none[2] = {0.0, 0.0};
+  ContactLaggedRestartState(p, start, CONTACT_SLIP, none, &step);
+  CHECK(step.status == CONTACT_SLIP && step.f[0] == 10.0 && step.f[1] == 0.0, "no direction: force kept");
+  ContactLaggedRestartState(p, State(0, 0, 0, 0, 0, 0, CONTACT_STICK), CONTACT_SLIP, dir, &step);
+  CHECK(step.f[0] == 0.0 && step.f[1] == 0.0, "no pressure: force kept");
+
+  // Settled commit: a pair slipping along x whose step moved it sideways as well keeps the
+  // direction x and the converged force; the thesis's commit turns it toward the trial.
+  ContactState plain, settled;
+  {
+    const double g[3] = {0.1, 0.1, -0.1};
+    BothCommits(p, State(0, 0, -0.1, 30, 0, -100, CONTACT_SLIP), g, &plain, &settled);
+    CHECK(plain.status == CONTACT_SLIP && settled.status == CONTACT_SLIP, "both slip on");
+    CHECK(plain.f[1] > 1.0, "the thesis's commit follows the trial sideways (%g)", plain.f[1]);
+    CHECK_CLOSE(settled.f[0], 30.0, tol, 0.0);
+    CHECK(settled.f[1] == 0.0, "the settled commit keeps the direction");
+  }
+  // Otherwise the settled commit is the thesis's: a stick overshoot is projected along its force,
+  // a reversal sticks.
+  {
+    const double g[3] = {0.1, 0.0, -0.1}, back[3] = {-0.1, 0.0, -0.1};
+    BothCommits(p, State(0, 0, -0.1, 0, 0, -100, CONTACT_STICK), g, &plain, &settled);
+    CHECK(settled.status == plain.status && settled.f[0] == plain.f[0] && settled.f[1] == plain.f[1],
+          "stick step: the same commit");
+    BothCommits(p, State(0, 0, -0.1, 30, 0, -100, CONTACT_SLIP), back, &plain, &settled);
+    CHECK(settled.status == CONTACT_STICK && plain.status == CONTACT_STICK, "reversal sticks");
+  }
+}
+
 int main() {
   TestImplicitTangent();
   TestImplicitSlipTangentForm();
@@ -703,6 +775,7 @@ int main() {
   TestLaggedReversal();
   TestLaggedRandomHistory();
   TestLaggedSpecial();
+  TestLaggedSettled();
   TestCommitCone();
   TestFixed();
   TestBlockOnPlane();

@@ -38,6 +38,11 @@ struct ContactState {
 void ContactLaggedForce(const ContactParameters &p, const ContactState &committed,
                         const double g[3], double f[3], double dfdg[9]);
 
+// Whether a step from `committed` runs the slip law (4.29) with friction: a slip status with
+// mu > 0 and a tangential force to give its direction. A slip status without one runs the stick
+// springs tangentially, as a stick status does.
+bool ContactLaggedRunsSlip(const ContactParameters &p, const ContactState &committed);
+
 // Between load steps (thesis Fig. 4.4): the status and force of the next step, decided at the
 // converged gap g from an elastic trial. committed is the state the step started from (next may
 // alias it). For a step that ran the stick springs the trial is the converged force f; for a
@@ -50,6 +55,27 @@ void ContactLaggedForce(const ContactParameters &p, const ContactState &committe
 // committing f = 0 at w = 0 gives OPEN, which the lagged law keeps force-free for a whole step.
 void ContactLaggedCommit(const ContactParameters &p, const ContactState &committed, const double g[3],
                          const double f[3], ContactState *next);
+
+// The commit of the lagged law solved to a status fixed point: ContactLaggedCommit, except that a
+// pair that slipped through the step and slips on keeps its direction (eq. 4.28's alpha) and the
+// converged force, which the slip law (4.29) left on the cone. Why: in a slip step the pair has no
+// tangential stiffness, so its sideways motion answers the sideways part of its own friction
+// force; taking the next direction from that motion (the elastic trial) amplifies a sideways
+// component by about f / (k_film slide) per increment, which grows as the increments shrink
+// (measured on the capstan: 1e-14 to 2e-13 of the force in three increments). The direction is
+// set where the pair starts to slip, from its stick force.
+void ContactLaggedCommitSettled(const ContactParameters &p, const ContactState &committed, const double g[3],
+                                const double f[3], ContactState *next);
+
+// Lagged law solved to a status fixed point (-contact_lagged_repeat): the state a step is solved
+// again from when its commit found the pair `status` (STICK or SLIP) instead of the status it
+// was solved with. start: the committed state the step began from; dir: the tangential force
+// the commit found (its direction only is used). Stick: the start itself. Slip: the start's g and
+// f_z with the tangential force on the cone of the start's pressure, mu |f_z|, along dir, so the
+// slip law (4.29) keeps it on the cone through the step; with no direction (dir = 0) or no
+// pressure the start's tangential force is kept. The status is `status`.
+void ContactLaggedRestartState(const ContactParameters &p, const ContactState &start, int status, const double dir[2],
+                               ContactState *step);
 
 // Implicit law: Coulomb return map on the friction cone at the current gap.
 //   normal: f_z = kn min(w, 0)              (open, f = 0, when w >= 0: lift-off)
