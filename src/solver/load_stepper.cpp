@@ -25,8 +25,11 @@
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
 #include "etfe/tangent_shift.h"
+#include "load_stepper_internal.h"
 
 namespace etfe {
+
+using namespace load_stepping;
 
 const char *const kStabilizeWhen[3] = {"never", "failure", "always"};
 
@@ -151,211 +154,8 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
   PetscFunctionReturn(0);
 }
 
-// Scene node id of the largest residual entry, for failure messages.
-PetscErrorCode WorstNode(Problem *P, Vec F, PetscInt *node, double *value) {
-  Vec a;
-  PetscInt loc;
-  PetscReal v;
-  PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(F, &a));
-  PetscCall(VecCopy(F, a));
-  PetscCall(VecAbs(a));
-  PetscCall(VecMax(a, &loc, &v));
-  PetscCall(VecDestroy(&a));
-  PetscInt mine = -1, n = loc / 3 - P->mesh.owned_start;
-  if (loc >= 0 && n >= 0 && n < P->mesh.num_owned) mine = P->mesh.natural_id[n];
-  PetscCallMPI(MPI_Allreduce(&mine, node, 1, MPIU_INT, MPI_MAX, P->comm));
-  *value = v;
-  PetscFunctionReturn(0);
-}
 
-// What the current stage does, from the schedules that change in it: "draw_a 4.20 mm, draw_d
-// 2.40 mm" or "pressure 1.50 kPa" (at most two named).
-std::string StageDescription(const SceneSpec &scene, double t) {
-  const int nstages = scene.NumStages();
-  const int s = std::max(0, std::min((int)std::floor(t - 1e-9), nstages - 1));
-  std::string d;
-  int shown = 0, more = 0;
-  for (const Schedule &sc : scene.schedules) {
-    const double a = sc.At(s), b = sc.At(s + 1);
-    if (std::fabs(b - a) <= 1e-14 * (std::fabs(a) + std::fabs(b))) continue;
-    if (shown == 2) {
-      ++more;
-      continue;
-    }
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%s%s %.3g%s%s", shown ? ", " : "", sc.name.c_str(), sc.At(t) * sc.display_scale,
-                  sc.unit.empty() ? "" : " ", sc.unit.c_str());
-    d += buf;
-    ++shown;
-  }
-  if (more) d += ", +" + std::to_string(more);
-  return d.empty() ? "held" : d;
-}
 
-std::string Clock(double seconds) {
-  const long s = (long)std::llround(std::max(0.0, seconds));
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
-  return buf;
-}
-
-constexpr double kTimeEps = 1e-12;  // load times closer than this are the same
-
-// The load history between increments: the committed state (what a checkpoint saves: load time,
-// increment sizes, counters, the last two converged U) and the run's accounting.
-struct LoadStepper {
-  Problem *P;
-  SNES snes;
-  OutputFile *out;
-  const LoadStepperOptions &o;
-  const CheckpointOptions &ck;
-  LoadStepperResult *res;
-  // The schedule: stages of unit load time, per_stage nominal increments in each.
-  int nstages;
-  double t_end;
-  PetscInt per_stage;
-  double dt_nominal;
-  // Committed: load time, the size of the next increment and of the last converged one.
-  double t = 0.0, dt, dt_last = 0.0;
-  PetscInt step = 0, easy = 0;  // easy: easy increments in a row
-  // Extrapolate only from converged states: a scene's initial guess is not one.
-  PetscInt converged_states;
-  Vec U_committed = nullptr, U_previous = nullptr;  // converged states n and n-1
-  // The film's internal forces at U_committed (committed history), and scratch for the work.
-  Vec Fint_committed = nullptr, Fint = nullptr, dU = nullptr;
-  Vec F = nullptr;  // SNES's residual (not owned), for failure messages
-  // -contact_lagged_repeat: the last converged solve of the increment, and the repeated solves
-  // and the increments whose statuses did not settle (over the run).
-  Vec U_solved = nullptr;
-  PetscInt lagged_repeats = 0, lagged_unsettled = 0;
-  double work_total = 0.0, shift_work_total = 0.0;
-  double stab_work_total = 0.0, stab_force_max = 0.0;  // of the stabilized increments
-  bool strain_warned = false;  // -load_plastic_strain_limit passed (warned once)
-  // Progress lines: cut-backs shown so far, pair lift-offs since the last line.
-  PetscInt cutbacks_printed = 0, lifted_since_print = 0;
-  PetscLogDouble t0 = 0.0;
-  // SNES's own tolerances, restored at the end (-load_max_it lowers max_it per increment).
-  PetscReal snes_atol = 0.0, snes_rtol = 0.0, snes_stol = 0.0;
-  PetscInt snes_max_it = 0, snes_max_f = 0;
-
-  LoadStepper(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o, const CheckpointOptions &ck,
-              LoadStepperResult *res)
-      : P(P), snes(snes), out(out), o(o), ck(ck), res(res), nstages(P->scene.NumStages()), t_end(nstages),
-        per_stage((o.increments + nstages - 1) / nstages), dt_nominal(1.0 / per_stage), dt(dt_nominal),
-        converged_states(P->has_initial_guess ? 0 : 1) {}
-  bool Finished() const { return t >= t_end - kTimeEps; }
-  bool AtStageEnd() const { return std::fabs(t - std::round(t)) < kTimeEps; }
-};
-
-// One attempt at the increment from the committed load time t to t_new, and how its Newton solve
-// ended. An attempt changes only the iterate (P->U, at load time t_new) and the trial states the
-// residual leaves, never the committed state, so it can be made again for the same increment.
-struct Increment {
-  double t = 0.0, dt_try = 0.0, t_new = 0.0;
-  PetscInt max_it = 0;  // Newton iteration limit of this attempt
-  PetscLogDouble start = 0.0;
-  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
-  PetscInt its = 0;
-  PetscReal fnorm = 0.0;
-  // Stabilized (-load_stabilize_when): the stabilizing force's work and largest nodal size.
-  bool stabilized = false;
-  double stab_work = 0.0, stab_force = 0.0;
-  bool Converged() const { return reason > 0; }
-};
-
-// Why an increment's Newton solve failed, with what it usually means and the way out.
-struct IncrementFailure {
-  SNESConvergedReason reason;
-  PetscInt its;
-  PetscInt worst_node;  // scene id of the largest residual entry, and its size
-  double worst;
-  PetscInt bad_element;  // the last element problem (SolveDiagnostics)
-  int bad_status;
-  bool stiff_penalty;  // contact penalties far stiffer than the film
-  bool load_max_it;    // the attempt's iteration limit was -load_max_it, not -snes_max_it
-
-  std::string Message() const {
-    char why[512];
-    const char *name = SNESConvergedReasons[reason];
-    if (reason == SNES_DIVERGED_LINE_SEARCH && bad_status == KERNEL_OK)
-      std::snprintf(why, sizeof why,
-                    "%s (no step along the Newton direction reduced the residual; largest residual %.3e at node %lld%s)",
-                    name, worst, (long long)worst_node,
-                    stiff_penalty ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt"
-                                  : "");
-    else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
-      std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual %.3e at node %lld)",
-                    name, (long long)bad_element, KernelStatusName(bad_status), worst, (long long)worst_node);
-    else if (reason == SNES_DIVERGED_LINEAR_SOLVE)
-      std::snprintf(why, sizeof why,
-                    "%s (the linear solver failed: a singular tangent, e.g. an unsupported rigid motion, or MUMPS out "
-                    "of workspace with stiff penalties: -mat_mumps_icntl_14 400, -ksp_error_if_not_converged shows "
-                    "its error; largest residual %.3e at node %lld)",
-                    name, worst, (long long)worst_node);
-    else
-      std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at node %lld%s)", name,
-                    (long long)its, worst, (long long)worst_node,
-                    reason == SNES_DIVERGED_MAX_IT && load_max_it ? "; the limit after the first increment is -load_max_it"
-                                                                  : "");
-    return why;
-  }
-};
-
-// Collective: gathers what IncrementFailure needs after a failed attempt (F: its last residual).
-PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, IncrementFailure *f) {
-  Problem *P = s.P;
-  PetscFunctionBeginUser;
-  f->reason = inc.reason;
-  f->its = inc.its;
-  PetscCall(WorstNode(P, s.F, &f->worst_node, &f->worst));
-  f->bad_element = P->diagnostics.bad_element;
-  f->bad_status = P->diagnostics.bad_status;
-  f->stiff_penalty = P->contact && P->contact->params.kn > 1e5 * P->AxialStiffness();
-  f->load_max_it = inc.max_it < s.snes_max_it;
-  PetscFunctionReturn(0);
-}
-
-// One line per increment: where the load history is (step k/N, %, the stage's meaning), how the
-// increment went (Newton iterations, residual, contact states inline) and the time to the end.
-PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const PetscInt counts[4], double now) {
-  Problem *P = s.P;
-  const SolveDiagnostics &d = P->diagnostics;
-  const double t = s.t;
-  PetscFunctionBeginUser;
-  const int stage = std::min((int)std::floor(t - 1e-9), s.nstages - 1) + 1;
-  const double done = t / s.t_end, elapsed_s = now - s.t0;
-  std::string contact;
-  if (P->contact) {
-    char buf[128], lifted[64] = "";
-    if (counts[3]) std::snprintf(lifted, sizeof lifted, " (%lld lift-offs since the last line)", (long long)counts[3]);
-    std::snprintf(buf, sizeof buf, "  contact open %lld stick %lld slip %lld%s", (long long)counts[0],
-                  (long long)counts[1], (long long)counts[2], lifted);
-    contact = buf;
-  }
-  char cut[96] = "";
-  if (s.res->cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)s.res->cutbacks);
-  // A stabilized increment says so, with its force's work against the increment's on the film.
-  if (inc.stabilized)
-    std::snprintf(cut + std::strlen(cut), sizeof cut - std::strlen(cut), "  stabilized (%.1e of the work)",
-                  d.increment_work != 0 ? inc.stab_work / std::fabs(d.increment_work) : 0.0);
-  // With a tangent shift: the increment's work on the film and what the shift would dissipate.
-  if (P->TangentShiftAbsolute() > 0) {
-    char buf[128];
-    std::snprintf(buf, sizeof buf, "  work %.3e N mm shift %.1e (%.1e of it)", d.increment_work,
-                  d.increment_shift_work,
-                  d.increment_work != 0 ? d.increment_shift_work / std::fabs(d.increment_work) : 0.0);
-    contact += buf;
-  }
-  PetscCall(PetscPrintf(P->comm,
-                        "step %5" PetscInt_FMT "/%" PetscInt_FMT " %5.1f%%  t %.5f  stage %d/%d %s  newton %2" PetscInt_FMT
-                        "  |R| %.2e%s%s  %.2f s  elapsed %s  ETA %s\n",
-                        s.step, s.per_stage * s.nstages, 100.0 * done, t, stage, s.nstages,
-                        StageDescription(P->scene, t).c_str(), inc.its, (double)inc.fnorm, contact.c_str(), cut,
-                        now - inc.start, Clock(elapsed_s).c_str(),
-                        done > 0 ? Clock(elapsed_s * (1.0 - done) / done).c_str() : "-"));
-  PetscFunctionReturn(0);
-}
 
 PetscErrorCode WriteCheckpoint(const LoadStepper &s) {
   StepperState st;
@@ -610,44 +410,6 @@ bool CutBack(LoadStepper *s, const Increment &inc) {
   return s->dt < s->dt_nominal / std::pow(2.0, (double)s->o.max_cutbacks) * (1 - 1e-9);
 }
 
-// A converged increment seen from outside: the progress line (every -load_monitor increments,
-// the first, a stage's end, the last and after a cut-back), the scene's monitor, contact probes.
-PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]) {
-  Problem *P = s->P;
-  const LoadStepperOptions &o = s->o;
-  PetscLogDouble now;
-  PetscFunctionBeginUser;
-  // Pairs that lift off between two printed lines are counted, not each printed.
-  s->lifted_since_print += contact_counts[3];
-  contact_counts[3] = s->lifted_since_print;
-  PetscCall(PetscTime(&now));
-  if (o.monitor > 0 && (s->step % o.monitor == 0 || s->step == 1 || s->AtStageEnd() || s->Finished() ||
-                        s->res->cutbacks != s->cutbacks_printed || inc.stabilized)) {
-    s->cutbacks_printed = s->res->cutbacks;
-    PetscCall(PrintProgress(*s, inc, contact_counts, now));
-    s->lifted_since_print = 0;
-  }
-  if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, s->step, s->t, o.monitor));
-  if (P->contact && s->out) PetscCall(ContactWriteProbes(P, OutputStem(s->out), s->step, s->t));
-  PetscFunctionReturn(0);
-}
-
-// A failed attempt seen from outside: the cut-back line, and the run's failure once the
-// cut-backs are spent.
-PetscErrorCode ReportFailedIncrement(LoadStepper *s, const Increment &inc, const IncrementFailure &failure,
-                                     bool exhausted) {
-  const std::string why = failure.Message();
-  PetscFunctionBeginUser;
-  if (s->o.monitor)
-    PetscCall(PetscPrintf(s->P->comm,
-                          "step %5" PetscInt_FMT "  t %8.5f -> %.5f failed: %s; cutting back to dt %.3e\n",
-                          s->step + 1, inc.t, inc.t_new, why.c_str(), s->dt));
-  if (exhausted)
-    s->res->failure = std::string("increment ") + std::to_string(s->step + 1) + " (load time " +
-                      std::to_string(inc.t) + " -> " + std::to_string(inc.t_new) + ") did not converge after " +
-                      std::to_string(s->o.max_cutbacks) + " cut-backs: " + why;
-  PetscFunctionReturn(0);
-}
 
 // Output and checkpoint timing after a converged increment: results every -output_every
 // increments, at the end and where -load_stop_after stops the run; checkpoints every

@@ -1,0 +1,129 @@
+// The load stepper's state and an increment's attempt, shared by its loop (load_stepper.cpp) and
+// its reports (load_stepper_report.cpp). Private to src/solver.
+#pragma once
+#include <petscsnes.h>
+
+#include <cstdio>
+#include <string>
+
+#include "etfe/kernels/status.h"
+#include "etfe/load_stepper.h"
+
+namespace etfe {
+namespace load_stepping {
+
+constexpr double kTimeEps = 1e-12;  // load times closer than this are the same
+
+// The load history between increments: the committed state (what a checkpoint saves: load time,
+// increment sizes, counters, the last two converged U) and the run's accounting.
+struct LoadStepper {
+  Problem *P;
+  SNES snes;
+  OutputFile *out;
+  const LoadStepperOptions &o;
+  const CheckpointOptions &ck;
+  LoadStepperResult *res;
+  // The schedule: stages of unit load time, per_stage nominal increments in each.
+  int nstages;
+  double t_end;
+  PetscInt per_stage;
+  double dt_nominal;
+  // Committed: load time, the size of the next increment and of the last converged one.
+  double t = 0.0, dt, dt_last = 0.0;
+  PetscInt step = 0, easy = 0;  // easy: easy increments in a row
+  // Extrapolate only from converged states: a scene's initial guess is not one.
+  PetscInt converged_states;
+  Vec U_committed = nullptr, U_previous = nullptr;  // converged states n and n-1
+  // The film's internal forces at U_committed (committed history), and scratch for the work.
+  Vec Fint_committed = nullptr, Fint = nullptr, dU = nullptr;
+  Vec F = nullptr;  // SNES's residual (not owned), for failure messages
+  // -contact_lagged_repeat: the last converged solve of the increment, and the repeated solves
+  // and the increments whose statuses did not settle (over the run).
+  Vec U_solved = nullptr;
+  PetscInt lagged_repeats = 0, lagged_unsettled = 0;
+  double work_total = 0.0, shift_work_total = 0.0;
+  double stab_work_total = 0.0, stab_force_max = 0.0;  // of the stabilized increments
+  bool strain_warned = false;  // -load_plastic_strain_limit passed (warned once)
+  // Progress lines: cut-backs shown so far, pair lift-offs since the last line.
+  PetscInt cutbacks_printed = 0, lifted_since_print = 0;
+  PetscLogDouble t0 = 0.0;
+  // SNES's own tolerances, restored at the end (-load_max_it lowers max_it per increment).
+  PetscReal snes_atol = 0.0, snes_rtol = 0.0, snes_stol = 0.0;
+  PetscInt snes_max_it = 0, snes_max_f = 0;
+
+  LoadStepper(Problem *P, SNES snes, OutputFile *out, const LoadStepperOptions &o, const CheckpointOptions &ck,
+              LoadStepperResult *res)
+      : P(P), snes(snes), out(out), o(o), ck(ck), res(res), nstages(P->scene.NumStages()), t_end(nstages),
+        per_stage((o.increments + nstages - 1) / nstages), dt_nominal(1.0 / per_stage), dt(dt_nominal),
+        converged_states(P->has_initial_guess ? 0 : 1) {}
+  bool Finished() const { return t >= t_end - kTimeEps; }
+  bool AtStageEnd() const { return std::fabs(t - std::round(t)) < kTimeEps; }
+};
+
+// One attempt at the increment from the committed load time t to t_new, and how its Newton solve
+// ended. An attempt changes only the iterate (P->U, at load time t_new) and the trial states the
+// residual leaves, never the committed state, so it can be made again for the same increment.
+struct Increment {
+  double t = 0.0, dt_try = 0.0, t_new = 0.0;
+  PetscInt max_it = 0;  // Newton iteration limit of this attempt
+  PetscLogDouble start = 0.0;
+  SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
+  PetscInt its = 0;
+  PetscReal fnorm = 0.0;
+  // Stabilized (-load_stabilize_when): the stabilizing force's work and largest nodal size.
+  bool stabilized = false;
+  double stab_work = 0.0, stab_force = 0.0;
+  bool Converged() const { return reason > 0; }
+};
+
+// Why an increment's Newton solve failed, with what it usually means and the way out.
+struct IncrementFailure {
+  SNESConvergedReason reason;
+  PetscInt its;
+  PetscInt worst_node;  // scene id of the largest residual entry, and its size
+  double worst;
+  PetscInt bad_element;  // the last element problem (SolveDiagnostics)
+  int bad_status;
+  bool stiff_penalty;  // contact penalties far stiffer than the film
+  bool load_max_it;    // the attempt's iteration limit was -load_max_it, not -snes_max_it
+
+  std::string Message() const {
+    char why[512];
+    const char *name = SNESConvergedReasons[reason];
+    if (reason == SNES_DIVERGED_LINE_SEARCH && bad_status == KERNEL_OK)
+      std::snprintf(why, sizeof why,
+                    "%s (no step along the Newton direction reduced the residual; largest residual %.3e at node %lld%s)",
+                    name, worst, (long long)worst_node,
+                    stiff_penalty ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt"
+                                  : "");
+    else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
+      std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual %.3e at node %lld)",
+                    name, (long long)bad_element, KernelStatusName(bad_status), worst, (long long)worst_node);
+    else if (reason == SNES_DIVERGED_LINEAR_SOLVE)
+      std::snprintf(why, sizeof why,
+                    "%s (the linear solver failed: a singular tangent, e.g. an unsupported rigid motion, or MUMPS out "
+                    "of workspace with stiff penalties: -mat_mumps_icntl_14 400, -ksp_error_if_not_converged shows "
+                    "its error; largest residual %.3e at node %lld)",
+                    name, worst, (long long)worst_node);
+    else
+      std::snprintf(why, sizeof why, "%s after %lld Newton iterations (largest residual %.3e at node %lld%s)", name,
+                    (long long)its, worst, (long long)worst_node,
+                    reason == SNES_DIVERGED_MAX_IT && load_max_it ? "; the limit after the first increment is -load_max_it"
+                                                                  : "");
+    return why;
+  }
+};
+
+// Why the attempt failed (SNES's reason, the element or node at fault, the way out).
+PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, IncrementFailure *f);
+// A converged increment seen from outside: the progress line (every -load_monitor increments, the
+// first, a stage's end, the last, after a cut-back and when stabilized), the scene's monitor,
+// contact probes. contact_counts[3] (lift-offs) is accumulated between printed lines.
+PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]);
+// A failed attempt seen from outside: the cut-back line, and the run's failure once the
+// cut-backs are spent.
+PetscErrorCode ReportFailedIncrement(LoadStepper *s, const Increment &inc, const IncrementFailure &failure,
+                                     bool exhausted);
+
+} // namespace load_stepping
+} // namespace etfe
