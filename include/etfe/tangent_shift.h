@@ -16,6 +16,10 @@ namespace etfe {
 // the solve (F_0 recorded at its iteration 0), so that it vanishes as Newton converges. Without
 // snes (a tangent outside a solve) the full shift.
 PetscErrorCode TangentShiftForIteration(Problem *problem, SNES snes, double *shift);
+// The shift [N/mm] of a converged state's tangent: 0 with -membrane_tangent_shift_adaptive (it has
+// vanished), else TangentShiftAbsolute(). What a tangent taken between solves (the predictor's)
+// uses, so that it does not depend on the last solve (a restart has had none).
+double TangentShiftConverged(const Problem *problem);
 // The SNES Jacobian callback (context: the Problem): FormJacobian's assembled tangent plus the
 // shift of this iteration on its diagonal, remembered in problem->diagnostics.shift_applied.
 PetscErrorCode FormShiftedJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx);

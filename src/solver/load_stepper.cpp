@@ -116,8 +116,9 @@ namespace {
 // prescribed values and loads move from t to t_new with the free DOFs held (a one-sided
 // difference with a small fraction e of the increment: K_fc dU_c plus the load change). The
 // tangent is taken at t before the load time moves on, so the time only goes forward; the
-// caller sets t_new on U. The tangent is the solve's (FormShiftedJacobian) with extra_shift
-// (relative to E h, -load_tangent_predictor_shift) more on its diagonal.
+// caller sets t_new on U. The tangent is a converged state's (TangentShiftConverged: it must not
+// depend on the last Newton solve, which a restarted run has not made) with extra_shift (relative
+// to E h, -load_tangent_predictor_shift) more on its diagonal.
 PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double t_new, double extra_shift, Vec U) {
   const double e = 1e-6;
   Vec R0, R1, d;
@@ -130,8 +131,9 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
   PetscCall(VecCopy(Un, U));
   PetscCall(ProblemSetLoadTime(P, t, U));
   PetscCall(FormResidual(nullptr, U, R0, P));
-  PetscCall(FormShiftedJacobian(snes, U, P->J, P->J, P));
-  if (extra_shift > 0) PetscCall(MatShift(P->J, extra_shift * P->AxialStiffness()));
+  PetscCall(FormJacobian(snes, U, P->J, P->J, P));
+  const double shift = TangentShiftConverged(P) + extra_shift * P->AxialStiffness();
+  if (shift > 0) PetscCall(MatShift(P->J, shift));
   PetscCall(ProblemSetLoadTime(P, t + e * (t_new - t), U));
   PetscCall(FormResidual(nullptr, U, R1, P));
   PetscCall(VecAXPY(R1, -1.0, R0));

@@ -22,6 +22,10 @@ PetscErrorCode TangentShiftForIteration(Problem *P, SNES snes, double *shift) {
   PetscFunctionReturn(0);
 }
 
+double TangentShiftConverged(const Problem *P) {
+  return P->tangent_shift_adaptive ? 0.0 : P->TangentShiftAbsolute();
+}
+
 PetscErrorCode FormShiftedJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   Problem *P = (Problem *)ctx;
   PetscFunctionBeginUser;

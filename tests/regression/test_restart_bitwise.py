@@ -2,8 +2,11 @@
 checkpoint) and continued with -restart gives the same results as the uninterrupted run, bit for
 bit, on 1 and 2 ranks (on 2 ranks with options/solvers/redundant_lu.opts: parallel MUMPS
 schedules its factorisation dynamically, so on a busy machine its round-off can differ from run
-to run; with it the 2-rank restart is checked to 1e-8 instead): a plastic patch over load/unload/reload stages (history variables) and the
-capstan (contact state, the scene's own slip-onset monitor). A checkpoint of another scene, mesh
+to run; with it the 2-rank restart is checked to 1e-8 instead): a plastic patch over load/unload/reload stages (history variables), the
+capstan (contact state, the scene's own slip-onset monitor) and, on 1 rank, PD15a with the arch
+fixed, stopped at a stage end (the next increment starts with the tangent predictor, whose tangent
+must not depend on the last Newton solve, which the restarted run has not made; the adaptive
+tangent shift; stabilized increments). A checkpoint of another scene, mesh
 or material, and a truncated file, are refused with a message."""
 import hashlib
 import os
@@ -16,21 +19,24 @@ import h5compare
 
 etfe = etfe_path()
 chk = Checker("restart_bitwise")
-cases = {
-    "patch": ["-options_file", opts("patch"), "-material_type", "plastic", "-patch_strain_x", 0.2,
-              "-patch_schedule", "1,0.8,1.5", "-load_increments", 30],
-    "capstan": ["-options_file", opts("capstan")],
+cases = {  # name: (options, increment to stop after, rank variants)
+    "patch": (["-options_file", opts("patch"), "-material_type", "plastic", "-patch_strain_x", 0.2,
+               "-patch_schedule", "1,0.8,1.5", "-load_increments", 30], 13, None),
+    "capstan": (["-options_file", opts("capstan")], 13, None),
+    "saddle": (["-options_file", opts("saddle/pd15a"), "-contact_friction", "fixed", "-load_increments", 60], 20,
+               ((1, []),)),
 }
 with scratch_dir() as tmp:
-    for name, base in cases.items():
-        for np, solver in ((1, []), (2, ["-options_file", "options/solvers/redundant_lu.opts"]), (2, None)):
+    for name, (base, stop, variants) in cases.items():
+        for np, solver in variants or ((1, []), (2, ["-options_file", "options/solvers/redundant_lu.opts"]), (2, None)):
             exact = solver is not None
             tag = "%s%d%s" % (name, np, "" if exact else "mumps")
             full, part, ck = (os.path.join(tmp, "%s_%s.h5" % (tag, k)) for k in ("full", "part", "ck"))
             common = base + ["-load_monitor", 0] + (solver or [])
             rc, out_full = run(etfe, common + ["-output_file", full], np=np)
-            rc, out1 = run(etfe, common + ["-output_file", part, "-load_stop_after", 13, "-checkpoint_file", ck], np=np)
-            chk.check(os.path.exists(ck) and "stopped as asked" in out1, "%s np=%d: stopped at 13 with a checkpoint" % (name, np))
+            rc, out1 = run(etfe, common + ["-output_file", part, "-load_stop_after", stop, "-checkpoint_file", ck], np=np)
+            chk.check(os.path.exists(ck) and "stopped as asked" in out1,
+                      "%s np=%d: stopped at %d with a checkpoint" % (name, np, stop))
             rc, out2 = run(etfe, common + ["-output_file", part, "-restart", ck], np=np)
             # Parallel MUMPS: each run converges Newton to its tolerance from other round-off, so the
             # runs agree to about that tolerance (1e-10 relative seen on a busy machine), not bit for bit.
@@ -42,8 +48,8 @@ with scratch_dir() as tmp:
             chk.check(not fails, "%s np=%d%s: restarted results equal the uninterrupted run %s (all steps)%s"
                       % (name, np, "" if exact else " (parallel MUMPS)", "bit for bit" if exact else "to 1e-8",
                          "" if not fails else ": " + "; ".join(map(str, fails[:3]))))
-            lines_full = [l for l in out_full.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:"))]
-            lines_part = [l for l in out2.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:"))]
+            lines_full = [l for l in out_full.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:", "saddle:"))]
+            lines_part = [l for l in out2.splitlines() if l.startswith(("mu_eff", "patch:", "capstan:", "saddle:"))]
             if exact:
                 chk.check(lines_full == lines_part and lines_full, "%s np=%d: the scene's report is identical" % (name, np))
     # refusals
@@ -67,7 +73,7 @@ with scratch_dir() as tmp:
     # complete run's file, which a restart would first cut back to the checkpoint's step).
     results = os.path.join(tmp, "capstan1_full.h5")
     digest = hashlib.sha256(open(results, "rb").read()).hexdigest()
-    capstan = cases["capstan"] + ["-load_monitor", 0, "-output_file", results]
+    capstan = cases["capstan"][0] + ["-load_monitor", 0, "-output_file", results]
     for args, words in ((["-restart", ck_patch], "scene patch"),
                         (["-contact_mu", 0.5, "-restart", ck_cap], "-contact_mu checkpoint: 0.3 this run: 0.5"),
                         (["-membrane_thickness", 0.3, "-restart", ck_cap], "-membrane_thickness"),
