@@ -38,21 +38,15 @@ except ImportError:  # pragma: no cover - reported clearly instead of a tracebac
     sys.stderr.write("h5compare: needs h5py (Debian: apt-get install python3-h5py; run with /usr/bin/python3)\n")
     raise
 
+from etfepy.results import text  # noqa: E402  (scripts/etfepy: an HDF5 string attribute as str)
+
 STEP_ATTRS = ("time", "stage", "load_factor")
-
-
-def _text(v):
-    if isinstance(v, bytes):
-        return v.decode("utf-8", "replace")
-    if isinstance(v, np.ndarray) and v.shape == ():
-        return _text(v[()])
-    return str(v)
 
 
 def file_status(path):
     """Root attribute status of a results file ("" when missing)."""
     with h5py.File(path, "r") as f:
-        return _text(f.attrs.get("status", b""))
+        return text(f.attrs.get("status", b""))
 
 
 def written_steps(f):
@@ -101,7 +95,7 @@ def family_of(name, *dsets):
     else (an older file) FAMILIES; None when it shares its scale with no other field."""
     for d in dsets:
         if d is not None and "family" in d.attrs:
-            return _text(d.attrs["family"])
+            return text(d.attrs["family"])
     for fam, members in FAMILIES.items():
         if name.split("/")[-1] in members:
             return fam
@@ -174,7 +168,7 @@ def compare_rows(a_path, b_path, step="last", fields=None, default_rtol=1e-9, de
     with h5py.File(a_path, "r") as fa, h5py.File(b_path, "r") as fb:
         if not allow_incomplete:
             for path, f in ((a_path, fa), (b_path, fb)):
-                st = _text(f.attrs.get("status", b"<missing>"))
+                st = text(f.attrs.get("status", b"<missing>"))
                 if st != "complete":
                     failures.append("%s: status attribute is %r, not 'complete'" % (path, st))
         for name in ("mesh/coordinates", "mesh/triangles"):

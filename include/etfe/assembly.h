@@ -32,6 +32,8 @@ PetscErrorCode StabilizationMoveAnchor(Problem *problem, Vec U);
 void StabilizationEnd(Problem *problem);
 PetscErrorCode AddStabilizationForce(Problem *problem, Vec U, Vec F);
 PetscErrorCode AddStabilizationTangent(Problem *problem, Mat J);
+// The 2-norm of the stabilizing force at U (N).
+PetscErrorCode StabilizationForceNorm(Problem *problem, Vec U, PetscReal *norm);
 PetscErrorCode StabilizationMeasure(Problem *problem, Vec U, double *work, double *force_max);
 PetscErrorCode StabilizationDestroy(Problem *problem);
 // The largest committed equivalent plastic strain, its element (natural id, -1 without a

@@ -37,12 +37,28 @@ PetscErrorCode StabilizationMoveAnchor(Problem *P, Vec U) {
 
 void StabilizationEnd(Problem *P) { P->stabilization.stiffness = 0.0; }
 
-PetscErrorCode AddStabilizationForce(Problem *P, Vec U, Vec F) {
+namespace {
+// s.work = k (U - anchor) on the free DOFs: the stabilizing force.
+PetscErrorCode StabilizingForce(Problem *P, Vec U) {
   Stabilization &s = P->stabilization;
   PetscFunctionBeginUser;
   PetscCall(VecWAXPY(s.work, -1.0, s.anchor, U));
   PetscCall(VecPointwiseMult(s.work, s.work, s.diagonal));
-  PetscCall(VecAXPY(F, 1.0, s.work));
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode AddStabilizationForce(Problem *P, Vec U, Vec F) {
+  PetscFunctionBeginUser;
+  PetscCall(StabilizingForce(P, U));
+  PetscCall(VecAXPY(F, 1.0, P->stabilization.work));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StabilizationForceNorm(Problem *P, Vec U, PetscReal *norm) {
+  PetscFunctionBeginUser;
+  PetscCall(StabilizingForce(P, U));
+  PetscCall(VecNorm(P->stabilization.work, NORM_2, norm));
   PetscFunctionReturn(0);
 }
 
@@ -56,8 +72,7 @@ PetscErrorCode StabilizationMeasure(Problem *P, Vec U, double *work, double *for
   Stabilization &s = P->stabilization;
   PetscScalar w;
   PetscFunctionBeginUser;
-  PetscCall(VecWAXPY(s.work, -1.0, s.anchor, U));
-  PetscCall(VecPointwiseMult(s.work, s.work, s.diagonal));
+  PetscCall(StabilizingForce(P, U));
   PetscCall(VecMaxNodalNorm(s.work, force_max));
   PetscCall(VecAYPX(s.anchor, -1.0, U));  // U - anchor: the anchor is not needed after this
   PetscCall(VecDot(s.work, s.anchor, &w));

@@ -268,9 +268,7 @@ PetscErrorCode StabilizedSolve(LoadStepper *s, Increment *inc, bool restart) {
   PetscCall(NewtonSolve(s, inc));
   for (PetscInt pass = 0; inc->Converged() && o.stabilize_rtol > 0 && pass < o.stabilize_passes; ++pass) {
     PetscReal size;
-    PetscCall(VecWAXPY(s->dU, -1.0, P->stabilization.anchor, P->U));
-    PetscCall(VecPointwiseMult(s->dU, s->dU, P->stabilization.diagonal));
-    PetscCall(VecNorm(s->dU, NORM_2, &size));
+    PetscCall(StabilizationForceNorm(P, P->U, &size));
     if (size <= o.stabilize_rtol * P->diagnostics.force_scale) break;
     PetscCall(StabilizationMoveAnchor(P, P->U));
     PetscCall(NewtonSolve(s, inc));

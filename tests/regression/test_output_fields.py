@@ -31,7 +31,7 @@ CASES = {  # name: (options, which conditional rows it writes)
 
 def field_table(f):
     """The root attribute field_table as a list of dicts (its first line names the columns)."""
-    lines = T.h5compare._text(f.attrs["field_table"]).strip("\n").split("\n")
+    lines = T.h5compare.text(f.attrs["field_table"]).strip("\n").split("\n")
     keys = lines[0].split("\t")
     return [dict(zip(keys, line.split("\t"))) for line in lines[1:]]
 
@@ -68,10 +68,10 @@ def check_datasets(chk, case, f, table, wanted):
             bad.append("%s is not a row of the field table" % path)
             continue
         for a in ATTRS:
-            if a not in d.attrs or (a != "description" and T.h5compare._text(d.attrs[a]) != r[a]):
+            if a not in d.attrs or (a != "description" and T.h5compare.text(d.attrs[a]) != r[a]):
                 bad.append("%s: attribute %s %r, the table says %r" % (
-                    path, a, T.h5compare._text(d.attrs[a]) if a in d.attrs else None, r[a]))
-        if not T.h5compare._text(d.attrs.get("description", b"")):
+                    path, a, T.h5compare.text(d.attrs[a]) if a in d.attrs else None, r[a]))
+        if not T.h5compare.text(d.attrs.get("description", b"")):
             bad.append("%s: empty description" % path)
         cols = int(r["components"])
         if r["location"] == "contact pair":

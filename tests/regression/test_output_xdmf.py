@@ -43,9 +43,9 @@ def main_test(etfe, chk):
 
         root = ET.parse(xmf).getroot()
         with h5py.File(h5, "r") as f:
-            chk.check(T.h5compare._text(f.attrs["status"]) == "complete", "status 'complete'")
-            chk.check(T.h5compare._text(f.attrs["format"]) == "etfe-results-1", "format etfe-results-1")
-            chk.check(T.h5compare._text(f.attrs["scene"]) == "patch", "scene attribute 'patch'")
+            chk.check(T.h5compare.text(f.attrs["status"]) == "complete", "status 'complete'")
+            chk.check(T.h5compare.text(f.attrs["format"]) == "etfe-results-1", "format etfe-results-1")
+            chk.check(T.h5compare.text(f.attrs["scene"]) == "patch", "scene attribute 'patch'")
             h5steps = sorted(int(k) for k in f["steps"])
             last = incs[-1]["step"] if incs else INCREMENTS
             expected = sorted({0} | {k for k in range(1, last + 1) if k % EVERY == 0} | {last})
@@ -113,8 +113,8 @@ def main_test(etfe, chk):
             chk.check(named <= fields, "XDMF attributes are named by component and stress measure: %s" % sorted(fields))
             chk.check(not fields & {"stress", "strain", "plastic_strain"},
                       "no unnamed 3-vectors of tensor components in the XDMF")
-            chk.check("etfe" in T.h5compare._text(f.attrs["version"]) and "-patch_schedule 1,0.5,1.5" in
-                      T.h5compare._text(f.attrs["options"]), "the results file records the version and the options")
+            chk.check("etfe" in T.h5compare.text(f.attrs["version"]) and "-patch_schedule 1,0.5,1.5" in
+                      T.h5compare.text(f.attrs["options"]), "the results file records the version and the options")
             eq = f["steps/%06d/plastic_strain_eq" % h5steps[-1]][()]
             chk.check(eq.shape == (E,) and bool((eq > 0).all()),
                       "plastic_strain_eq > 0 in every element at the end (min %.4e, max %.4e)" % (eq.min(), eq.max()))
