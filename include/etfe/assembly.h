@@ -21,12 +21,10 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
 // The assembled tangent dR/dU (constrained rows and columns replaced by the identity); SNES
 // solves with it plus the tangent shift (FormShiftedJacobian, tangent_shift.h).
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
-// The film's internal nodal forces at U with the committed history (the membrane part of the
-// residual, constrained DOFs included): its work along an increment is the work done on the film.
 // Viscous stabilization (stabilization.cpp): Begin makes the residual carry
 // relative * E h0 * (U - anchor) on free DOFs and the tangent its diagonal, until End;
 // MoveAnchor starts a proximal pass from U; Measure gives the force's work on U - anchor (N mm)
-// and its largest nodal size (N) at U, and spends the anchor (call it last).
+// and its largest nodal size (N) at U.
 PetscErrorCode StabilizationBegin(Problem *problem, double relative, Vec anchor);
 PetscErrorCode StabilizationMoveAnchor(Problem *problem, Vec U);
 void StabilizationEnd(Problem *problem);
@@ -39,6 +37,8 @@ PetscErrorCode StabilizationDestroy(Problem *problem);
 // The largest committed equivalent plastic strain, its element (natural id, -1 without a
 // plastic law) and that element's reference centroid [mm] (collective).
 PetscErrorCode LargestPlasticStrain(Problem *problem, double *value, PetscInt *element, double centroid[3]);
+// The film's internal nodal forces at U with the committed history (the membrane part of the
+// residual, constrained DOFs included): its work along an increment is the work done on the film.
 PetscErrorCode FormInternalForce(Problem *problem, Vec U, Vec F);
 // Checks a Newton trial W against the accepted iterate X: no element may flip its normal or
 // collapse. Collective; *ok false names the element in problem->diagnostics.bad_element.

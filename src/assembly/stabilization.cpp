@@ -70,13 +70,13 @@ PetscErrorCode AddStabilizationTangent(Problem *P, Mat J) {
 
 PetscErrorCode StabilizationMeasure(Problem *P, Vec U, double *work, double *force_max) {
   Stabilization &s = P->stabilization;
-  PetscScalar w;
+  PetscReal size;
   PetscFunctionBeginUser;
   PetscCall(StabilizingForce(P, U));
   PetscCall(VecMaxNodalNorm(s.work, force_max));
-  PetscCall(VecAYPX(s.anchor, -1.0, U));  // U - anchor: the anchor is not needed after this
-  PetscCall(VecDot(s.work, s.anchor, &w));
-  *work = PetscRealPart(w);
+  // f = k (U - anchor) with one k on every free DOF: f . (U - anchor) = |f|^2 / k.
+  PetscCall(VecNorm(s.work, NORM_2, &size));
+  *work = size * size / s.stiffness;
   PetscFunctionReturn(0);
 }
 

@@ -220,28 +220,36 @@ PetscErrorCode H5ReadRows(const std::string &file, hid_t group, const char *name
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode H5WriteAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, const void *value) {
+namespace {
+// One attribute of obj in the given dataspace, replacing an existing one of that name.
+PetscErrorCode WriteAttributeIn(const std::string &file, hid_t obj, const char *name, hid_t type, hid_t space,
+                                const void *value) {
   PetscFunctionBeginUser;
   if (H5Aexists(obj, name) > 0) ETFE_H5CHECK(H5Adelete(obj, name), name);
-  hid_t space = H5Screate(H5S_SCALAR);
   hid_t a = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
   ETFE_H5CHECK(a, name);
   ETFE_H5CHECK(H5Awrite(a, type, value), name);
   H5Aclose(a);
+  PetscFunctionReturn(0);
+}
+} // namespace
+
+PetscErrorCode H5WriteAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, const void *value) {
+  PetscFunctionBeginUser;
+  hid_t space = H5Screate(H5S_SCALAR);
+  PetscErrorCode ierr = WriteAttributeIn(file, obj, name, type, space, value);
   H5Sclose(space);
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode H5WriteArrayAttribute(const std::string &file, hid_t obj, const char *name, const std::vector<double> &v) {
   PetscFunctionBeginUser;
-  if (H5Aexists(obj, name) > 0) ETFE_H5CHECK(H5Adelete(obj, name), name);
   const hsize_t n = v.size();
   hid_t space = H5Screate_simple(1, &n, nullptr);
-  hid_t a = H5Acreate2(obj, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
-  ETFE_H5CHECK(a, name);
-  ETFE_H5CHECK(H5Awrite(a, H5T_NATIVE_DOUBLE, v.data()), name);
-  H5Aclose(a);
+  PetscErrorCode ierr = WriteAttributeIn(file, obj, name, H5T_NATIVE_DOUBLE, space, v.data());
   H5Sclose(space);
+  PetscCall(ierr);
   PetscFunctionReturn(0);
 }
 
