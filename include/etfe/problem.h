@@ -98,10 +98,13 @@ struct Problem {
   // reference to the current shape; the prescribed value is then measured from there).
   std::vector<double> con_owned_offset;
 
-  // Pressure (only when the scene has it)
+  // Follower pressures (only when the scene has them): per load its local elements and value.
   bool has_pressure = false;
-  std::vector<PetscInt> pressure_elements;  // local element ids
-  ScheduledValue pressure_value;
+  struct PressureLoad {
+    std::vector<PetscInt> elements;
+    ScheduledValue value;
+  };
+  std::vector<PressureLoad> pressures;
 
   // Dead nodal forces on owned DOFs (only when the scene has them).
   std::vector<PetscInt> force_owned_dof;

@@ -21,9 +21,9 @@ struct DofConstraint {
   ScheduledValue value;
 };
 
-// Follower pressure on a set of elements (empty set = all elements).
+// Follower pressure on a set of elements (empty set = all elements). A scene may have several
+// (one per loaded group, each with its own schedule); on an element in more than one they add.
 struct PressureSpec {
-  bool active = false;
   std::vector<int> elements;
   ScheduledValue value;  // MPa
 };
@@ -71,7 +71,7 @@ struct SceneSpec {
   double thickness = 0.25;               // film thickness [mm] (-membrane_thickness overrides)
   std::vector<Schedule> schedules;       // every schedule has the same number of stages
   std::vector<DofConstraint> constraints;
-  PressureSpec pressure;
+  std::vector<PressureSpec> pressures;
   std::vector<NodalForce> nodal_forces;
   ContactSpec contact;
   std::vector<double> element_stress_ratio;  // form finding: MD:TD per element (empty: uniform)

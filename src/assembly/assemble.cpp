@@ -180,9 +180,9 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscFunctionBeginUser;
   PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
   AddMembraneForces(P, u, f, &status, &bad);
-  if (P->has_pressure) {
-    const double p = P->pressure_value.At(P->scene.schedules, P->time);
-    for (PetscInt e : P->pressure_elements) {
+  for (const Problem::PressureLoad &load : P->pressures) {
+    const double p = load.value.At(P->scene.schedules, P->time);
+    for (PetscInt e : load.elements) {
       double x[9], fe[9];
       GatherCoordinates(m, e, u, x);
       PressureLoad(p, x, fe, nullptr);  // the residual needs no load stiffness
@@ -261,11 +261,13 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   PetscFunctionBeginUser;
   PetscCall(MatZeroEntries(Pmat));
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
-  const double p = P->has_pressure ? P->pressure_value.At(P->scene.schedules, P->time) : 0.0;
-  std::vector<char> loaded;
-  if (P->has_pressure && p != 0.0) {
-    loaded.assign(m.num_elements, 0);
-    for (PetscInt e : P->pressure_elements) loaded[e] = 1;
+  // Per element the pressure of every load on it (the load stiffness is linear in p).
+  std::vector<double> pressure;
+  for (const Problem::PressureLoad &load : P->pressures) {
+    const double p = load.value.At(P->scene.schedules, P->time);
+    if (p == 0.0) continue;
+    if (pressure.empty()) pressure.assign(m.num_elements, 0.0);
+    for (PetscInt e : load.elements) pressure[e] += p;
   }
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double x[9], F[6], E[3], S[3], D[9], fe[9], K[81];
@@ -282,9 +284,9 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     } else {
       MembraneForce(m.ref[e], P->thickness, F, S, D, fe, K);
     }
-    if (!loaded.empty() && loaded[e]) {
+    if (!pressure.empty() && pressure[e] != 0.0) {
       double L[81];
-      PressureLoad(p, x, fe, L);
+      PressureLoad(pressure[e], x, fe, L);
       for (int k = 0; k < 81; ++k) K[k] -= L[k];
     }
     const int *tri = &m.tri[3 * e];

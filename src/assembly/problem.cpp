@@ -112,12 +112,10 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
       for (int i = 0; i < 3; ++i) P->element_constrained[e] |= P->dof_constrained[3 * l + i];
     }
 
-  // Pressure only when the scene has it.
-  if (P->scene.pressure.active) {
-    P->has_pressure = true;
-    P->pressure_value = P->scene.pressure.value;
-    P->pressure_elements = std::move(share.pressure_elements);
-  }
+  // Pressures only when the scene has them (every rank has the small list, its own elements).
+  P->has_pressure = !P->scene.pressures.empty();
+  for (size_t k = 0; k < P->scene.pressures.size(); ++k)
+    P->pressures.push_back({std::move(share.pressure_elements[k]), P->scene.pressures[k].value});
 
   // Dead nodal forces on owned DOFs.
   for (const NodalForce &f : share.forces) {
@@ -156,7 +154,7 @@ PetscErrorCode ProblemReleaseScene(Problem *P) {
   s.mesh = MeshData();
   std::vector<DofConstraint>().swap(s.constraints);
   std::vector<NodalForce>().swap(s.nodal_forces);
-  std::vector<int>().swap(s.pressure.elements);
+  for (PressureSpec &p : s.pressures) std::vector<int>().swap(p.elements);
   std::vector<double>().swap(s.initial_guess);
   std::vector<double>().swap(s.element_reference);
   std::vector<double>().swap(s.element_stress_ratio);

@@ -26,12 +26,13 @@ bool CheckDescription(const SceneSpec &s, std::string *err) {
                     s.name.c_str(), f.node, f.comp, nn);
       return *err = buf, false;
     }
-  for (int e : s.pressure.elements)
-    if (e < 0 || e >= ne) {
-      std::snprintf(buf, sizeof buf, "scene %s: pressure element %d is outside the mesh (%d elements)", s.name.c_str(),
-                    e, ne);
-      return *err = buf, false;
-    }
+  for (const PressureSpec &p : s.pressures)
+    for (int e : p.elements)
+      if (e < 0 || e >= ne) {
+        std::snprintf(buf, sizeof buf, "scene %s: pressure element %d is outside the mesh (%d elements)",
+                      s.name.c_str(), e, ne);
+        return *err = buf, false;
+      }
   struct {
     const std::vector<double> &v;
     size_t per, count;
@@ -55,11 +56,12 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(Rank0Outcome(comm, rank == 0 ? (CheckDescription(s, &err) ? 1 : 0) : 1, err, PETSC_ERR_ARG_OUTOFRANGE));
-  std::vector<char> loaded;  // rank 0: per scene element, under pressure
-  if (rank == 0 && s.pressure.active) {
-    loaded.assign(s.mesh.NumElements(), s.pressure.elements.empty() ? 1 : 0);
-    for (int e : s.pressure.elements) loaded[e] = 1;
-  }
+  std::vector<std::vector<char>> loaded;  // rank 0: per pressure load, per scene element: loaded
+  if (rank == 0)
+    for (const PressureSpec &p : s.pressures) {
+      loaded.emplace_back(s.mesh.NumElements(), p.elements.empty() ? 1 : 0);
+      for (int e : p.elements) loaded.back()[e] = 1;
+    }
   // The lists are packed in the order SceneShare unpacks them below.
   const ShareWriter extra = [&](const RankShare &r, ByteWriter *w) {
     std::vector<DofConstraint> cons;
@@ -70,11 +72,12 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
       const PetscInt l = r.local_of[f.node];
       if (l >= 0 && l < r.num_owned) f.node = (int)l, forces.push_back(f);
     }
-    std::vector<PetscInt> pressed;
+    std::vector<std::vector<PetscInt>> pressed(loaded.size());
     std::vector<double> guess, ratio, reference;
     for (size_t k = 0; k < r.elements.size(); ++k) {
       const PetscInt e = r.elements[k];
-      if (!loaded.empty() && loaded[e]) pressed.push_back((PetscInt)k);
+      for (size_t p = 0; p < loaded.size(); ++p)
+        if (loaded[p][e]) pressed[p].push_back((PetscInt)k);
       if (!s.element_stress_ratio.empty()) ratio.push_back(s.element_stress_ratio[e]);
       if (!s.element_reference.empty())
         reference.insert(reference.end(), s.element_reference.begin() + 9 * e, s.element_reference.begin() + 9 * e + 9);
@@ -82,11 +85,16 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
     if (!s.initial_guess.empty())
       for (PetscInt l = 0; l < r.num_owned; ++l)
         guess.insert(guess.end(), s.initial_guess.begin() + 3 * r.nodes[l], s.initial_guess.begin() + 3 * r.nodes[l] + 3);
-    w->Put(cons), w->Put(forces), w->Put(pressed), w->Put(guess), w->Put(ratio), w->Put(reference);
+    w->Put(cons), w->Put(forces), w->Put((unsigned long long)pressed.size());
+    for (const auto &p : pressed) w->Put(p);
+    w->Put(guess), w->Put(ratio), w->Put(reference);
   };
   ByteReader rd;
   PetscCall(LocalMeshDistribute(comm, s.mesh, extra, mesh, &share->d_nnz, &share->o_nnz, &rd));
-  rd.Get(&share->constraints), rd.Get(&share->forces), rd.Get(&share->pressure_elements);
+  unsigned long long loads = 0;
+  rd.Get(&share->constraints), rd.Get(&share->forces), rd.Get(&loads);
+  share->pressure_elements.resize(rd.ok ? (size_t)loads : 0);
+  for (auto &p : share->pressure_elements) rd.Get(&p);
   rd.Get(&share->initial_guess), rd.Get(&share->element_stress_ratio), rd.Get(&share->element_reference);
   PetscCheck(rd.ok && rd.AtEnd(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "rank %d: the scene share sent by rank 0 is malformed",
              rank);

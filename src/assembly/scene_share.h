@@ -14,7 +14,7 @@ namespace etfe {
 struct SceneShare {
   std::vector<DofConstraint> constraints;    // node: local id (owned or ghost); the scene's order
   std::vector<NodalForce> forces;            // node: local id of an owned node
-  std::vector<PetscInt> pressure_elements;   // local element ids
+  std::vector<std::vector<PetscInt>> pressure_elements;  // per pressure load: local element ids
   std::vector<double> initial_guess;         // 3 per owned node, or empty
   std::vector<double> element_stress_ratio;  // per local element, or empty
   std::vector<double> element_reference;     // 9 per local element, or empty

@@ -135,7 +135,8 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   for (const Schedule &sc : s.schedules) h.Add(sc.name), h.Add(sc.initial), h.Add(sc.values);
   h.Add(s.constraints.size());
   for (const DofConstraint &c : s.constraints) h.Add(c.node), h.Add(c.comp), value(c.value);
-  h.Add(s.pressure.active), h.Add(s.pressure.elements), value(s.pressure.value);
+  h.Add(s.pressures.size());
+  for (const PressureSpec &p : s.pressures) h.Add(p.elements), value(p.value);
   h.Add(s.nodal_forces.size());
   for (const NodalForce &f : s.nodal_forces) h.Add(f.node), h.Add(f.comp), value(f.value);
   h.Add(s.contact.active), h.Add(s.contact.node_set), h.Add(s.contact.search_tol);

@@ -98,9 +98,7 @@ PetscErrorCode SceneBuild_Hencky(MPI_Comm comm, SceneSpec *scene, SceneObserver 
              "generated mesh may have", rings, refine, GeneratedTriangles(rings, rings, 6, refine), kMaxGeneratedTriangles);
   rings <<= refine;
   const int s = scene->AddSchedule({"pressure", 0.0, {1.0}});
-  scene->pressure.active = true;
-  scene->pressure.value.coef[0] = pressure;
-  scene->pressure.value.schedule[0] = s;
+  scene->pressures.push_back({{}, {{pressure, 0.0}, {s, -1}}});
   if (SceneHoldsMesh(comm)) {
     scene->mesh = MakeDiscMesh(radius, (int)rings);
     for (int n : scene->mesh.node_sets.at("rim"))

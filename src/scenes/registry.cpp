@@ -120,8 +120,9 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
       err = "scene " + std::string(name) + ": the force on node " + std::to_string(f.node) +
             " is not finite; check the scene's options";
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_OUTOFRANGE));
-  PetscCheck(std::isfinite(scene->pressure.value.coef[0]) && std::isfinite(scene->pressure.value.coef[1]), comm,
-             PETSC_ERR_ARG_OUTOFRANGE, "scene %s: the pressure is not finite", name);
+  for (const PressureSpec &p : scene->pressures)
+    PetscCheck(std::isfinite(p.value.coef[0]) && std::isfinite(p.value.coef[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "scene %s: the pressure is not finite", name);
   PetscFunctionReturn(0);
 }
 

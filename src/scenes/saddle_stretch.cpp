@@ -368,8 +368,7 @@ void AddStretchSchedules(const StretchInputs &in, SceneSpec *scene, int ids[4]) 
     std::vector<double> p(ns, 0.0);
     for (double x : in.pressure) p.push_back(1e-3 * x);  // kPa -> MPa
     const int sp = scene->AddSchedule({"pressure", 0.0, p, "kPa", 1e3});
-    scene->pressure.active = true;
-    scene->pressure.value = {{1.0, 0.0}, {sp, -1}};
+    scene->pressures.push_back({{}, {{1.0, 0.0}, {sp, -1}}});
   }
 }
 
