@@ -17,7 +17,8 @@ const char *const kKnown[] = {
 // The project's option prefixes: a name equal to one, or starting with it and '_'.
 const char *const kPrefixes[] = {"scene", "analysis", "mesh", "material", "membrane", "contact", "load", "plan",
                                  "output", "checkpoint", "restart", "formfind", "cutpattern", "saddle",
-                                 "hencky", "patch", "capstan", "catenoid", "etfe", "snes_linesearch_etfe"};
+                                 "hencky", "patch", "capstan", "catenoid", "etfe", "snes_linesearch_etfe",
+                                 "structure", "bc", "film", "rigid", "region"};
 
 bool IsOurs(const std::string &name) {
   // The planner's TAO reads PETSc's own options under our prefix (-plan_tao_type, ...), late.

@@ -17,6 +17,7 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Annulus(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Structure(MPI_Comm, SceneSpec *, SceneObserver *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -56,6 +57,10 @@ PetscErrorCode SceneRegisterAll(void) {
                           "pretensioned annulus, rigid hub rotated: wrinkled zone and torque against Stein & "
                           "Hedgepeth's tension-field closed form",
                           "options/annulus.opts"));
+  PetscCall(SceneRegister("structure", SceneBuild_Structure,
+                          "your own structure: a Gmsh mesh whose physical groups are held, drawn, loaded (pressure, "
+                          "wind, snow, self-weight) or laid on rigid supports, by options keyed by group name",
+                          "options/structure/*.opts (docs/own-structure.md)"));
   PetscFunctionReturn(0);
 }
 

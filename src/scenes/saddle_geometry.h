@@ -45,10 +45,6 @@ PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const Sadd
 // Stretch fabrication (-analysis stretch): drawing of the frame at a, b, c, d, symmetry, arch
 // contact, optional pressure cycle, probes and the report. The mesh (PD initial shape or a
 // form-found DD shape) and its node sets are already in scene.
-// -saddle_reference pattern: per element of m (9 each) its triangle in the flat cutting pattern of
-// its strip (element sets middle, corner), for SceneSpec::element_reference. Collective: rank 0,
-// which holds the mesh, flattens the strips; a failure is an error on every rank.
-PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vector<double> *element_reference);
 
 PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene, SceneObserver *observer);
 

@@ -16,6 +16,7 @@
 #include "etfe/contact.h"
 #include "etfe/csv_history.h"
 #include "etfe/kernels/plasticity.h"
+#include "pattern_reference.h"
 #include "real_array_option.h"
 #include "saddle_geometry.h"
 
@@ -360,7 +361,7 @@ void AddStretchSchedules(const StretchInputs &in, SceneSpec *scene, int ids[4]) 
   for (int k = 0; k < 4; ++k) ids[k] = scene->AddSchedule({names[k], 0.0, extend(in.draw[k], k), "mm"});
   if (in.reference == 1) {  // not element_reference.empty(): that list is on rank 0 only
     // The film is laid on in the first drawing step: the reference goes from the surface to the
-    // flat pattern while the frame draws (saddle_pattern_reference.cpp says why not before it).
+    // flat pattern while the frame draws (pattern_reference.cpp says why not before it).
     const int sl = scene->AddSchedule({"lay_on", 0.0, std::vector<double>(stages, 1.0), ""});
     scene->reference_blend = {{1.0, 0.0}, {sl, -1}};
   }
@@ -439,7 +440,14 @@ PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneS
   c->slide_at = in.slides;
   c->drawing_stages = (PetscInt)in.draw[0].size();
   c->history = in.history;
-  if (in.reference == 1) PetscCall(SaddlePatternReference(comm, scene->mesh, &scene->element_reference));
+  if (in.reference == 1) {
+    const PatternStrips strips{{"middle", "corner"},
+                               "-saddle_reference pattern",
+                               "saddle",
+                               "the flat pattern needs the strips of a form-found surface (-mesh_file written by "
+                               "options/saddle/ff_*.opts), not the PD start"};
+    PetscCall(PatternReference(comm, scene->mesh, strips, &scene->element_reference));
+  }
   scene->stage_options = {{"saddle_draw_a", in.draw[0]}, {"saddle_draw_b", in.draw[1]}, {"saddle_draw_c", in.draw[2]},
                           {"saddle_draw_d", in.draw[3]}, {"saddle_pressure_cycle", in.pressure}};
   // What the figures and reports read back from the results (defaults included).

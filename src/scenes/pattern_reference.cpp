@@ -1,7 +1,7 @@
-// -saddle_reference pattern: the film's stress-free state is the flat cutting pattern
-// of its strips, as in the experiments (the specimens were welded from flat strips: thesis L267,
+// The film's stress-free state as the flat cutting pattern of its strips (-saddle_reference
+// pattern, -structure_reference pattern), as in the experiments (the specimens were welded from flat strips: thesis L267,
 // L692, L1666), not the form-found surface the thesis's own analysis started from (L1689).
-// Each strip (element sets "middle" and "corner" of a form-found mesh) is flattened with the
+// Each strip (an element set of the mesh: the saddle's "middle" and "corner") is flattened with the
 // cutting-pattern analysis (flatten_strip.h, the thesis's boundary weight 1e12, so weld and frame
 // lines keep their length); every element then takes its flat triangle as its reference while
 // its nodes start on the surface, welded at the weld line. The reference is blended from the
@@ -19,30 +19,31 @@
 #include "etfe/cutpattern.h"
 #include "etfe/flatten_strip.h"
 #include "etfe/rank0.h"
-#include "saddle_geometry.h"
+#include "etfe/scene_registry.h"
+#include "pattern_reference.h"
 
 namespace etfe {
 
 namespace {
 
 // Rank 0: the flat pattern of both strips, one report line each, or a message.
-bool FlattenStrips(const MeshData &m, std::vector<double> *element_reference, std::string *lines, std::string *err) {
-  static const char *strips[] = {"middle", "corner"};
+bool FlattenStrips(const MeshData &m, const PatternStrips &p, std::vector<double> *element_reference, std::string *lines,
+                   std::string *err) {
   std::vector<int> covered(m.NumElements(), 0);
   element_reference->assign(9 * (size_t)m.NumElements(), 0.0);
-  for (const char *name : strips) {
+  std::string listed;
+  for (const std::string &name : p.strips) listed += (listed.empty() ? "" : ", ") + name;
+  for (const std::string &name : p.strips) {
     auto it = m.element_sets.find(name);
     if (it == m.element_sets.end() || it->second.empty()) {
-      *err = "-saddle_reference pattern: " + m.source + " has no element set \"" + name +
-             "\"; the flat pattern needs the strips of a form-found surface (-mesh_file written by "
-             "options/saddle/ff_*.opts), not the PD start";
+      *err = p.option + ": " + m.source + " has no element set \"" + name + "\"; " + p.missing_hint;
       return false;
     }
     const MeshData strip = ExtractStrip(m, it->second, name);
     FlattenResult r;
     std::string why;
     if (!FlattenStrip(strip, FlattenOptions(), &r, &why)) {
-      *err = "-saddle_reference pattern: flattening strip " + std::string(name) + " of " + m.source + " failed: " + why;
+      *err = p.option + ": flattening strip " + name + " of " + m.source + " failed: " + why;
       return false;
     }
     for (size_t k = 0; k < it->second.size(); ++k) {
@@ -56,15 +57,15 @@ bool FlattenStrips(const MeshData &m, std::vector<double> *element_reference, st
     }
     char line[320];
     std::snprintf(line, sizeof line,
-                  "saddle: reference = flat pattern of strip %s (%zu elements, outline 3D %.3f mm, 2D %.3f mm, largest "
+                  "%s: reference = flat pattern of strip %s (%zu elements, outline 3D %.3f mm, 2D %.3f mm, largest "
                   "link error %.2e)\n",
-                  name, it->second.size(), r.outline_length3d, r.outline_length2d, r.max_rel_error);
+                  p.scene.c_str(), name.c_str(), it->second.size(), r.outline_length3d, r.outline_length2d, r.max_rel_error);
     *lines += line;
   }
   for (int e = 0; e < m.NumElements(); ++e)
     if (covered[e] != 1) {
-      *err = "-saddle_reference pattern: element " + std::to_string(e) + " of " + m.source + " is in " +
-             std::to_string(covered[e]) + " of the strips middle, corner (must be in one)";
+      *err = p.option + ": element " + std::to_string(e) + " of " + m.source + " is in " +
+             std::to_string(covered[e]) + " of the strips " + listed + " (must be in one)";
       return false;
     }
   return true;
@@ -72,11 +73,12 @@ bool FlattenStrips(const MeshData &m, std::vector<double> *element_reference, st
 
 } // namespace
 
-PetscErrorCode SaddlePatternReference(MPI_Comm comm, const MeshData &m, std::vector<double> *element_reference) {
+PetscErrorCode PatternReference(MPI_Comm comm, const MeshData &m, const PatternStrips &strips,
+                                std::vector<double> *element_reference) {
   std::string lines, err;
   int ok = 1;
   PetscFunctionBeginUser;
-  if (SceneHoldsMesh(comm)) ok = FlattenStrips(m, element_reference, &lines, &err) ? 1 : 0;
+  if (SceneHoldsMesh(comm)) ok = FlattenStrips(m, strips, element_reference, &lines, &err) ? 1 : 0;
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_ARG_WRONG));
   PetscCall(PetscPrintf(comm, "%s", lines.c_str()));
   PetscFunctionReturn(0);

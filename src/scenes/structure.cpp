@@ -1,0 +1,152 @@
+// The general scene (-scene structure): everything from a mesh file and options keyed by its
+// physical groups (structure_inputs.h, docs/own-structure.md). The film is every triangle of the
+// mesh; node groups are held or moved (-bc_*), surface groups loaded (-film_*), rigid supports
+// given by geometry or fitted to a curve of the mesh (-rigid_*). With -analysis formfind the
+// supported nodes stay where they are and each surface group takes its MD:TD prestress ratio.
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "etfe/mesh/mesh_options.h"
+#include "etfe/rank0.h"
+#include "etfe/scene_registry.h"
+#include "pattern_reference.h"
+#include "structure_inputs.h"
+
+namespace etfe {
+
+namespace {
+
+// Rank 0: the report regions as element sets (centroid in the plan box).
+void AddRegions(const StructureInputs &in, MeshData *m) {
+  for (const RegionInput &r : in.regions) {
+    std::vector<int> &set = m->element_sets[r.name];
+    set.clear();
+    for (int e = 0; e < m->NumElements(); ++e) {
+      double cx = 0, cy = 0;
+      for (int a = 0; a < 3; ++a) cx += m->coords[3 * m->triangles[3 * e + a]] / 3, cy += m->coords[3 * m->triangles[3 * e + a] + 1] / 3;
+      if (cx >= r.box[0] && cx <= r.box[2] && cy >= r.box[1] && cy <= r.box[3]) set.push_back(e);
+    }
+  }
+}
+
+// Rank 0: a region or report group without elements cannot be reported.
+std::string EmptyRegion(const StructureInputs &in, const MeshData &m) {
+  for (const RegionInput &r : in.regions)
+    if (m.element_sets.at(r.name).empty())
+      return "-region_" + r.name + "_box: no element of " + m.source + " has its centroid in the box";
+  return "";
+}
+
+// Form finding: MD:TD per element from its surface group (the last group listed wins where
+// groups overlap; an element in none keeps 1).
+void FormFindingRatios(const StructureInputs &in, SceneSpec *scene) {
+  const MeshData &m = scene->mesh;
+  scene->element_stress_ratio.assign(m.NumElements(), 1.0);
+  for (const FilmInput &f : in.films) {
+    if (f.stress_ratio == 1.0) continue;
+    for (int e : m.element_sets.at(f.group)) scene->element_stress_ratio[e] = f.stress_ratio;
+  }
+}
+
+// Rank 0: -structure_initial_bulge h lifts each free node along the film's mean normal by
+// h (d/D)(2 - d/D), d its distance to the nearest fully held node and D the largest such distance
+// (on a clamped disc the paraboloid h (1 - r^2/a^2)).
+std::string InitialBulge(double h, SceneSpec *scene) {
+  const MeshData &m = scene->mesh;
+  std::vector<int> held(m.NumNodes(), 0);
+  for (const DofConstraint &c : scene->constraints) held[c.node]++;
+  std::vector<int> anchors;
+  for (int n = 0; n < m.NumNodes(); ++n)
+    if (held[n] == 3) anchors.push_back(n);
+  if (anchors.empty()) return "-structure_initial_bulge: no node is held in all three directions to lift the film from";
+  double normal[3] = {0, 0, 0};
+  for (int e = 0; e < m.NumElements(); ++e) {
+    const int *t = &m.triangles[3 * e];
+    const double *a = &m.coords[3 * t[0]], *b = &m.coords[3 * t[1]], *c = &m.coords[3 * t[2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+    normal[0] += u[1] * v[2] - u[2] * v[1], normal[1] += u[2] * v[0] - u[0] * v[2], normal[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  const double len = std::hypot(normal[0], normal[1], normal[2]);
+  if (!(len > 0)) return "-structure_initial_bulge: the film has no mean normal (a closed surface?)";
+  std::vector<double> d(m.NumNodes(), 0.0);
+  double dmax = 0.0;
+  for (int n = 0; n < m.NumNodes(); ++n) {
+    if (held[n] == 3) continue;
+    double best = INFINITY;
+    for (int a : anchors) {
+      const double *x = &m.coords[3 * n], *y = &m.coords[3 * a];
+      best = std::min(best, std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]));
+    }
+    d[n] = best, dmax = std::max(dmax, best);
+  }
+  scene->initial_guess.assign(3 * (size_t)m.NumNodes(), 0.0);
+  for (int n = 0; n < m.NumNodes(); ++n) {
+    const double s = dmax > 0 ? d[n] / dmax : 0.0, lift = h * s * (2.0 - s);
+    for (int i = 0; i < 3; ++i) scene->initial_guess[3 * n + i] = lift * normal[i] / len;
+  }
+  return "";
+}
+
+PetscErrorCode BuildLoadHistory(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
+  PetscFunctionBeginUser;
+  PetscCall(StructureAddLoads(comm, in, stages, scene));
+  PetscCall(StructureAddRigid(comm, in, scene));
+  if (in.reference == 1) {
+    PatternStrips strips{in.pattern_strips, "-structure_reference pattern", "structure",
+                         "list the mesh's surface groups cut as strips in -structure_pattern_strips"};
+    if (strips.strips.empty()) strips.strips = in.element_groups;
+    PetscCall(PatternReference(comm, scene->mesh, strips, &scene->element_reference));
+    // Laid on during the first stage, while the supports draw the film (pattern_reference.cpp).
+    const int sl = scene->AddSchedule({"lay_on", 0.0, std::vector<double>(stages, 1.0), ""});
+    scene->reference_blend = {{1.0, 0.0}, {sl, -1}};
+  }
+  if (in.initial_bulge != 0.0) {
+    std::string err;
+    if (SceneHoldsMesh(comm)) err = InitialBulge(in.initial_bulge, scene);
+    PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+    char note[160];
+    std::snprintf(note, sizeof note,
+                  "film lifted by up to %g mm along its mean normal (-structure_initial_bulge; the guess does not "
+                  "change the converged answer)",
+                  in.initial_bulge);
+    scene->initial_guess_note = note;
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
+  MeshOptions mesh;
+  StructureInputs in;
+  PetscFunctionBeginUser;
+  mesh.keys = kMeshFile;
+  PetscCall(MeshOptionsFromCommandLine(comm, "structure scene", &mesh));
+  PetscCheck(!mesh.file.empty(), comm, PETSC_ERR_ARG_WRONG,
+             "-scene structure needs -mesh_file <mesh.msh>: a Gmsh mesh whose physical groups name the film's "
+             "surfaces and the supported curves (scripts/surface2msh makes one from OBJ/STL; docs/own-structure.md)");
+  PetscCall(SceneReadMesh(comm, mesh.file.c_str(), &scene->mesh));
+  PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
+  for (int i = 0; i < 3; ++i) scene->md_axis[i] = in.md[i];
+  int stages = 1;
+  PetscCall(StructureStageCount(comm, in, &stages));
+  std::string err;
+  if (SceneHoldsMesh(comm)) AddRegions(in, &scene->mesh), err = EmptyRegion(in, scene->mesh);
+  PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+  if (scene->form_finding) {
+    PetscCheck(!in.bcs.empty(), comm, PETSC_ERR_ARG_WRONG,
+               "form finding needs a boundary: hold the supported node groups with -bc_<group>_fix xyz");
+    scene->AddSchedule({"boundary", 0.0, {1.0}});
+    PetscCall(StructureAddSupports(comm, in, 1, scene));
+    if (SceneHoldsMesh(comm)) FormFindingRatios(in, scene);
+  } else {
+    PetscCall(StructureAddSupports(comm, in, stages, scene));
+    PetscCall(BuildLoadHistory(comm, in, stages, scene));
+  }
+  PetscCall(StructureObserverCreate(in, observer));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,252 @@
+// The general scene's loads and rigid supports (structure_inputs.h). Pressure and wind follow the
+// film (follower pressure on the elements of a surface group); snow, self-weight and group forces
+// are dead nodal forces, each node taking its share (plan area, area, length along the group).
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+#include "etfe/kernels/circle_fit.h"
+#include "etfe/rank0.h"
+#include "etfe/scene_registry.h"
+#include "structure_inputs.h"
+
+namespace etfe {
+
+namespace {
+
+const double kPaToMPa = 1e-3;
+
+void TriangleNormal(const MeshData &m, int e, double n[3]) {
+  const int *t = &m.triangles[3 * e];
+  const double *a = &m.coords[3 * t[0]], *b = &m.coords[3 * t[1]], *c = &m.coords[3 * t[2]];
+  const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+  n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+const std::vector<int> *ElementGroup(const MeshData &m, const std::string &g) {
+  const auto it = m.element_sets.find(g);
+  return it == m.element_sets.end() ? nullptr : &it->second;
+}
+
+// Rank 0: per node of a surface group, its share of the group's plan area (plan = true) or area.
+std::map<int, double> AreaShares(const MeshData &m, const std::vector<int> &elements, bool plan) {
+  std::map<int, double> share;
+  for (int e : elements) {
+    double n[3];
+    TriangleNormal(m, e, n);
+    const double area = 0.5 * (plan ? std::fabs(n[2]) : std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+    for (int a = 0; a < 3; ++a) share[m.triangles[3 * e + a]] += area / 3.0;
+  }
+  return share;
+}
+
+// Rank 0: per node of a node group, its fraction of the group's length (the mesh edges joining
+// two of its nodes, half to each end); a group without such edges (points) shares equally.
+std::map<int, double> LengthFractions(const MeshData &m, const std::vector<int> &nodes) {
+  const std::set<int> in(nodes.begin(), nodes.end());
+  std::set<std::pair<int, int>> edges;
+  for (int e = 0; e < m.NumElements(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      const int a = m.triangles[3 * e + k], b = m.triangles[3 * e + (k + 1) % 3];
+      if (in.count(a) && in.count(b)) edges.insert({std::min(a, b), std::max(a, b)});
+    }
+  std::map<int, double> share;
+  double total = 0.0;
+  for (const auto &ed : edges) {
+    const double *x = &m.coords[3 * ed.first], *y = &m.coords[3 * ed.second];
+    const double len = std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
+    share[ed.first] += 0.5 * len, share[ed.second] += 0.5 * len, total += len;
+  }
+  if (edges.empty())
+    for (int n : nodes) share[n] = 1.0, total += 1.0;
+  for (auto &kv : share) kv.second /= total;
+  return share;
+}
+
+// A load value outside what a 0.05-0.5 mm foil carries is most likely in the wrong unit: said
+// before the run (kPa given as Pa: 300 instead of 0.3), refused where nothing could carry it.
+PetscErrorCode CheckLoadScale(MPI_Comm comm, const StageArray &a) {
+  double peak = 0.0;
+  PetscFunctionBeginUser;
+  for (double x : a.values) peak = std::max(peak, std::fabs(x));
+  PetscCheck(peak <= 1000.0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "%s reaches %g kPa: no foil carries that (ETFE cushions run at 0.2-0.8 kPa, snow and wind reach a few "
+             "kPa); the option is in kPa, so 300 Pa is 0.3",
+             a.option.c_str(), peak);
+  if (peak > 20.0)
+    PetscCall(PetscPrintf(comm,
+                          "warning: %s reaches %g kPa, far above what a 0.05-0.5 mm foil carries (a few kPa); the option "
+                          "is in kPa: was it given in Pa?\n",
+                          a.option.c_str(), peak));
+  PetscFunctionReturn(0);
+}
+
+// Dead nodal forces: value(t) = coef x schedule(t) along comp, per node.
+void AddDeadForces(const std::map<int, double> &coef, int comp, int schedule, SceneSpec *scene) {
+  for (const auto &kv : coef)
+    if (kv.second != 0.0) scene->nodal_forces.push_back({kv.first, comp, {{kv.second, 0.0}, {schedule, -1}}});
+}
+
+PetscErrorCode AddFilmLoads(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
+  const MeshData &m = scene->mesh;
+  const bool mesh = SceneHoldsMesh(comm);
+  int wind = -1;
+  bool any_cp = false;
+  PetscFunctionBeginUser;
+  for (const FilmInput &f : in.films) any_cp |= f.wind_given;
+  PetscCheck(any_cp == in.wind.Given(), comm, PETSC_ERR_ARG_WRONG,
+             any_cp ? "-film_<group>_wind_cp given but no -structure_wind (the velocity pressure per stage, kPa)"
+                    : "-structure_wind given but no surface group has -film_<group>_wind_cp (its pressure coefficient)");
+  if (in.wind.Given()) {
+    PetscCall(CheckLoadScale(comm, in.wind));
+    std::vector<double> q;
+    for (double x : in.wind.values) q.push_back(kPaToMPa * x);
+    wind = StructureAddSchedule(scene, "wind", q, stages, "kPa", 1e3);
+  }
+  for (const FilmInput &f : in.films) {
+    const std::vector<int> *els = mesh ? ElementGroup(m, f.group) : nullptr;
+    if (f.pressure.Given()) {
+      PetscCall(CheckLoadScale(comm, f.pressure));
+      std::vector<double> p;
+      for (double x : f.pressure.values) p.push_back(kPaToMPa * x);
+      const int s = StructureAddSchedule(scene, f.group + ".pressure", p, stages, "kPa", 1e3);
+      scene->pressures.push_back({els ? *els : std::vector<int>(), {{1.0, 0.0}, {s, -1}}});
+    }
+    // cp > 0 pushes onto the face the normal points to: a pressure against the normal.
+    if (f.wind_given) scene->pressures.push_back({els ? *els : std::vector<int>(), {{-f.wind_cp, 0.0}, {wind, -1}}});
+    if (f.snow.Given()) {
+      PetscCall(CheckLoadScale(comm, f.snow));
+      std::vector<double> s;
+      for (double x : f.snow.values) s.push_back(-kPaToMPa * x);  // downward
+      const int id = StructureAddSchedule(scene, f.group + ".snow", s, stages, "kPa", -1e3);
+      if (els) AddDeadForces(AreaShares(m, *els, true), 2, id, scene);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode StructureAddLoads(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
+  const MeshData &m = scene->mesh;
+  const bool mesh = SceneHoldsMesh(comm);
+  PetscFunctionBeginUser;
+  PetscCall(AddFilmLoads(comm, in, stages, scene));
+  if (in.self_weight.Given()) {
+    // Weight per area rho g h [N/mm^2], with the thickness the membrane will take.
+    PetscReal h = scene->thickness;
+    PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-membrane_thickness", &h, nullptr));
+    const double w = in.density * 9.81 * h * 1e-9;
+    std::vector<double> v;
+    for (double x : in.self_weight.values) v.push_back(-w * x);
+    const int id = StructureAddSchedule(scene, "self_weight", v, stages, "", -1.0 / w);
+    if (mesh) {
+      std::vector<int> all(m.NumElements());
+      for (int e = 0; e < m.NumElements(); ++e) all[e] = e;
+      AddDeadForces(AreaShares(m, all, false), 2, id, scene);
+    }
+  }
+  for (const BcInput &bc : in.bcs) {
+    if (!bc.force.Given()) continue;
+    std::map<int, double> share;
+    if (mesh) share = LengthFractions(m, m.node_sets.at(bc.group));
+    for (int c = 0; c < 3; ++c) {
+      std::vector<double> v;
+      for (size_t k = c; k < bc.force.values.size(); k += 3) v.push_back(bc.force.values[k]);
+      const int id = StructureAddSchedule(scene, bc.group + ".f" + "xyz"[c], v, stages, "N", 1.0);
+      if (std::any_of(v.begin(), v.end(), [](double x) { return x != 0.0; })) AddDeadForces(share, c, id, scene);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+namespace {
+
+// type curve: the circle through the group's nodes, fitted on rank 0 and sent to every rank.
+PetscErrorCode FitRigidCurve(MPI_Comm comm, const MeshData &m, const RigidInput &r, SupportSpec *s) {
+  double v[8] = {0};
+  int ok = 1;
+  std::string err;
+  PetscFunctionBeginUser;
+  if (SceneHoldsMesh(comm)) {
+    std::vector<double> pts;
+    for (int n : m.node_sets.at(r.curve)) pts.insert(pts.end(), &m.coords[3 * n], &m.coords[3 * n] + 3);
+    CircleFit fit;
+    if (!FitCircle(pts.data(), (int)pts.size() / 3, &fit)) {
+      ok = 0, err = "-rigid_" + r.name + "_curve " + r.curve + ": its nodes fix no circle (fewer than 3, or on a line)";
+    } else if (fit.max_deviation > 1e-3 * fit.radius) {
+      char buf[320];
+      std::snprintf(buf, sizeof buf,
+                    "-rigid_%s_curve %s: the nodes are no circular arc (the best circle, radius %g mm, misses one by "
+                    "%g mm); give the support as -rigid_%s_type cylinder with its centre, axis and radius",
+                    r.name.c_str(), r.curve.c_str(), fit.radius, fit.max_deviation, r.name.c_str());
+      ok = 0, err = buf;
+    } else {
+      for (int i = 0; i < 3; ++i) v[i] = fit.centre[i], v[3 + i] = fit.axis[i];
+      v[6] = fit.radius, v[7] = fit.max_deviation;
+    }
+  }
+  PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_ARG_WRONG));
+  PetscCallMPI(MPI_Bcast(v, 8, MPI_DOUBLE, 0, comm));
+  for (int i = 0; i < 3; ++i) s->centre[i] = v[i], s->axis[i] = v[3 + i];
+  s->radius = v[6];
+  s->type = "arch";
+  PetscCall(PetscPrintf(comm,
+                        "structure: rigid support %s = the circle through node group %s: centre (%.4f, %.4f, %.4f) mm, "
+                        "axis (%.6f, %.6f, %.6f), radius %.4f mm (largest deviation %.2e mm)\n",
+                        r.name.c_str(), r.curve.c_str(), v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene) {
+  MeshData &m = scene->mesh;
+  PetscFunctionBeginUser;
+  if (in.rigids.empty()) PetscFunctionReturn(0);
+  for (const RigidInput &r : in.rigids) {
+    SupportSpec s;
+    s.name = r.name;
+    s.type = r.type;
+    if (r.type == "curve") {
+      PetscCall(FitRigidCurve(comm, m, r, &s));
+    } else {
+      for (int i = 0; i < 3; ++i) s.centre[i] = r.centre[i], s.axis[i] = r.axis[i];
+      s.radius = r.radius;
+    }
+    scene->contact.supports.push_back(s);
+  }
+  scene->contact.active = true;
+  scene->contact.node_set = "structure_contact";
+  double diag = 0.0;
+  if (SceneHoldsMesh(comm)) {
+    // Candidates: each support's node groups (or every node), without the nodes whose three
+    // displacements are prescribed unless the support grips them.
+    std::vector<int> held(m.NumNodes(), 0);
+    for (const DofConstraint &c : scene->constraints) held[c.node]++;
+    std::vector<char> cand(m.NumNodes(), 0);
+    for (const RigidInput &r : in.rigids) {
+      std::vector<char> mine(m.NumNodes(), r.nodes.empty() ? 1 : 0);
+      for (const std::string &g : r.nodes)
+        for (int n : m.node_sets.at(g)) mine[n] = 1;
+      for (int n = 0; n < m.NumNodes(); ++n) cand[n] |= mine[n] && (r.fixed_nodes || held[n] < 3);
+    }
+    std::vector<int> &set = m.node_sets["structure_contact"];
+    for (int n = 0; n < m.NumNodes(); ++n)
+      if (cand[n]) set.push_back(n);
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int n = 0; n < m.NumNodes(); ++n)
+      for (int i = 0; i < 3; ++i) lo[i] = std::min(lo[i], m.coords[3 * n + i]), hi[i] = std::max(hi[i], m.coords[3 * n + i]);
+    diag = std::hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  }
+  PetscCallMPI(MPI_Bcast(&diag, 1, MPI_DOUBLE, 0, comm));
+  // A film node within 1e-4 of the structure's size of a support starts on it (-contact_search_tol).
+  scene->contact.search_tol = 1e-4 * diag;
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,323 @@
+// The general scene's options (structure_inputs.h): scene-wide ones (-structure_*) and those keyed
+// by the mesh's group names (-bc_<group>_*, -film_<group>_*), by rigid support (-rigid_<name>_*)
+// and by report region (-region_<name>_box). The group names live in the mesh, which only rank 0
+// holds: they are sent to every rank first, so every rank reads the same options (-help lists
+// them per group). An option keyed by a name the mesh does not have is an error naming it and
+// the names there are, before anything is computed.
+#include <petscsys.h>
+
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "real_array_option.h"
+#include "structure_inputs.h"
+
+namespace etfe {
+
+namespace {
+
+// Rank 0's group names on every rank.
+PetscErrorCode BroadcastNames(MPI_Comm comm, std::vector<std::string> *names) {
+  std::string joined;
+  PetscFunctionBeginUser;
+  for (const std::string &n : *names) joined += n + '\n';
+  unsigned long long len = joined.size();
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
+  joined.resize(len);
+  PetscCallMPI(MPI_Bcast(joined.data(), (int)len, MPI_CHAR, 0, comm));
+  names->clear();
+  for (size_t a = 0, b; a < joined.size(); a = b + 1) {
+    b = joined.find('\n', a);
+    names->push_back(joined.substr(a, b - a));
+  }
+  PetscFunctionReturn(0);
+}
+
+// A comma-separated list of names.
+PetscErrorCode OptionsNameList(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
+                               std::vector<std::string> *list) {
+  char buf[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  std::string shown;
+  for (const std::string &s : *list) shown += (shown.empty() ? "" : ",") + s;
+  PetscCall(PetscStrncpy(buf, shown.c_str(), sizeof buf));
+  PetscCall(PetscOptionsString(name, help, "", shown.c_str(), buf, sizeof buf, &set));
+  if (!set) PetscFunctionReturn(0);
+  list->clear();
+  for (char *tok = std::strtok(buf, ","); tok; tok = std::strtok(nullptr, ","))
+    if (*tok) list->push_back(tok);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadStageArray(PetscOptionItems *PetscOptionsObject, const std::string &prefix, const char *key,
+                              const char *help, StageArray *a) {
+  PetscFunctionBeginUser;
+  a->option = "-" + prefix + key;
+  PetscCall(OptionsRealArray(PetscOptionsObject, (std::string("-") + key).c_str(), help, &a->values, nullptr));
+  for (double x : a->values)
+    PetscCheck(std::isfinite(x), PetscOptionsObject->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: values must be finite",
+               a->option.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
+  const std::string prefix = "bc_" + group + "_";
+  char fix[16] = "";
+  static const char *const comp[3] = {"ux", "uy", "uz"};
+  PetscFunctionBeginUser;
+  bc->group = group;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Support of node group " + group).c_str(), "Scene");
+  PetscCall(PetscOptionsString("-fix", "Components held where they are: any of x, y, z (xyz: clamped)", "", fix, fix,
+                               sizeof fix, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-points",
+                             "Control points x,y,z,... [mm]: the -ux/-uy/-uz values are given at each point (point "
+                             "after point, each with one value per stage) and interpolated along the polyline "
+                             "through them",
+                             &bc->points, nullptr));
+  for (int c = 0; c < 3; ++c)
+    PetscCall(ReadStageArray(PetscOptionsObject, prefix, comp[c],
+                             "Prescribed displacement [mm] at the end of each stage (cumulative)", &bc->move[c]));
+  PetscCall(ReadStageArray(PetscOptionsObject, prefix, "force",
+                           "Total force on the group fx,fy,fz [N] at the end of each stage (3 values a stage), "
+                           "shared by the nodes in proportion to their length along the group",
+                           &bc->force));
+  PetscOptionsEnd();
+  bc->fix = fix;
+  for (char ch : bc->fix)
+    PetscCheck(ch == 'x' || ch == 'y' || ch == 'z', comm, PETSC_ERR_ARG_WRONG,
+               "-%sfix %s: give the held components as letters x, y, z (e.g. xyz clamps, z holds the height)",
+               prefix.c_str(), fix);
+  PetscCheck(bc->points.size() % 3 == 0 && bc->points.size() != 3, comm, PETSC_ERR_ARG_SIZ,
+             "-%spoints: give two or more control points, 3 coordinates each (%zu values given)", prefix.c_str(),
+             bc->points.size());
+  PetscCheck(bc->force.values.size() % 3 == 0, comm, PETSC_ERR_ARG_SIZ,
+             "-%sforce: give fx,fy,fz for each stage (%zu values given)", prefix.c_str(), bc->force.values.size());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
+  const std::string prefix = "film_" + group + "_";
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  f->group = group;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Film surface group " + group).c_str(), "Scene");
+  PetscCall(PetscOptionsReal("-stress_ratio", "Form finding: MD:TD prestress ratio of this group", "", f->stress_ratio,
+                             &f->stress_ratio, nullptr));
+  PetscCall(ReadStageArray(PetscOptionsObject, prefix, "pressure",
+                           "Follower pressure [kPa] at the end of each stage, along the elements' normal (the side "
+                           "the triangles' orientation points to)",
+                           &f->pressure));
+  PetscCall(PetscOptionsReal("-wind_cp",
+                             "Wind pressure coefficient on the face the normal points to (> 0 pushes onto it, < 0 "
+                             "suction); times -structure_wind",
+                             "", f->wind_cp, &f->wind_cp, &set));
+  PetscCall(ReadStageArray(PetscOptionsObject, prefix, "snow",
+                           "Snow [kPa per plan area] at the end of each stage: a vertical dead load", &f->snow));
+  PetscOptionsEnd();
+  f->wind_given = set;
+  PetscCheck(f->stress_ratio > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sstress_ratio %g must be positive",
+             prefix.c_str(), f->stress_ratio);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadRigid(MPI_Comm comm, const std::string &name, RigidInput *r) {
+  const std::string prefix = "rigid_" + name + "_";
+  const char *types[] = {"cylinder", "arch", "curve"};
+  PetscInt type = 0;
+  char curve[256] = "";
+  std::vector<double> centre, axis = {0, 1, 0};
+  PetscBool fixed = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  r->name = name;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Rigid support " + name).c_str(), "Scene");
+  PetscCall(PetscOptionsEList("-type",
+                              "cylinder (a pipe), arch (a cylinder the film touches along its crown line) or curve "
+                              "(the circle through a node group of the mesh, fitted)",
+                              "", types, 3, types[0], &type, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-centre", "A point on the axis x,y,z [mm]", &centre, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-axis", "Axis direction x,y,z", &axis, nullptr));
+  PetscCall(PetscOptionsReal("-radius", "Radius [mm]", "", r->radius, &r->radius, nullptr));
+  PetscCall(PetscOptionsString("-curve", "type curve: the node group (a circular arc) whose circle is the support", "",
+                               curve, curve, sizeof curve, nullptr));
+  PetscCall(OptionsNameList(PetscOptionsObject, "-nodes",
+                            "Node groups that may touch it (default: every node within -contact_search_tol)",
+                            &r->nodes));
+  PetscCall(PetscOptionsBool("-fixed_nodes",
+                             "Also pair nodes whose three displacements are prescribed (a grip on the support; "
+                             "their contact force then adds to the reaction)",
+                             "", fixed, &fixed, nullptr));
+  PetscOptionsEnd();
+  r->fixed_nodes = fixed;
+  r->type = types[type];
+  r->curve = curve;
+  if (r->type == "curve") {
+    PetscCheck(!r->curve.empty(), comm, PETSC_ERR_ARG_WRONG,
+               "-%stype curve needs -%scurve <node group>: the arc of the mesh the support's circle is fitted to",
+               prefix.c_str(), prefix.c_str());
+    if (r->nodes.empty()) r->nodes.push_back(r->curve);
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(centre.size() == 3 && axis.size() == 3 && r->radius > 0, comm, PETSC_ERR_ARG_WRONG,
+             "rigid support %s: give -%scentre x,y,z, -%saxis x,y,z and -%sradius > 0 (or -%stype curve)", name.c_str(),
+             prefix.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
+  for (int i = 0; i < 3; ++i) r->centre[i] = centre[i], r->axis[i] = axis[i];
+  PetscCheck(std::hypot(axis[0], axis[1], axis[2]) > 0, comm, PETSC_ERR_ARG_WRONG, "-%saxis must not be zero",
+             prefix.c_str());
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadRegion(MPI_Comm comm, const std::string &name, RegionInput *r) {
+  const std::string prefix = "region_" + name + "_";
+  PetscFunctionBeginUser;
+  r->name = name;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Report region " + name).c_str(), "Scene");
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-box",
+                             "Plan box x0,y0,x1,y1 [mm]: the elements whose centroid lies in it", &r->box, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(r->box.size() == 4 && r->box[0] <= r->box[2] && r->box[1] <= r->box[3], comm, PETSC_ERR_ARG_WRONG,
+             "-%sbox: give x0,y0,x1,y1 with x0 <= x1 and y0 <= y1", prefix.c_str());
+  PetscFunctionReturn(0);
+}
+
+// Options keyed by a group, support or region that does not exist: stated before the run, with
+// the names there are (the app's own check would only call them unknown).
+PetscErrorCode CheckKeyedOptions(MPI_Comm comm, const StructureInputs &in) {
+  PetscInt n;
+  char **names, **values;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  std::string bad;
+  for (PetscInt i = 0; i < n && bad.empty(); ++i)
+    for (const char *p : {"bc_", "film_", "rigid_", "region_"})
+      if (std::strncmp(names[i], p, std::strlen(p)) == 0) bad = names[i];
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  if (bad.empty()) PetscFunctionReturn(0);
+  auto join = [](const std::vector<std::string> &v) {
+    std::string s;
+    for (const std::string &x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("none") : s;
+  };
+  std::vector<std::string> rigid, region;
+  for (const RigidInput &r : in.rigids) rigid.push_back(r.name);
+  for (const RegionInput &r : in.regions) region.push_back(r.name);
+  SETERRQ(comm, PETSC_ERR_ARG_WRONG,
+          "-%s: no such group, support or option. -bc_<group>_* takes a node group of the mesh (%s), -film_<group>_* "
+          "a surface group (%s), -rigid_<name>_* a name listed in -structure_rigid (%s), -region_<name>_box one in "
+          "-structure_regions (%s); -help lists each one's options",
+          bad.c_str(), join(in.node_groups).c_str(), join(in.element_groups).c_str(), join(rigid).c_str(),
+          join(region).c_str());
+}
+
+PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *in, std::vector<std::string> *rigid,
+                             std::vector<std::string> *regions) {
+  const char *references[] = {"mesh", "pattern"};
+  char history[PETSC_MAX_PATH_LEN] = "";
+  std::vector<double> md = {1, 0, 0};
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "General scene: a structure from a mesh file and its groups", "Scene");
+  PetscCall(PetscOptionsInt("-structure_stages", "Number of load stages (default: the longest per-stage option)", "",
+                            in->stages, &in->stages, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_md", "MD (roll) direction of the film x,y,z", &md, nullptr));
+  PetscCall(PetscOptionsEList("-structure_reference",
+                              "Stress-free state: mesh (the surface as meshed or form-found) or pattern (the flat "
+                              "cutting patterns of -structure_pattern_strips, laid on in the first stage)",
+                              "", references, 2, references[in->reference], &in->reference, nullptr));
+  PetscCall(OptionsNameList(PetscOptionsObject, "-structure_pattern_strips",
+                            "Surface groups cut as one strip each (-structure_reference pattern)", &in->pattern_strips));
+  PetscCall(PetscOptionsReal("-structure_initial_bulge",
+                             "Initial guess: lift the free film by up to this much [mm] along its normal (a flat "
+                             "film under pressure has no out-of-plane stiffness to start from)",
+                             "", in->initial_bulge, &in->initial_bulge, nullptr));
+  PetscCall(ReadStageArray(PetscOptionsObject, "", "structure_wind",
+                           "Wind velocity pressure q [kPa] at the end of each stage (times -film_<group>_wind_cp)",
+                           &in->wind));
+  PetscCall(ReadStageArray(PetscOptionsObject, "", "structure_self_weight",
+                           "Self-weight factor at the end of each stage (1: the film's weight)", &in->self_weight));
+  PetscCall(PetscOptionsReal("-structure_density", "Film density [kg/m^3] for the self-weight (ETFE: 1750)", "",
+                             in->density, &in->density, nullptr));
+  PetscCall(OptionsNameList(PetscOptionsObject, "-structure_rigid", "Rigid supports by name (-rigid_<name>_*)", rigid));
+  PetscCall(OptionsNameList(PetscOptionsObject, "-structure_regions", "Report regions by name (-region_<name>_box)",
+                            regions));
+  PetscCall(OptionsNameList(PetscOptionsObject, "-structure_report",
+                            "Surface groups and regions reported and written to the history (default: all)",
+                            &in->report));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_probe_elements",
+                             "Plan points x,y,...: the element nearest each; its smallest principal stress and strain "
+                             "go to the history (wrinkling)",
+                             &in->probe_elements, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_probe_nodes",
+                             "Plan points x,y,...: the node nearest each; its displacement (and slide on a rigid "
+                             "support) go to the history",
+                             &in->probe_nodes, nullptr));
+  PetscCall(PetscOptionsString("-structure_history", "History CSV (default beside -output_file)", "", history, history,
+                               sizeof history, nullptr));
+  PetscOptionsEnd();
+  in->history = history;
+  PetscCheck(md.size() == 3 && std::hypot(md[0], md[1], md[2]) > 0, comm, PETSC_ERR_ARG_WRONG,
+             "-structure_md: give a non-zero direction x,y,z");
+  for (int i = 0; i < 3; ++i) in->md[i] = md[i];
+  PetscCheck(in->probe_elements.size() % 2 == 0 && in->probe_nodes.size() % 2 == 0, comm, PETSC_ERR_ARG_SIZ,
+             "-structure_probe_elements / -structure_probe_nodes: give plan points, 2 values (x,y) each");
+  PetscCheck(in->density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-structure_density %g must be positive", in->density);
+  PetscCheck(!(form_finding && in->reference == 1), comm, PETSC_ERR_ARG_WRONG,
+             "-structure_reference pattern: form finding finds the surface the patterns are cut from; run it without");
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool form_finding, StructureInputs *in) {
+  std::vector<std::string> rigid, regions;
+  PetscFunctionBeginUser;
+  for (const auto &kv : mesh.node_sets) in->node_groups.push_back(kv.first);
+  for (const auto &kv : mesh.element_sets) in->element_groups.push_back(kv.first);
+  PetscCall(BroadcastNames(comm, &in->node_groups));
+  PetscCall(BroadcastNames(comm, &in->element_groups));
+  PetscCall(ReadSceneWide(comm, form_finding, in, &rigid, &regions));
+  for (const std::string &g : in->node_groups) {
+    BcInput bc;
+    PetscCall(ReadBc(comm, g, &bc));
+    const bool any = !bc.fix.empty() || bc.move[0].Given() || bc.move[1].Given() || bc.move[2].Given() ||
+                     bc.force.Given() || !bc.points.empty();
+    if (any) in->bcs.push_back(bc);
+  }
+  for (const std::string &g : in->element_groups) {
+    FilmInput f;
+    PetscCall(ReadFilm(comm, g, &f));
+    in->films.push_back(f);
+  }
+  const std::set<std::string> nodes(in->node_groups.begin(), in->node_groups.end());
+  for (const std::string &name : rigid) {
+    RigidInput r;
+    PetscCall(ReadRigid(comm, name, &r));
+    for (const std::string &g : r.nodes)
+      PetscCheck(nodes.count(g), comm, PETSC_ERR_ARG_WRONG,
+                 "-rigid_%s_nodes / -rigid_%s_curve: the mesh has no node group %s", name.c_str(), name.c_str(),
+                 g.c_str());
+    in->rigids.push_back(r);
+  }
+  for (const std::string &name : regions) {
+    RegionInput r;
+    PetscCall(ReadRegion(comm, name, &r));
+    in->regions.push_back(r);
+  }
+  const std::set<std::string> surfaces(in->element_groups.begin(), in->element_groups.end());
+  for (const std::string &g : in->pattern_strips)
+    PetscCheck(surfaces.count(g), comm, PETSC_ERR_ARG_WRONG,
+               "-structure_pattern_strips: the mesh has no surface group %s", g.c_str());
+  for (const std::string &g : in->report) {
+    bool found = surfaces.count(g) > 0;
+    for (const std::string &r : regions) found |= r == g;
+    PetscCheck(found, comm, PETSC_ERR_ARG_WRONG,
+               "-structure_report: %s is neither a surface group of the mesh nor a region of -structure_regions",
+               g.c_str());
+  }
+  PetscCall(CheckKeyedOptions(comm, *in));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

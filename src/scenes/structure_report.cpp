@@ -1,0 +1,241 @@
+// What the general scene reports (structure_inputs.h): per surface group and region the mean GL
+// strains and PK2 Mises, the largest Mises and plastic strain and the wrinkled elements; the
+// probes' smallest principal stress and strain (elements) and displacement and slide (nodes); the
+// reaction on every supported node group; the rigid supports' pairs and largest slide. One CSV
+// line per increment (the history), the same figures in the report after the last one.
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "etfe/assembly.h"
+#include "etfe/contact.h"
+#include "etfe/csv_history.h"
+#include "structure_inputs.h"
+
+namespace etfe {
+
+namespace {
+
+struct StructureContext {
+  std::vector<std::string> items;               // reported element sets
+  std::vector<std::string> supports;            // node groups with a prescribed component
+  std::vector<double> probe_element_at, probe_node_at;
+  std::string history;
+  // Found in setup on the distributed problem:
+  std::vector<std::vector<char>> in_item;       // per item, per local element
+  std::vector<std::vector<char>> in_support;    // per support group, per local node
+  std::vector<PetscInt> probe_elements, probe_nodes;
+};
+
+// Per item: sums of Exx, Eyy, Exy, Mises, count; maxima of Mises, ep; wrinkled count.
+struct Figures {
+  std::vector<double> mean;     // 4 per item
+  std::vector<double> peak;     // 2 per item (PK2 Mises, plastic strain)
+  std::vector<double> count;    // 2 per item (elements, wrinkled)
+  std::vector<double> probe_e;  // smin, emin per probe element
+  std::vector<double> probe_n;  // uX, uY, uZ, slide X, slide Y per probe node
+  std::vector<double> reaction; // 3 per support group
+  PetscInt pairs[3] = {0, 0, 0};
+};
+
+PetscErrorCode Setup(Problem *P, void *vctx) {
+  auto *c = (StructureContext *)vctx;
+  const LocalMesh &m = P->mesh;
+  PetscFunctionBeginUser;
+  c->in_item.assign(c->items.size(), std::vector<char>(m.num_elements, 0));
+  for (size_t k = 0; k < c->items.size(); ++k) {
+    const auto it = m.element_sets.find(c->items[k]);
+    if (it != m.element_sets.end())
+      for (PetscInt e : it->second) c->in_item[k][e] = 1;
+  }
+  c->in_support.resize(c->supports.size());
+  for (size_t k = 0; k < c->supports.size(); ++k)
+    PetscCall(ProblemNodeSetFlags(P, c->supports[k].c_str(), &c->in_support[k]));
+  c->probe_elements.clear(), c->probe_nodes.clear();
+  for (size_t k = 0; k + 1 < c->probe_element_at.size(); k += 2) {
+    PetscInt e;
+    PetscCall(ProblemNearestElement(P, c->probe_element_at[k], c->probe_element_at[k + 1], &e));
+    c->probe_elements.push_back(e);
+  }
+  for (size_t k = 0; k + 1 < c->probe_node_at.size(); k += 2) {
+    PetscInt n;
+    PetscCall(ProblemNearestNode(P, c->probe_node_at[k], c->probe_node_at[k + 1], &n));
+    c->probe_nodes.push_back(n);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Figures *v) {
+  const LocalMesh &m = P->mesh;
+  const size_t ni = c->items.size(), npe = c->probe_elements.size(), npn = c->probe_nodes.size();
+  PetscFunctionBeginUser;
+  std::vector<double> sums(6 * ni + 2 * npe + 5 * npn + 3 * c->supports.size(), 0.0), peaks(2 * ni, 0.0);
+  for (PetscInt e = 0; e < m.num_elements; ++e) {
+    for (size_t k = 0; k < ni; ++k) {
+      if (!c->in_item[k][e]) continue;
+      double *acc = &sums[5 * k];
+      acc[0] += f.strain[3 * e], acc[1] += f.strain[3 * e + 1], acc[2] += f.strain[3 * e + 2];
+      acc[3] += f.mises[e], acc[4] += 1.0;
+      sums[5 * ni + k] += f.smin[e] <= 0;
+      peaks[2 * k] = std::max(peaks[2 * k], f.mises[e]);
+      if (!f.ep_bar.empty()) peaks[2 * k + 1] = std::max(peaks[2 * k + 1], f.ep_bar[e]);
+    }
+    for (size_t k = 0; k < npe; ++k)
+      if (m.element_natural[e] == c->probe_elements[k]) sums[6 * ni + 2 * k] = f.smin[e], sums[6 * ni + 2 * k + 1] = f.emin[e];
+  }
+  double *probe_n = &sums[6 * ni + 2 * npe];
+  const PetscScalar *u, *r;
+  PetscCall(VecGetArrayRead(P->U, &u));
+  PetscCall(VecGetArrayRead(P->reaction, &r));
+  for (PetscInt l = 0; l < m.num_owned; ++l) {
+    for (size_t k = 0; k < npn; ++k)
+      if (m.natural_id[l] == c->probe_nodes[k])
+        for (int i = 0; i < 3; ++i) probe_n[5 * k + i] = u[3 * l + i];
+    for (size_t k = 0; k < c->supports.size(); ++k)
+      if (c->in_support[k][l])
+        for (int i = 0; i < 3; ++i) probe_n[5 * npn + 3 * k + i] += r[3 * l + i];
+  }
+  PetscCall(VecRestoreArrayRead(P->reaction, &r));
+  PetscCall(VecRestoreArrayRead(P->U, &u));
+  PetscInt pairs[3] = {0, 0, 0};
+  if (P->contact)
+    for (const ContactPair &pr : P->contact->pairs) {
+      pairs[pr.committed.status]++;
+      for (size_t k = 0; k < npn; ++k)
+        if (pr.natural_node == c->probe_nodes[k]) {
+          const ContactPairReport rep = ContactReport(*P->contact, pr);
+          probe_n[5 * k + 3] = rep.slide_global[0], probe_n[5 * k + 4] = rep.slide_global[1];
+        }
+    }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sums.data(), (int)sums.size(), MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, peaks.data(), (int)peaks.size(), MPI_DOUBLE, MPI_MAX, P->comm));
+  PetscCallMPI(MPI_Allreduce(pairs, v->pairs, 3, MPIU_INT, MPI_SUM, P->comm));
+  v->mean.assign(4 * ni, 0.0), v->count.assign(2 * ni, 0.0);
+  for (size_t k = 0; k < ni; ++k) {
+    const double n = sums[5 * k + 4];
+    for (int i = 0; i < 4; ++i) v->mean[4 * k + i] = n > 0 ? sums[5 * k + i] / n : 0.0;
+    v->count[2 * k] = n, v->count[2 * k + 1] = sums[5 * ni + k];
+  }
+  v->peak = peaks;
+  v->probe_e.assign(sums.begin() + 6 * ni, sums.begin() + 6 * ni + 2 * npe);
+  v->probe_n.assign(probe_n, probe_n + 5 * npn);
+  v->reaction.assign(probe_n + 5 * npn, probe_n + 5 * npn + 3 * c->supports.size());
+  PetscFunctionReturn(0);
+}
+
+std::string Header(const StructureContext *c, bool contact) {
+  std::string h = "step,time";
+  for (const std::string &g : c->items)
+    for (const char *k : {"_Exx", "_Eyy", "_Exy", "_mises", "_mises_max", "_ep_max", "_wrinkled"}) h += "," + g + k;
+  for (size_t k = 1; k <= c->probe_elements.size(); ++k)
+    h += ",element" + std::to_string(k) + "_smin,element" + std::to_string(k) + "_emin";
+  for (size_t k = 1; k <= c->probe_nodes.size(); ++k) {
+    const std::string n = ",node" + std::to_string(k);
+    h += n + "_uX" + n + "_uY" + n + "_uZ";
+    if (contact) h += n + "_slide_X" + n + "_slide_Y";
+  }
+  for (const std::string &g : c->supports) h += "," + g + "_RX," + g + "_RY," + g + "_RZ";
+  if (contact) h += ",pairs_open,pairs_stick,pairs_slip";
+  return h + ",work,shift_work";
+}
+
+PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
+  auto *c = (StructureContext *)vctx;
+  CellFields f;
+  Figures v;
+  PetscFunctionBeginUser;
+  const std::string path = !c->history.empty()                ? c->history
+                           : !P->observer.results_stem.empty() ? P->observer.results_stem + "_history.csv"
+                                                               : std::string();
+  if (path.empty()) PetscFunctionReturn(0);
+  PetscCall(ComputeCellFields(P, P->U, &f, false));
+  PetscCall(Measure(P, c, f, &v));
+  if (P->rank != 0) PetscFunctionReturn(0);
+  const bool contact = P->contact != nullptr;
+  FILE *out = CsvHistoryOpen(path, step, Header(c, contact).c_str());
+  PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s (-structure_history)", path.c_str());
+  std::fprintf(out, "%lld,%.10g", (long long)step, t);
+  for (size_t k = 0; k < c->items.size(); ++k) {
+    for (int i = 0; i < 4; ++i) std::fprintf(out, ",%.8e", v.mean[4 * k + i]);
+    std::fprintf(out, ",%.8e,%.8e,%.0f", v.peak[2 * k], v.peak[2 * k + 1], v.count[2 * k + 1]);
+  }
+  for (double x : v.probe_e) std::fprintf(out, ",%.8e", x);
+  for (size_t k = 0; k < c->probe_nodes.size(); ++k)
+    for (int i = 0; i < (contact ? 5 : 3); ++i) std::fprintf(out, ",%.8e", v.probe_n[5 * k + i]);
+  for (double x : v.reaction) std::fprintf(out, ",%.8e", x);
+  if (contact) std::fprintf(out, ",%lld,%lld,%lld", (long long)v.pairs[0], (long long)v.pairs[1], (long long)v.pairs[2]);
+  std::fprintf(out, ",%.8e,%.8e\n", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
+  std::fclose(out);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode Report(Problem *P, void *vctx) {
+  auto *c = (StructureContext *)vctx;
+  CellFields f;
+  Figures v;
+  PetscFunctionBeginUser;
+  PetscCall(ComputeCellFields(P, P->U, &f));
+  PetscCall(Measure(P, c, f, &v));
+  double cauchy = 0.0, umax = 0.0;
+  for (double s : f.cauchy_mises) cauchy = std::max(cauchy, s);
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &cauchy, 1, MPI_DOUBLE, MPI_MAX, P->comm));
+  PetscCall(VecMaxNodalNorm(P->U, &umax));
+  PetscCall(PetscPrintf(P->comm, "structure: largest displacement %.4f mm, largest true (Cauchy) Mises %.4f MPa\n", umax,
+                        cauchy));
+  for (size_t k = 0; k < c->items.size(); ++k)
+    PetscCall(PetscPrintf(P->comm,
+                          "structure: %s (%.0f elements): mean mises = %.4f MPa (PK2; Exx %.5f, Eyy %.5f, Exy %.5f), "
+                          "mises_max = %.4f MPa, plastic_strain_max = %.5f, wrinkled = %.0f elements\n",
+                          c->items[k].c_str(), v.count[2 * k], v.mean[4 * k + 3], v.mean[4 * k], v.mean[4 * k + 1],
+                          v.mean[4 * k + 2], v.peak[2 * k], v.peak[2 * k + 1], v.count[2 * k + 1]));
+  for (size_t k = 0; k < c->supports.size(); ++k)
+    PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N\n", c->supports[k].c_str(),
+                          v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2]));
+  if (P->contact) {
+    double slide = 0.0;
+    for (const ContactPair &pr : P->contact->pairs) {
+      const ContactPairReport r = ContactReport(*P->contact, pr);
+      slide = std::max(slide, std::hypot(r.slide_local[0], r.slide_local[1]));
+    }
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &slide, 1, MPI_DOUBLE, MPI_MAX, P->comm));
+    PetscCall(PetscPrintf(P->comm,
+                          "structure: rigid supports: %" PetscInt_FMT " pairs open, %" PetscInt_FMT " sticking, %" PetscInt_FMT
+                          " slipping; largest slide %.4f mm (in the support's tangent plane)\n",
+                          v.pairs[0], v.pairs[1], v.pairs[2], slide));
+  }
+  for (size_t k = 0; k < c->probe_elements.size(); ++k)
+    PetscCall(PetscPrintf(P->comm, "structure: element %zu (nearest %g, %g) smin = %.4f MPa, emin = %.4e\n", k + 1,
+                          c->probe_element_at[2 * k], c->probe_element_at[2 * k + 1], v.probe_e[2 * k], v.probe_e[2 * k + 1]));
+  for (size_t k = 0; k < c->probe_nodes.size(); ++k)
+    PetscCall(PetscPrintf(P->comm, "structure: node %zu (nearest %g, %g) u = (%.4f, %.4f, %.4f) mm, slide (%.4f, %.4f) mm\n",
+                          k + 1, c->probe_node_at[2 * k], c->probe_node_at[2 * k + 1], v.probe_n[5 * k],
+                          v.probe_n[5 * k + 1], v.probe_n[5 * k + 2], v.probe_n[5 * k + 3], v.probe_n[5 * k + 4]));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode StructureObserverCreate(const StructureInputs &in, SceneObserver *observer) {
+  PetscFunctionBeginUser;
+  auto *c = new StructureContext();
+  c->items = in.report;
+  if (c->items.empty()) {
+    c->items = in.element_groups;
+    for (const RegionInput &r : in.regions) c->items.push_back(r.name);
+  }
+  for (const BcInput &bc : in.bcs)
+    if (!bc.fix.empty() || bc.move[0].Given() || bc.move[1].Given() || bc.move[2].Given()) c->supports.push_back(bc.group);
+  c->probe_element_at = in.probe_elements;
+  c->probe_node_at = in.probe_nodes;
+  c->history = in.history;
+  observer->setup = Setup;
+  observer->step_monitor = Step;
+  observer->report = Report;
+  observer->ctx = c;
+  observer->destroy = [](void *x) { delete (StructureContext *)x; };
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,153 @@
+// The general scene's stages and supports (structure_inputs.h).
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+
+#include "etfe/rank0.h"
+#include "etfe/scene_registry.h"
+#include "structure_inputs.h"
+
+namespace etfe {
+
+namespace {
+
+// Values per stage of an array given at `points` control points (1: no points).
+size_t StagesOf(const StageArray &a, size_t points) { return a.values.size() / std::max<size_t>(points, 1); }
+
+// Where a point projects onto the polyline through `pts` (3 per point): segment k and the
+// fraction s along it (the nearest segment; the first of equals).
+void ProjectOnPolyline(const std::vector<double> &pts, const double *x, int *k, double *s) {
+  double best = INFINITY;
+  const int n = (int)pts.size() / 3;
+  for (int i = 0; i + 1 < n; ++i) {
+    const double *a = &pts[3 * i], *b = &pts[3 * i + 3];
+    double ab[3], ax[3], dot = 0, len2 = 0;
+    for (int c = 0; c < 3; ++c) ab[c] = b[c] - a[c], ax[c] = x[c] - a[c], dot += ab[c] * ax[c], len2 += ab[c] * ab[c];
+    const double t = len2 > 0 ? std::min(1.0, std::max(0.0, dot / len2)) : 0.0;
+    double d2 = 0;
+    for (int c = 0; c < 3; ++c) d2 += (ax[c] - t * ab[c]) * (ax[c] - t * ab[c]);
+    if (d2 < best) best = d2, *k = i, *s = t;
+  }
+}
+
+struct Held {
+  ScheduledValue value;
+  std::string group;
+};
+
+// Rank 0: adds (node, comp) = value unless the DOF is held already; a second value must agree
+// with the first at every stage end (the schedules are piecewise linear in between).
+bool AddConstraint(SceneSpec *scene, std::map<long, Held> *held, int node, int comp, const ScheduledValue &v,
+                   const std::string &group, int stages, std::string *err) {
+  const long key = 3L * node + comp;
+  auto it = held->find(key);
+  if (it == held->end()) {
+    (*held)[key] = {v, group};
+    scene->constraints.push_back({node, comp, v});
+    return true;
+  }
+  for (int t = 0; t <= stages; ++t) {
+    const double a = it->second.value.At(scene->schedules, t), b = v.At(scene->schedules, t);
+    if (std::fabs(a - b) > 1e-9 * std::max(1.0, std::max(std::fabs(a), std::fabs(b)))) {
+      const MeshData &m = scene->mesh;
+      const long long tag = m.node_tags.empty() ? node : m.node_tags[node];
+      char buf[400];
+      std::snprintf(buf, sizeof buf,
+                    "node %lld (at %g, %g, %g) of %s is in the node groups %s and %s, which prescribe its %c "
+                    "displacement differently (%g and %g mm at the end of stage %d): give it the same value in both, "
+                    "or take it out of one group",
+                    tag, m.coords[3 * node], m.coords[3 * node + 1], m.coords[3 * node + 2], m.source.c_str(),
+                    it->second.group.c_str(), group.c_str(), "xyz"[comp], a, b, t);
+      return *err = buf, false;
+    }
+  }
+  return true;
+}
+
+} // namespace
+
+PetscErrorCode StructureStageCount(MPI_Comm comm, const StructureInputs &in, int *stages) {
+  size_t longest = 0;
+  std::string which;
+  auto see = [&](const StageArray &a, size_t n) {
+    if (n > longest) longest = n, which = a.option;
+  };
+  PetscFunctionBeginUser;
+  for (const BcInput &bc : in.bcs) {
+    for (const StageArray &a : bc.move) see(a, StagesOf(a, bc.points.size() / 3));
+    see(bc.force, bc.force.values.size() / 3);
+  }
+  for (const FilmInput &f : in.films) see(f.pressure, f.pressure.values.size()), see(f.snow, f.snow.values.size());
+  see(in.wind, in.wind.values.size());
+  see(in.self_weight, in.self_weight.values.size());
+  PetscCheck(in.stages <= 0 || (size_t)in.stages >= longest, comm, PETSC_ERR_ARG_SIZ,
+             "-structure_stages %d: %s gives %zu stages; raise -structure_stages or shorten the option",
+             (int)in.stages, which.c_str(), longest);
+  *stages = in.stages > 0 ? (int)in.stages : std::max<int>(1, (int)longest);
+  PetscFunctionReturn(0);
+}
+
+int StructureAddSchedule(SceneSpec *scene, const std::string &name, const std::vector<double> &values, int stages,
+                         const std::string &unit, double display_scale) {
+  std::vector<double> v(values.begin(), values.begin() + std::min<size_t>(values.size(), stages));
+  while ((int)v.size() < stages) v.push_back(v.empty() ? 0.0 : v.back());
+  return scene->AddSchedule({name, 0.0, v, unit, display_scale});
+}
+
+PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
+  static const char *const comp_name[3] = {"ux", "uy", "uz"};
+  std::map<long, Held> held;
+  std::string err;
+  PetscFunctionBeginUser;
+  for (const BcInput &bc : in.bcs) {
+    const size_t npts = bc.points.size() / 3;
+    // Schedules on every rank (small); per component one per control point, or one.
+    std::vector<int> ids[3];
+    for (int c = 0; c < 3; ++c) {
+      const StageArray &a = bc.move[c];
+      if (!a.Given()) continue;
+      PetscCheck(bc.fix.find("xyz"[c]) == std::string::npos, comm, PETSC_ERR_ARG_WRONG,
+                 "node group %s: -bc_%s_fix holds %c and %s moves it; give one of them", bc.group.c_str(),
+                 bc.group.c_str(), "xyz"[c], a.option.c_str());
+      PetscCheck(npts == 0 || a.values.size() % npts == 0, comm, PETSC_ERR_ARG_SIZ,
+                 "%s: %zu values for %zu control points (-bc_%s_points): give the same number of stages at each point",
+                 a.option.c_str(), a.values.size(), npts, bc.group.c_str());
+      const size_t per = StagesOf(a, npts);
+      for (size_t p = 0; p < std::max<size_t>(npts, 1); ++p) {
+        const std::vector<double> v(a.values.begin() + p * per, a.values.begin() + (p + 1) * per);
+        std::string name = bc.group + "." + comp_name[c];
+        if (npts) name += "@" + std::to_string(p + 1);
+        ids[c].push_back(StructureAddSchedule(scene, name, scene->form_finding ? std::vector<double>() : v, stages,
+                                              "mm", 1.0));
+      }
+    }
+    if (!SceneHoldsMesh(comm) || !err.empty()) continue;
+    const auto it = scene->mesh.node_sets.find(bc.group);
+    if (it == scene->mesh.node_sets.end() || it->second.empty()) {
+      err = "-bc_" + bc.group + "_*: node group " + bc.group + " of " + scene->mesh.source + " has no nodes";
+      continue;
+    }
+    for (int n : it->second) {
+      for (int c = 0; c < 3 && err.empty(); ++c) {
+        ScheduledValue v;
+        if (ids[c].empty() && bc.fix.find("xyz"[c]) == std::string::npos) continue;
+        if (ids[c].size() == 1) {
+          v = {{1.0, 0.0}, {ids[c][0], -1}};
+        } else if (!ids[c].empty()) {
+          int k = 0;
+          double s = 0.0;
+          ProjectOnPolyline(bc.points, &scene->mesh.coords[3 * n], &k, &s);
+          v = {{1.0 - s, s}, {ids[c][k], ids[c][k + 1]}};
+        }
+        AddConstraint(scene, &held, n, c, v, bc.group, stages, &err);
+      }
+    }
+  }
+  PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
