@@ -26,6 +26,8 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
 // ProblemCreate sends each rank its share. What an observer needs of the mesh it finds in its
 // setup, on the distributed problem (SceneObserver::setup).
 bool SceneHoldsMesh(MPI_Comm comm);
+// -scene_mesh_out FILE: rank 0 writes the built scene's mesh with its groups as Gmsh (collective).
+PetscErrorCode SceneWriteMesh(MPI_Comm comm, const SceneSpec &scene);
 // Reads, orients and checks the Gmsh file on rank 0 (the mesh of the other ranks gets the source
 // name only); used by scenes that accept a file instead of their generator.
 PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh);

@@ -2,6 +2,7 @@
 #include <petscsys.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -128,6 +129,31 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
   for (const PressureSpec &p : scene->pressures)
     PetscCheck(std::isfinite(p.value.coef[0]) && std::isfinite(p.value.coef[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
                "scene %s: the pressure is not finite", name);
+  PetscCall(SceneWriteMesh(comm, *scene));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SceneWriteMesh(MPI_Comm comm, const SceneSpec &scene) {
+  char path[PETSC_MAX_PATH_LEN] = "";
+  PetscBool set = PETSC_FALSE;
+  std::string err;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Scene mesh", "Scene");
+  PetscCall(PetscOptionsString("-scene_mesh_out",
+                               "Write the scene's mesh with its node and element groups as Gmsh (a generated scene's "
+                               "mesh becomes a file the general scene, -scene structure, reads)",
+                               "", path, path, sizeof path, &set));
+  PetscOptionsEnd();
+  if (!set) PetscFunctionReturn(0);
+  int ok = 1;
+  if (SceneHoldsMesh(comm)) {
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    std::error_code ec;  // a failure to make it shows as the write's own error
+    if (!dir.empty()) std::filesystem::create_directories(dir, ec);
+    ok = WriteGmshFile(path, scene.mesh, &err) ? 1 : 0;
+  }
+  PetscCall(Rank0Outcome(comm, ok, "-scene_mesh_out: " + err, PETSC_ERR_FILE_WRITE));
+  PetscCall(PetscPrintf(comm, "scene %s: mesh and its groups written to %s\n", scene.name.c_str(), path));
   PetscFunctionReturn(0);
 }
 

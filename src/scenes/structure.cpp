@@ -128,6 +128,11 @@ PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserv
              "-scene structure needs -mesh_file <mesh.msh>: a Gmsh mesh whose physical groups name the film's "
              "surfaces and the supported curves (scripts/surface2msh makes one from OBJ/STL; docs/own-structure.md)");
   PetscCall(SceneReadMesh(comm, mesh.file.c_str(), &scene->mesh));
+  // "all" always names the whole film, so a mesh without surface groups can be loaded too.
+  if (SceneHoldsMesh(comm) && !scene->mesh.element_sets.count("all")) {
+    std::vector<int> &all = scene->mesh.element_sets["all"];
+    for (int e = 0; e < scene->mesh.NumElements(); ++e) all.push_back(e);
+  }
   PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
   for (int i = 0; i < 3; ++i) scene->md_axis[i] = in.md[i];
   int stages = 1;

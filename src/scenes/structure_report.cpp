@@ -208,10 +208,13 @@ PetscErrorCode Report(Problem *P, void *vctx) {
   for (size_t k = 0; k < c->probe_elements.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "structure: element %zu (nearest %g, %g) smin = %.4f MPa, emin = %.4e\n", k + 1,
                           c->probe_element_at[2 * k], c->probe_element_at[2 * k + 1], v.probe_e[2 * k], v.probe_e[2 * k + 1]));
-  for (size_t k = 0; k < c->probe_nodes.size(); ++k)
-    PetscCall(PetscPrintf(P->comm, "structure: node %zu (nearest %g, %g) u = (%.4f, %.4f, %.4f) mm, slide (%.4f, %.4f) mm\n",
-                          k + 1, c->probe_node_at[2 * k], c->probe_node_at[2 * k + 1], v.probe_n[5 * k],
-                          v.probe_n[5 * k + 1], v.probe_n[5 * k + 2], v.probe_n[5 * k + 3], v.probe_n[5 * k + 4]));
+  for (size_t k = 0; k < c->probe_nodes.size(); ++k) {
+    char slide[96] = "";
+    if (P->contact) std::snprintf(slide, sizeof slide, ", slide (%.4f, %.4f) mm", v.probe_n[5 * k + 3], v.probe_n[5 * k + 4]);
+    PetscCall(PetscPrintf(P->comm, "structure: node %zu (nearest %g, %g) u = (%.4f, %.4f, %.4f) mm%s\n", k + 1,
+                          c->probe_node_at[2 * k], c->probe_node_at[2 * k + 1], v.probe_n[5 * k], v.probe_n[5 * k + 1],
+                          v.probe_n[5 * k + 2], slide));
+  }
   PetscFunctionReturn(0);
 }
 
