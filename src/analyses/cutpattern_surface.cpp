@@ -123,6 +123,9 @@ bool CutPatternPrepareSurface(MeshData *m, const std::vector<std::string> &only,
   std::vector<int> strip_of(ne, -1);
   std::vector<std::string> names;
   for (const auto &kv : m->element_sets) {
+    // Sets not chosen as strips (-cutpattern_strips) may overlap them: a group of the whole film.
+    const bool chosen = only.empty() || std::find(only.begin(), only.end(), kv.first) != only.end();
+    if (!chosen) continue;
     const int s = (int)names.size();
     names.push_back(kv.first);
     for (int e : kv.second) {
@@ -135,8 +138,7 @@ bool CutPatternPrepareSurface(MeshData *m, const std::vector<std::string> &only,
       }
       strip_of[e] = s;
     }
-    const bool chosen = only.empty() || std::find(only.begin(), only.end(), kv.first) != only.end();
-    if (chosen && !CheckDisc(*m, kv.first, kv.second, err)) return false;
+    if (!CheckDisc(*m, kv.first, kv.second, err)) return false;
   }
   const int loose = (int)std::count(strip_of.begin(), strip_of.end(), -1);
   if (loose) notes->push_back(std::to_string(loose) + " triangles in no physical surface group are in no strip");

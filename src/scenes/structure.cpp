@@ -150,7 +150,8 @@ PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserv
     PetscCall(StructureAddSupports(comm, in, stages, scene));
     PetscCall(BuildLoadHistory(comm, in, stages, scene));
   }
-  PetscCall(StructureObserverCreate(in, observer));
+  // Form finding reports its own figures (the surface found is written as a mesh).
+  if (!scene->form_finding) PetscCall(StructureObserverCreate(in, observer));
   PetscFunctionReturn(0);
 }
 

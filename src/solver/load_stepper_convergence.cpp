@@ -38,7 +38,8 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
   auto *t = (ForceTest *)ctx;
   PetscFunctionBeginUser;
   PetscCall(SNESConvergedDefault(snes, it, xnorm, ynorm, fnorm, reason, nullptr));
-  if (*reason != SNES_CONVERGED_ITERATING || it == 0) PetscFunctionReturn(0);
+  const bool step_small = *reason == SNES_CONVERGED_SNORM_RELATIVE;
+  if ((*reason != SNES_CONVERGED_ITERATING && !step_small) || it == 0) PetscFunctionReturn(0);
   Problem *P = t->problem;
   PetscReal tol = t->rtol * P->diagnostics.force_scale;
   if (P->contact) {
@@ -66,6 +67,9 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
     tol = std::max(tol, t->roundoff * t->floor);
   }
   if (fnorm <= tol) *reason = SNES_CONVERGED_FNORM_ABS;
+  // A step small against |x| is no equilibrium while the forces do not balance: a film thrown
+  // far away (|x| huge) makes every step relatively small, and SNES's test would accept it.
+  else if (step_small) *reason = SNES_DIVERGED_LINE_SEARCH;
   PetscFunctionReturn(0);
 }
 
