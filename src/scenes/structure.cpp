@@ -124,6 +124,15 @@ PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserv
   PetscFunctionBeginUser;
   mesh.keys = kMeshFile;
   PetscCall(MeshOptionsFromCommandLine(comm, "structure scene", &mesh));
+  PetscBool help = PETSC_FALSE;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (help && mesh.file.empty()) {
+    // -help without a mesh: the scene-wide options; the per-group ones need the mesh's groups.
+    PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
+    PetscCall(PetscPrintf(comm, "  (-scene structure -mesh_file <mesh> -help also lists -bc_<group>_*, -film_<group>_*, "
+                                "-rigid_<name>_* and -region_<name>_* for the groups of that mesh)\n"));
+    PetscFunctionReturn(0);
+  }
   PetscCheck(!mesh.file.empty(), comm, PETSC_ERR_ARG_WRONG,
              "-scene structure needs -mesh_file <mesh.msh>: a Gmsh mesh whose physical groups name the film's "
              "surfaces and the supported curves (scripts/surface2msh makes one from OBJ/STL; docs/own-structure.md)");
