@@ -67,6 +67,9 @@ struct Problem {
   SceneObserver observer;
   LocalMesh mesh;
   double thickness = 0.25;  // mm
+  // Per local element where the film's parts differ in thickness (empty: `thickness` everywhere).
+  std::vector<double> element_thickness;
+  double Thickness(PetscInt e) const { return element_thickness.empty() ? thickness : element_thickness[e]; }
   double min_area_ratio = 1e-4;
   // -membrane_tangent_shift: a tangent-only diagonal shift relative to E h (dimensionless); the
   // solver layer adds TangentShiftAbsolute() N/mm, scaled per Newton iteration when adaptive

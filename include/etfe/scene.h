@@ -76,6 +76,10 @@ struct SceneSpec {
   ContactSpec contact;
   std::vector<double> element_stress_ratio;  // form finding: MD:TD per element (empty: uniform)
   std::vector<double> initial_guess;     // 3 per node or empty (zero displacement)
+  // Per element where the film differs by part (the general scene's surface groups): its
+  // thickness [mm] (empty: -membrane_thickness everywhere) and MD direction (3 per element;
+  // empty: md_axis everywhere).
+  std::vector<double> element_thickness, element_md;
   // Stress-free shape of each element where it differs from the nodes' positions (a cutting
   // pattern laid onto the surface: -saddle_reference pattern): 9 coordinates per element in
   // scene order, any placement; empty: every element is stress free where its nodes are.

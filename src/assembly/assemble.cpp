@@ -162,7 +162,7 @@ static void AddMembraneForces(Problem *P, const PetscScalar *u, PetscScalar *f, 
       if (st > *status) *status = st, *bad = m.element_natural[e];
       continue;
     }
-    MembraneForce(m.ref[e], P->thickness, F, S, nullptr, fe, nullptr);
+    MembraneForce(m.ref[e], P->Thickness(e), F, S, nullptr, fe, nullptr);
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] += fe[3 * a + i];
   }
@@ -280,9 +280,9 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     if (P->tangent_tension_only) {
       double T[3];
       TensilePart(S, T);
-      MembraneForce(m.ref[e], P->thickness, F, T, D, fe, K);
+      MembraneForce(m.ref[e], P->Thickness(e), F, T, D, fe, K);
     } else {
-      MembraneForce(m.ref[e], P->thickness, F, S, D, fe, K);
+      MembraneForce(m.ref[e], P->Thickness(e), F, S, D, fe, K);
     }
     if (!pressure.empty() && pressure[e] != 0.0) {
       double L[81];
@@ -394,7 +394,7 @@ PetscErrorCode UpdateReference(Problem *P, Vec U) {
     double X[9];
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < 3; ++i) X[3 * a + i] = m.X[3 * m.tri[3 * e + a] + i];
-    const int st = MembraneReferenceBuild(X, P->scene.md_axis, 0.0, &m.ref[e]);
+    const int st = MembraneReferenceBuild(X, m.MdAxis(e, P->scene.md_axis), 0.0, &m.ref[e]);
     if (st != KERNEL_OK) status = st, bad = m.element_natural[e];
   }
   PetscCall(ReduceStatus(P, status, bad));

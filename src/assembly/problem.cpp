@@ -72,6 +72,10 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   // From here on each rank works on its share: rank 0's global description goes before the
   // matrix and the factors are made.
   if (!keep_scene) PetscCall(ProblemReleaseScene(P));
+  m.md = std::move(share.element_md);
+  P->element_thickness = std::move(share.element_thickness);
+  for (double &h : P->element_thickness)
+    if (h == 0.0) h = P->thickness;  // an element no part gave a thickness: the film's
   PetscCall(LocalMeshBuildReference(comm, P->scene.md_axis, share.element_reference, &m));
   std::vector<double>().swap(share.element_reference);
   const PetscInt nl = m.NumLocal();
@@ -158,6 +162,8 @@ PetscErrorCode ProblemReleaseScene(Problem *P) {
   std::vector<double>().swap(s.initial_guess);
   std::vector<double>().swap(s.element_reference);
   std::vector<double>().swap(s.element_stress_ratio);
+  std::vector<double>().swap(s.element_thickness);
+  std::vector<double>().swap(s.element_md);
 #ifdef __GLIBC__
   // The reader's mesh and its parsing left freed blocks all over the heap (each below the mmap
   // threshold): hand their pages back before the matrix and the factors are made.

@@ -39,7 +39,9 @@ bool CheckDescription(const SceneSpec &s, std::string *err) {
     const char *what;
   } arrays[] = {{s.initial_guess, 3, (size_t)nn, "initial displacements (3 per node)"},
                 {s.element_stress_ratio, 1, (size_t)ne, "element stress ratios (1 per element)"},
-                {s.element_reference, 9, (size_t)ne, "stress-free element coordinates (9 per element)"}};
+                {s.element_reference, 9, (size_t)ne, "stress-free element coordinates (9 per element)"},
+                {s.element_thickness, 1, (size_t)ne, "element thicknesses (1 per element)"},
+                {s.element_md, 3, (size_t)ne, "element MD directions (3 per element)"}};
   for (const auto &a : arrays)
     if (!a.v.empty() && a.v.size() != a.per * a.count) {
       std::snprintf(buf, sizeof buf, "%s: %zu %s for %zu", m.source.c_str(), a.v.size(), a.what, a.count);
@@ -73,7 +75,7 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
       if (l >= 0 && l < r.num_owned) f.node = (int)l, forces.push_back(f);
     }
     std::vector<std::vector<PetscInt>> pressed(loaded.size());
-    std::vector<double> guess, ratio, reference;
+    std::vector<double> guess, ratio, reference, thickness, md;
     for (size_t k = 0; k < r.elements.size(); ++k) {
       const PetscInt e = r.elements[k];
       for (size_t p = 0; p < loaded.size(); ++p)
@@ -81,13 +83,15 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
       if (!s.element_stress_ratio.empty()) ratio.push_back(s.element_stress_ratio[e]);
       if (!s.element_reference.empty())
         reference.insert(reference.end(), s.element_reference.begin() + 9 * e, s.element_reference.begin() + 9 * e + 9);
+      if (!s.element_thickness.empty()) thickness.push_back(s.element_thickness[e]);
+      if (!s.element_md.empty()) md.insert(md.end(), s.element_md.begin() + 3 * e, s.element_md.begin() + 3 * e + 3);
     }
     if (!s.initial_guess.empty())
       for (PetscInt l = 0; l < r.num_owned; ++l)
         guess.insert(guess.end(), s.initial_guess.begin() + 3 * r.nodes[l], s.initial_guess.begin() + 3 * r.nodes[l] + 3);
     w->Put(cons), w->Put(forces), w->Put((unsigned long long)pressed.size());
     for (const auto &p : pressed) w->Put(p);
-    w->Put(guess), w->Put(ratio), w->Put(reference);
+    w->Put(guess), w->Put(ratio), w->Put(reference), w->Put(thickness), w->Put(md);
   };
   ByteReader rd;
   PetscCall(LocalMeshDistribute(comm, s.mesh, extra, mesh, &share->d_nnz, &share->o_nnz, &rd));
@@ -96,6 +100,7 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
   share->pressure_elements.resize(rd.ok ? (size_t)loads : 0);
   for (auto &p : share->pressure_elements) rd.Get(&p);
   rd.Get(&share->initial_guess), rd.Get(&share->element_stress_ratio), rd.Get(&share->element_reference);
+  rd.Get(&share->element_thickness), rd.Get(&share->element_md);
   PetscCheck(rd.ok && rd.AtEnd(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "rank %d: the scene share sent by rank 0 is malformed",
              rank);
   PetscFunctionReturn(0);

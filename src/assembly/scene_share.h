@@ -18,6 +18,8 @@ struct SceneShare {
   std::vector<double> initial_guess;         // 3 per owned node, or empty
   std::vector<double> element_stress_ratio;  // per local element, or empty
   std::vector<double> element_reference;     // 9 per local element, or empty
+  std::vector<double> element_thickness;     // per local element, or empty
+  std::vector<double> element_md;            // 3 per local element, or empty
   std::vector<PetscInt> d_nnz, o_nnz;        // preallocation of the owned rows (3x3 blocks)
 };
 

@@ -129,6 +129,7 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   auto value = [&h](const ScheduledValue &v) { h.Add(v.coef), h.Add(v.schedule); };
   h.Add(s.name);
   h.Add(s.md_axis);
+  h.Add(s.element_thickness), h.Add(s.element_md);
   h.Add(thickness);
   h.Add(min_area_ratio);
   h.Add(s.schedules.size());

@@ -52,17 +52,41 @@ bool Solve3(const double M[9], const double b[3], double x[3]) {
   return true;
 }
 
-} // namespace
-
-bool FitCircle(const double *pts, int n, CircleFit *fit) {
-  if (n < 3) return false;
-  double mean[3] = {0, 0, 0}, C[9] = {0}, V[9], w[3];
+// Mean and covariance eigenvectors (columns of V) with their eigenvalues w.
+void Spread(const double *pts, int n, double mean[3], double V[9], double w[3]) {
+  double C[9] = {0};
+  for (int i = 0; i < 3; ++i) mean[i] = 0.0;
   for (int k = 0; k < n; ++k)
     for (int i = 0; i < 3; ++i) mean[i] += pts[3 * k + i] / n;
   for (int k = 0; k < n; ++k)
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) C[3 * i + j] += (pts[3 * k + i] - mean[i]) * (pts[3 * k + j] - mean[j]);
   SymmetricEigen3(C, V, w);
+}
+
+} // namespace
+
+bool LongAxis(const double *pts, int n, double axis[3]) {
+  if (n < 2) return false;
+  double mean[3], V[9], w[3];
+  Spread(pts, n, mean, V, w);
+  int hi = 0;
+  for (int i = 1; i < 3; ++i)
+    if (w[i] > w[hi]) hi = i;
+  int big = 0;
+  for (int i = 0; i < 3; ++i) {
+    axis[i] = V[3 * i + hi];
+    if (std::fabs(axis[i]) > std::fabs(axis[big])) big = i;
+  }
+  if (axis[big] < 0)
+    for (int i = 0; i < 3; ++i) axis[i] = -axis[i];
+  return true;
+}
+
+bool FitCircle(const double *pts, int n, CircleFit *fit) {
+  if (n < 3) return false;
+  double mean[3], V[9], w[3];
+  Spread(pts, n, mean, V, w);
   int lo = 0, hi = 0;
   for (int i = 1; i < 3; ++i) {
     if (w[i] < w[lo]) lo = i;

@@ -237,6 +237,9 @@ static PetscErrorCode AgreeOnBadElement(MPI_Comm comm, PetscInt bad, const std::
 PetscErrorCode LocalMeshBuildReference(MPI_Comm comm, const double md_axis[3], const std::vector<double> &element_reference,
                                        LocalMesh *lm) {
   LocalMesh &m = *lm;
+  PetscCheck(m.md.empty() || m.md.size() == 3 * (size_t)m.num_elements, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+             "%s: %zu MD components for %" PetscInt_FMT " local elements (3 each)", m.source.c_str(), m.md.size(),
+             m.num_elements);
   PetscInt bad = -1;
   std::string msg;
   PetscFunctionBeginUser;
@@ -249,13 +252,14 @@ PetscErrorCode LocalMeshBuildReference(MPI_Comm comm, const double md_axis[3], c
     double X[9];
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < 3; ++i) X[3 * a + i] = m.X[3 * m.tri[3 * e + a] + i];
-    int st = MembraneReferenceBuild(X, md_axis, 0.0, &m.ref[e]);
+    const double *axis = m.MdAxis(e, md_axis);
+    int st = MembraneReferenceBuild(X, axis, 0.0, &m.ref[e]);
     if (st == KERNEL_OK && !element_reference.empty()) {
       const double *Y = &element_reference[9 * e];
       double md[3];
       MembraneReference free_ref;
       LocalTriangle(X, m.ref[e], &m.ref_placed[6 * e]);
-      st = MembraneCarryAxis(X, Y, md_axis, md);
+      st = MembraneCarryAxis(X, Y, axis, md);
       if (st == KERNEL_OK) st = MembraneReferenceBuild(Y, md, 0.0, &free_ref);
       if (st == KERNEL_OK) LocalTriangle(Y, free_ref, &m.ref_free[6 * e]);
     }

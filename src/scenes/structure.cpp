@@ -155,7 +155,9 @@ PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserv
     scene->AddSchedule({"boundary", 0.0, {1.0}});
     PetscCall(StructureAddSupports(comm, in, 1, scene));
     if (SceneHoldsMesh(comm)) FormFindingRatios(in, scene);
+    PetscCall(StructureFilmParts(comm, in, scene));
   } else {
+    PetscCall(StructureFilmParts(comm, in, scene));
     PetscCall(StructureAddSupports(comm, in, stages, scene));
     PetscCall(BuildLoadHistory(comm, in, stages, scene));
   }

@@ -38,6 +38,9 @@ struct BcInput {
 struct FilmInput {
   std::string group;
   double stress_ratio = 1.0;  // form finding: MD:TD
+  double thickness = 0.0;     // mm (0: -membrane_thickness)
+  std::vector<double> md;     // MD direction x,y,z (empty: -structure_md)
+  bool md_strip = false;      // MD along the group's long axis
   StageArray pressure;        // follower pressure along the elements' normal [kPa]
   double wind_cp = 0.0;       // pressure coefficient on the face the normal points to
   bool wind_given = false;
@@ -90,6 +93,8 @@ int StructureAddSchedule(SceneSpec *scene, const std::string &name, const std::v
 PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
 // Follower pressures, wind, snow, self-weight and group forces.
 PetscErrorCode StructureAddLoads(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
+// Per-element thickness and MD direction of the surface groups that set them.
+PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
 // Rigid supports and their candidate nodes (node set "structure_contact").
 PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
 

@@ -71,17 +71,19 @@ std::map<int, double> LengthFractions(const MeshData &m, const std::vector<int> 
 // before the run (kPa given as Pa: 300 instead of 0.3), refused where nothing could carry it.
 PetscErrorCode CheckLoadScale(MPI_Comm comm, const StageArray &a) {
   double peak = 0.0;
+  char value[32];  // snprintf: PETSc's %g would print 5000 as "5000."
   PetscFunctionBeginUser;
   for (double x : a.values) peak = std::max(peak, std::fabs(x));
+  std::snprintf(value, sizeof value, "%g", peak);
   PetscCheck(peak <= 1000.0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "%s reaches %g kPa: no foil carries that (ETFE cushions run at 0.2-0.8 kPa, snow and wind reach a few "
+             "%s reaches %s kPa: no foil carries that (ETFE cushions run at 0.2-0.8 kPa, snow and wind reach a few "
              "kPa); the option is in kPa, so 300 Pa is 0.3",
-             a.option.c_str(), peak);
+             a.option.c_str(), value);
   if (peak > 20.0)
     PetscCall(PetscPrintf(comm,
-                          "warning: %s reaches %g kPa, far above what a 0.05-0.5 mm foil carries (a few kPa); the option "
+                          "warning: %s reaches %s kPa, far above what a 0.05-0.5 mm foil carries (a few kPa); the option "
                           "is in kPa: was it given in Pa?\n",
-                          a.option.c_str(), peak));
+                          a.option.c_str(), value));
   PetscFunctionReturn(0);
 }
 
@@ -145,9 +147,14 @@ PetscErrorCode StructureAddLoads(MPI_Comm comm, const StructureInputs &in, int s
     for (double x : in.self_weight.values) v.push_back(-w * x);
     const int id = StructureAddSchedule(scene, "self_weight", v, stages, "", -1.0 / w);
     if (mesh) {
-      std::vector<int> all(m.NumElements());
-      for (int e = 0; e < m.NumElements(); ++e) all[e] = e;
-      AddDeadForces(AreaShares(m, all, false), 2, id, scene);
+      // Per node a third of its elements' areas, each in proportion to its thickness (-film_<group>_thickness).
+      std::map<int, double> share;
+      for (int e = 0; e < m.NumElements(); ++e) {
+        const double he = scene->element_thickness.empty() || scene->element_thickness[e] == 0 ? h
+                                                                                                : scene->element_thickness[e];
+        for (const auto &kv : AreaShares(m, {e}, false)) share[kv.first] += kv.second * he / h;
+      }
+      AddDeadForces(share, 2, id, scene);
     }
   }
   for (const BcInput &bc : in.bcs) {
@@ -203,6 +210,55 @@ PetscErrorCode FitRigidCurve(MPI_Comm comm, const MeshData &m, const RigidInput 
 }
 
 } // namespace
+
+PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene) {
+  MeshData &m = scene->mesh;
+  bool any_h = false, any_md = false;
+  std::string err;
+  PetscFunctionBeginUser;
+  for (const FilmInput &f : in.films) any_h |= f.thickness > 0, any_md |= f.md_strip || !f.md.empty();
+  if (!SceneHoldsMesh(comm) || (!any_h && !any_md)) PetscFunctionReturn(0);
+  // Each element takes a group's value; two groups giving it different values is an error.
+  std::vector<std::string> h_from(m.NumElements()), md_from(m.NumElements());
+  if (any_h) scene->element_thickness.assign(m.NumElements(), 0.0);  // 0: the default, filled in by the problem
+  if (any_md)
+    for (int e = 0; e < m.NumElements(); ++e) scene->element_md.insert(scene->element_md.end(), in.md, in.md + 3);
+  for (const FilmInput &f : in.films) {
+    const std::vector<int> &els = m.element_sets.at(f.group);
+    double axis[3] = {0, 0, 0};
+    if (f.md_strip) {
+      std::vector<double> pts;
+      for (int e : els)
+        for (int a = 0; a < 3; ++a) pts.insert(pts.end(), &m.coords[3 * m.triangles[3 * e + a]], &m.coords[3 * m.triangles[3 * e + a]] + 3);
+      LongAxis(pts.data(), (int)pts.size() / 3, axis);
+      char line[200];
+      std::snprintf(line, sizeof line, "structure: film group %s: MD along its long axis (%.4f, %.4f, %.4f)\n",
+                    f.group.c_str(), axis[0], axis[1], axis[2]);
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s", line));
+    } else if (!f.md.empty()) {
+      for (int i = 0; i < 3; ++i) axis[i] = f.md[i];
+    }
+    const bool md = f.md_strip || !f.md.empty();
+    for (int e : els) {
+      if (f.thickness > 0) {
+        if (!h_from[e].empty() && scene->element_thickness[e] != f.thickness)
+          err = "element " + std::to_string(e) + " is in the surface groups " + h_from[e] + " and " + f.group +
+                ", which give it different thicknesses (-film_<group>_thickness): give one of them";
+        scene->element_thickness[e] = f.thickness, h_from[e] = f.group;
+      }
+      if (md) {
+        double *d = &scene->element_md[3 * (size_t)e];
+        if (!md_from[e].empty() && (d[0] != axis[0] || d[1] != axis[1] || d[2] != axis[2]))
+          err = "element " + std::to_string(e) + " is in the surface groups " + md_from[e] + " and " + f.group +
+                ", which give it different MD directions (-film_<group>_md): give one of them";
+        for (int i = 0; i < 3; ++i) d[i] = axis[i];
+        md_from[e] = f.group;
+      }
+    }
+  }
+  PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene) {
   MeshData &m = scene->mesh;

@@ -7,6 +7,7 @@
 #include <petscsys.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <set>
 #include <string>
@@ -102,9 +103,16 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
 PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
   const std::string prefix = "film_" + group + "_";
   PetscBool set = PETSC_FALSE;
+  char md[256] = "";
   PetscFunctionBeginUser;
   f->group = group;
   PetscOptionsBegin(comm, prefix.c_str(), ("Film surface group " + group).c_str(), "Scene");
+  PetscCall(PetscOptionsReal("-thickness", "Film thickness of this group [mm] (default -membrane_thickness)", "",
+                             f->thickness, &f->thickness, nullptr));
+  PetscCall(PetscOptionsString("-md",
+                               "MD (roll) direction of this group: x,y,z, or strip (its long axis, as the strips "
+                               "of the cutting patterns run)",
+                               "", md, md, sizeof md, nullptr));
   PetscCall(PetscOptionsReal("-stress_ratio", "Form finding: MD:TD prestress ratio of this group", "", f->stress_ratio,
                              &f->stress_ratio, nullptr));
   PetscCall(ReadStageArray(PetscOptionsObject, prefix, "pressure",
@@ -119,6 +127,15 @@ PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
                            "Snow [kPa per plan area] at the end of each stage: a vertical dead load", &f->snow));
   PetscOptionsEnd();
   f->wind_given = set;
+  PetscCheck(f->thickness >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sthickness %g must be positive (mm)",
+             prefix.c_str(), f->thickness);
+  if (std::strcmp(md, "strip") == 0) {
+    f->md_strip = true;
+  } else if (md[0]) {
+    for (char *tok = std::strtok(md, ","); tok; tok = std::strtok(nullptr, ",")) f->md.push_back(std::atof(tok));
+    PetscCheck(f->md.size() == 3 && std::hypot(f->md[0], f->md[1], f->md[2]) > 0, comm, PETSC_ERR_ARG_WRONG,
+               "-%smd: give a non-zero direction x,y,z or the word strip", prefix.c_str());
+  }
   PetscCheck(f->stress_ratio > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sstress_ratio %g must be positive",
              prefix.c_str(), f->stress_ratio);
   PetscFunctionReturn(0);

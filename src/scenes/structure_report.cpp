@@ -78,7 +78,8 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
       double *acc = &sums[5 * k];
       acc[0] += f.strain[3 * e], acc[1] += f.strain[3 * e + 1], acc[2] += f.strain[3 * e + 2];
       acc[3] += f.mises[e], acc[4] += 1.0;
-      sums[5 * ni + k] += f.smin[e] <= 0;
+      // Wrinkled: the tension field's state where it is on, else a compressive principal stress.
+      sums[5 * ni + k] += f.wrinkle_state.empty() ? f.smin[e] <= 0 : f.wrinkle_state[e] != 0;
       peaks[2 * k] = std::max(peaks[2 * k], f.mises[e]);
       if (!f.ep_bar.empty()) peaks[2 * k + 1] = std::max(peaks[2 * k + 1], f.ep_bar[e]);
     }

@@ -176,6 +176,10 @@ PetscErrorCode RestartFromCheckpoint(LoadStepper *s) {
   s->step = st.step, s->converged_states = st.converged_states, s->easy = st.easy;
   s->res->cutbacks = st.cutbacks, s->res->newton_iterations = st.newton;
   PetscCall(VecCopy(s->U_committed, s->P->U));
+  // The load time of the checkpoint, so that what depends on it before the next increment (the
+  // stress-free shape of a laid-on pattern, hence the internal forces of the increment's work)
+  // is that of the uninterrupted run.
+  PetscCall(ProblemSetLoadTime(s->P, s->t, s->P->U));
   PetscCall(PetscPrintf(s->P->comm, "restart: from %s at increment %" PetscInt_FMT ", load time %g\n", s->ck.restart,
                         s->step, s->t));
   PetscFunctionReturn(0);

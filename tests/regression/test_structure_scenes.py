@@ -44,15 +44,22 @@ with scratch_dir() as tmp:
                "B_Exx": "part_B_Exx", "B_Eyy": "part_B_Eyy", "B_Exy": "part_B_Exy", "B_mises": "part_B_mises",
                "I_smin": "element1_smin", "I_emin": "element1_emin", "II_smin": "element2_smin",
                "II_emin": "element2_emin", "pairs_open": "pairs_open", "pairs_stick": "pairs_stick",
-               "pairs_slip": "pairs_slip", "work": "work", "shift_work": "shift_work", "time": "time"}
+               "pairs_slip": "pairs_slip", "work": "work", "time": "time"}
     for k in range(1, 6):
         mapping["slide%d_X" % k] = "node%d_slide_X" % k
         mapping["slide%d_Y" % k] = "node%d_slide_Y" % k
     chk.check(len(general) == len(saddle) == 200, "DD1511: both histories have 200 increments (%d, %d)"
               % (len(saddle), len(general)))
-    same = all(rs[a] == rg[b] for rs, rg in zip(saddle, general) for a, b in mapping.items())
-    chk.check(same, "DD1511 through the general scene: every mapped history column equals the saddle scene's "
-                    "in every printed digit (%d columns x %d increments)" % (len(mapping), len(saddle)))
+    differ = [(rs["step"], a, rs[a], rg[b]) for rs, rg in zip(saddle, general) for a, b in mapping.items()
+              if rs[a] != rg[b]]
+    chk.check(not differ, "DD1511 through the general scene: every mapped history column equals the saddle scene's "
+                          "in every printed digit (%d columns x %d increments)%s"
+              % (len(mapping), len(saddle), "" if not differ else ": %d differ, first %s" % (len(differ), differ[0])))
+    # The tangent shift's dissipation sums over the Newton iterates, whose round-off the two scenes
+    # do not share (their constraint lists are built in another order): within a printed digit.
+    shift = max(abs(float(rs["shift_work"]) - float(rg["shift_work"])) / max(abs(float(rs["shift_work"])), 1e-300)
+                for rs, rg in zip(saddle, general))
+    chk.less(shift, 1e-7, "DD1511: the shift_work diagnostic within its printed digits (largest relative difference)")
     # The arch fitted to the mesh's arch curve instead of written down.
     out, fitted = structure(dd + ["-rigid_arch_type", "curve", "-rigid_arch_curve", "arch"], tmp, "fitted")
     m = re.search(r"radius ([\d.]+) mm \(largest deviation ([\d.e+-]+) mm\)", out)
@@ -105,10 +112,21 @@ with scratch_dir() as tmp:
     chk.check(snow < rz < snow + 3 * weight, "canopy: the frame carries the snow and the film's weight (%.1f N; "
                                              "snow on the plan %.1f N, weight above %.1f N)" % (rz, snow, weight))
     out2, h2 = structure(canopy, tmp, "canopy2", np=2)
-    cols = [c for c in h1[0] if c not in ("step", "time", "work", "shift_work") and not c.endswith("_wrinkled")]
-    worst, where = largest_history_difference(h1, h2, cols)
-    chk.less(worst, 1e-8, "canopy: 2 ranks against 1, largest history difference relative to each column's "
-                          "largest value (at %s)" % (where,))
+    # Each column against the scale of its quantity (a displacement against the displacements: a
+    # probe on a symmetry line has a near-zero component).
+    families = {"u": ("_uX", "_uY", "_uZ"), "strain": ("_Exx", "_Eyy", "_Exy", "_emin"),
+                "stress": ("_mises", "_mises_max", "_smin"), "ep": ("_ep_max",), "reaction": ("_RX", "_RY", "_RZ")}
+    worst, where = 0.0, None
+    for fam, ends in families.items():
+        cols = [c for c in h1[0] if c.endswith(ends)]
+        scale = max(abs(float(r[c])) for r in h1 for c in cols) or 1.0
+        for r1, r2 in zip(h1, h2):
+            for c in cols:
+                d = abs(float(r1[c]) - float(r2[c])) / scale
+                if d > worst:
+                    worst, where = d, (r1["step"], c)
+    chk.less(worst, 1e-8, "canopy: 2 ranks against 1, largest history difference relative to the largest value of "
+                          "its quantity (displacements, strains, stresses, reactions; at %s)" % (where,))
     ck = os.path.join(tmp, "canopy_ck.h5")
     full, part = os.path.join(tmp, "canopy1.h5"), os.path.join(tmp, "canopy_part.h5")
     common = canopy + ["-load_monitor", 0, "-output_file", part, "-structure_history", os.path.join(tmp, "part.csv")]
@@ -118,7 +136,20 @@ with scratch_dir() as tmp:
     chk.check(not fails, "canopy: stopped at the end of stage 2 and restarted, the results equal the "
                          "uninterrupted run bit for bit%s" % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
     hp = read_history(os.path.join(tmp, "part.csv"))
-    chk.check(hp == h1, "canopy: the restarted history CSV equals the uninterrupted one")
+    differ = [(a["step"], k) for a, b in zip(h1, hp) for k in a if a[k] != b[k]]
+    chk.check(len(hp) == len(h1) and not differ, "canopy: the restarted history CSV equals the uninterrupted one "
+                                                 "(%d rows against %d%s)" % (len(hp), len(h1), "" if not differ else
+                                                                             ", first difference %s" % (differ[0],)))
+
+    # Per surface group: the film's own values given per group change nothing; a thicker strip
+    # is less stressed than in the uniform film.
+    _, hg = structure(canopy + ["-film_all_thickness", 0.25, "-film_all_md", "1,0,0"], tmp, "canopy_groups")
+    chk.check(hg == h1, "canopy: -film_all_thickness 0.25 -film_all_md 1,0,0 (the defaults, given per group) "
+                        "changes no history value")
+    _, ht = structure(canopy + ["-film_strip_1_thickness", 0.3], tmp, "canopy_thick")
+    s1, s0 = float(ht[-1]["strip_1_mises"]), float(h1[-1]["strip_1_mises"])
+    chk.check(s1 < s0, "canopy: strip_1 at 0.3 mm carries the snow with less stress (mean Mises %.3f MPa) than at "
+                       "0.25 mm (%.3f MPa)" % (s1, s0))
 
     # --- Refusals, on the canopy's own mesh (they stop before computing)
     hypar = os.path.join(REPO, "meshes", "hypar_canopy.msh")
@@ -129,12 +160,14 @@ with scratch_dir() as tmp:
         (["-structure_rigid", "arch", "-rigid_arch_type", "cylinder", "-rigid_arch_centre", "0,0,0",
           "-rigid_arch_axis", "1,0,0", "-rigid_arch_radius", "100", "-rigid_arch_nodes", "ridge"],
          r"no node group ridge"),
-        (["-bc_edge_1_uz", "5"], r"edge_1 .*prescribe its z displacement differently|-bc_edge_1_fix|holds z"),
+        (["-bc_edge_1_uz", "5"], r"boundary and edge_1, which prescribe its z displacement differently"),
         (["-film_all_pressure", "5000"], r"-film_all_pressure reaches 5000 kPa"),
         (["-structure_wind", "0.5"], r"-structure_wind given but no surface group has -film_<group>_wind_cp"),
         (["-structure_regions", "far", "-region_far_box", "5000,5000,6000,6000"], r"-region_far_box: no element"),
         (["-structure_rigid", "r", "-rigid_r_type", "curve", "-rigid_r_curve", "boundary"], r"no circular arc"),
         (["-structure_report", "roof"], r"-structure_report: roof is neither"),
+        (["-film_all_md", "strip", "-film_strip_1_md", "0,1,0"], r"groups all and strip_1, which give it different MD"),
+        (["-film_strip_2_thickness", "-0.1"], r"-film_strip_2_thickness -0.1 must be positive"),
     ]
     for args, pattern in refusals:
         _, out = run(etfe, base + args, expect_fail=True)

@@ -4,7 +4,8 @@
 //    a skew circle in space; a short arc of 20 degrees) give its centre, axis and radius to
 //    round-off and a deviation of round-off;
 //  * noisy points give a deviation of the size of the noise;
-//  * collinear points and fewer than three are refused.
+//  * collinear points and fewer than three are refused;
+//  * the long axis of a strip of points (3000 x 500 mm along (1, 2, 2)/3) is that direction.
 #include "etfe/kernels/circle_fit.h"
 
 #include "check.h"
@@ -72,6 +73,17 @@ int main() {
     etfe::CircleFit f;
     CHECK(!etfe::FitCircle(line, 3, &f), "collinear points refused");
     CHECK(!etfe::FitCircle(two, 2, &f), "two points refused");
+  }
+  {
+    const double d[3] = {1.0 / 3, 2.0 / 3, 2.0 / 3}, across[3] = {2.0 / 3, 1.0 / 3, -2.0 / 3};
+    std::vector<double> p;
+    for (int i = 0; i <= 30; ++i)
+      for (int j = 0; j <= 5; ++j)
+        for (int k = 0; k < 3; ++k) p.push_back(100.0 * i * d[k] + 100.0 * j * across[k] - 7.0 * (k + 1));
+    double axis[3];
+    CHECK(etfe::LongAxis(p.data(), (int)p.size() / 3, axis), "long axis found");
+    for (int k = 0; k < 3; ++k) CHECK_CLOSE(axis[k], d[k], 0.0, 1e-12);
+    CHECK(!etfe::LongAxis(p.data(), 1, axis), "one point has no axis");
   }
   TEST_MAIN_END();
 }

@@ -15,4 +15,8 @@ struct CircleFit {
 // fewer than 3, or all on one line.
 bool FitCircle(const double *pts, int n, CircleFit *fit);
 
+// The direction in which n points spread most (unit; the covariance's largest eigenvector, its
+// sign making the largest component positive): a strip's long axis. False for fewer than 2 points.
+bool LongAxis(const double *pts, int n, double axis[3]);
+
 } // namespace etfe

@@ -35,6 +35,9 @@ struct LocalMesh {
   // ids (owned and ghost) and local element ids, ascending.
   std::map<std::string, std::vector<PetscInt>> node_sets, element_sets;
   std::vector<MembraneReference> ref;     // reference geometry per local element
+  // The MD direction per local element (3 each) where the film's parts differ; empty: one axis.
+  std::vector<double> md;
+  const double *MdAxis(PetscInt e, const double *uniform) const { return md.empty() ? uniform : &md[3 * e]; }
   // With a stress-free shape apart from the placed one (SceneSpec::element_reference): both as
   // triangles in the element's MD frame, 6 per local element (node 0 at the origin), and the
   // blend (0: placed, 1: stress free) that ref was built for (LocalMeshBlendReference).
