@@ -36,11 +36,12 @@ struct NodalForce {
 };
 
 // A rigid support: a circle of radius `radius` around the axis through `centre` (an arch, whose
-// contact line is its crown line) or a cylinder (a pipe). Both give the outward normal
-// n = radial direction from the axis, the tangent x0 = axis x n and y0 = n x x0 = axis.
+// contact line is its crown line) or a cylinder (a pipe), both with the outward normal n = radial
+// direction from the axis, the tangent x0 = axis x n and y0 = n x x0 = axis; or a plane through
+// `centre` with the outward normal `axis` (kernels/contact_frame.h).
 struct SupportSpec {
   std::string name;
-  std::string type = "cylinder";  // "arch" or "cylinder"
+  std::string type = "cylinder";  // "arch", "cylinder" or "plane"
   double centre[3] = {0, 0, 0};
   double axis[3] = {0, 1, 0};
   double radius = 1.0;

@@ -22,6 +22,7 @@ namespace {
 
 // Signed distance of p to the support surface, and the pair's master point and frame.
 double SupportProject(const SupportSpec &s, const double p[3], double M[3], double R[9]) {
+  if (s.type == "plane") return ContactPlaneFrame(s.centre, s.axis, p, M, R);
   return ContactSupportFrame(s.centre, s.axis, s.radius, p, M, R);
 }
 

@@ -38,6 +38,21 @@ double ContactSupportFrame(const double centre[3], const double axis[3], double 
   return r - radius;
 }
 
+double ContactPlaneFrame(const double point[3], const double normal[3], const double p[3], double M[3], double R[9]) {
+  double n[3] = {normal[0], normal[1], normal[2]}, x0[3], y0[3];
+  Normalize(n);
+  int least = 0;
+  for (int i = 1; i < 3; ++i)
+    if (std::fabs(n[i]) < std::fabs(n[least])) least = i;
+  const double e[3] = {least == 0 ? 1.0 : 0.0, least == 1 ? 1.0 : 0.0, least == 2 ? 1.0 : 0.0};
+  Cross(n, e, x0);
+  Normalize(x0);
+  Cross(n, x0, y0);
+  const double d = (p[0] - point[0]) * n[0] + (p[1] - point[1]) * n[1] + (p[2] - point[2]) * n[2];
+  for (int i = 0; i < 3; ++i) M[i] = p[i] - d * n[i], R[i] = x0[i], R[3 + i] = y0[i], R[6 + i] = n[i];
+  return d;
+}
+
 void ContactToLocal(const double R[9], const double v[3], double out[3]) {
   for (int i = 0; i < 3; ++i) out[i] = R[3 * i] * v[0] + R[3 * i + 1] * v[1] + R[3 * i + 2] * v[2];
 }

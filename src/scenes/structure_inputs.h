@@ -50,7 +50,7 @@ struct FilmInput {
 // -rigid_<name>_*: a rigid support the film can slide on (contact with friction, -contact_*).
 struct RigidInput {
   std::string name;
-  std::string type = "cylinder";  // cylinder, arch (a cylinder whose contact is its crown line) or curve
+  std::string type = "cylinder";  // cylinder, arch (a cylinder whose contact is its crown line), curve or plane
   double centre[3] = {0, 0, 0}, axis[3] = {0, 1, 0}, radius = 0.0;
   std::string curve;              // type curve: the node group whose circle is fitted
   std::vector<std::string> nodes; // candidate node groups (empty: every node)

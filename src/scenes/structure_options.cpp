@@ -143,7 +143,7 @@ PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
 
 PetscErrorCode ReadRigid(MPI_Comm comm, const std::string &name, RigidInput *r) {
   const std::string prefix = "rigid_" + name + "_";
-  const char *types[] = {"cylinder", "arch", "curve"};
+  const char *types[] = {"cylinder", "arch", "curve", "plane"};
   PetscInt type = 0;
   char curve[256] = "";
   std::vector<double> centre, axis = {0, 1, 0};
@@ -152,9 +152,10 @@ PetscErrorCode ReadRigid(MPI_Comm comm, const std::string &name, RigidInput *r) 
   r->name = name;
   PetscOptionsBegin(comm, prefix.c_str(), ("Rigid support " + name).c_str(), "Scene");
   PetscCall(PetscOptionsEList("-type",
-                              "cylinder (a pipe), arch (a cylinder the film touches along its crown line) or curve "
-                              "(the circle through a node group of the mesh, fitted)",
-                              "", types, 3, types[0], &type, nullptr));
+                              "cylinder (a pipe), arch (a cylinder the film touches along its crown line), curve "
+                              "(the circle through a node group of the mesh, fitted) or plane (through -centre, "
+                              "outward normal -axis)",
+                              "", types, 4, types[0], &type, nullptr));
   PetscCall(OptionsRealArray(PetscOptionsObject, "-centre", "A point on the axis x,y,z [mm]", &centre, nullptr));
   PetscCall(OptionsRealArray(PetscOptionsObject, "-axis", "Axis direction x,y,z", &axis, nullptr));
   PetscCall(PetscOptionsReal("-radius", "Radius [mm]", "", r->radius, &r->radius, nullptr));
@@ -178,9 +179,10 @@ PetscErrorCode ReadRigid(MPI_Comm comm, const std::string &name, RigidInput *r) 
     if (r->nodes.empty()) r->nodes.push_back(r->curve);
     PetscFunctionReturn(0);
   }
-  PetscCheck(centre.size() == 3 && axis.size() == 3 && r->radius > 0, comm, PETSC_ERR_ARG_WRONG,
-             "rigid support %s: give -%scentre x,y,z, -%saxis x,y,z and -%sradius > 0 (or -%stype curve)", name.c_str(),
-             prefix.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
+  PetscCheck(centre.size() == 3 && axis.size() == 3 && (r->radius > 0 || r->type == "plane"), comm, PETSC_ERR_ARG_WRONG,
+             "rigid support %s: give -%scentre x,y,z, -%saxis x,y,z and -%sradius > 0 (a plane: its point and outward "
+             "normal; or -%stype curve)",
+             name.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
   for (int i = 0; i < 3; ++i) r->centre[i] = centre[i], r->axis[i] = axis[i];
   PetscCheck(std::hypot(axis[0], axis[1], axis[2]) > 0, comm, PETSC_ERR_ARG_WRONG, "-%saxis must not be zero",
              prefix.c_str());

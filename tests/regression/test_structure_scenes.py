@@ -100,6 +100,23 @@ with scratch_dir() as tmp:
               "capstan: T2 through the general scene equals the capstan scene's at all %d steps (largest "
               "relative difference %.1e, printed to 7 digits)" % (len(t2_general), worst))
 
+    # --- A plane support: the patch scene's sheet pressed onto a table by 0.5 kPa and pulled by its
+    # edge "right" until it slides: the pull equals mu times the normal force on the sliding pairs
+    # (the pressure on the sheet less what the held edge takes itself, its reaction Z).
+    sheet = os.path.join(tmp, "sheet.msh")
+    run(etfe, ["-options_file", os.path.join(REPO, "options", "patch.opts"), "-scene_mesh_out", sheet, "-output", 0,
+               "-load_monitor", 0])
+    out, hist = structure(["-scene", "structure", "-mesh_file", sheet, "-material_type", "elastic", "-material_young",
+                           800, "-material_poisson", 0.43, "-structure_rigid", "table", "-rigid_table_type", "plane",
+                           "-rigid_table_centre", "0,0,0", "-rigid_table_axis", "0,0,1", "-contact_friction",
+                           "implicit", "-contact_mu", 0.3, "-contact_frictionless_until", 1, "-film_all_pressure",
+                           "-0.5,-0.5", "-bc_right_ux", "0,2", "-bc_right_fix", "yz", "-load_increments", 40,
+                           "-output", 0], tmp, "table")
+    pull, held = float(hist[-1]["right_RX"]), float(hist[-1]["right_RZ"])
+    expect = 0.3 * (0.5e-3 * 1000.0 * 500.0 - held)
+    chk.less(abs(pull - expect) / expect, 1e-3, "plane support: the sheet slides at T = %.3f N, mu (q A - R_z) = "
+                                                 "%.3f N, relative difference" % (pull, expect))
+
     # --- The worked example: snow carried, 1 vs 2 ranks, restart from a stage end
     ff = os.path.join(tmp, "hypar_ff.msh")
     run(etfe, ["-options_file", os.path.join(OPT, "hypar_formfind.opts"), "-formfind_monitor", 0, "-output", 0,

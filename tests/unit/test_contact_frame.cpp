@@ -163,5 +163,22 @@ int main() {
       CheckCarry(s, p, 0.05);
       CheckCarry(s, p, -1.2);
     }
+  {  // a plane support: foot point, signed distance, orthonormal right-handed frame with z0 = n
+    const double point[3] = {10, -5, 2}, normal[3] = {0.0, 3.0, 4.0};  // |n| = 5
+    const double p[3] = {7, 4, 9}, n[3] = {0.0, 0.6, 0.8};
+    double M[9], R[9];
+    const double d = etfe::ContactPlaneFrame(point, normal, p, M, R);
+    CHECK_CLOSE(d, (p[1] - point[1]) * 0.6 + (p[2] - point[2]) * 0.8, 1e-14, 0.0);
+    for (int i = 0; i < 3; ++i) {
+      CHECK_CLOSE(M[i], p[i] - d * n[i], 0.0, 1e-12);
+      CHECK_CLOSE(R[6 + i], n[i], 0.0, 1e-15);
+    }
+    CHECK_CLOSE((M[0] - point[0]) * n[0] + (M[1] - point[1]) * n[1] + (M[2] - point[2]) * n[2], 0.0, 0.0, 1e-12);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) CHECK_CLOSE(Dot(&R[3 * a], &R[3 * b]), a == b ? 1.0 : 0.0, 0.0, 1e-15);
+    const double det = R[0] * (R[4] * R[8] - R[5] * R[7]) - R[1] * (R[3] * R[8] - R[5] * R[6]) +
+                       R[2] * (R[3] * R[7] - R[4] * R[6]);
+    CHECK_CLOSE(det, 1.0, 0.0, 1e-14);
+  }
   TEST_MAIN_END();
 }

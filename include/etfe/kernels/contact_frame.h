@@ -17,6 +17,11 @@ namespace etfe {
 double ContactSupportFrame(const double centre[3], const double axis[3], double radius,
                            const double p[3], double M[3], double R[9]);
 
+// A plane support through `point` with outward normal `normal` (any length): M is the foot of p
+// on the plane, z0 the unit normal, x0 a fixed unit tangent (normal x the global axis least
+// aligned with it), y0 = z0 x x0; returns the signed distance (p - point) . z0.
+double ContactPlaneFrame(const double point[3], const double normal[3], const double p[3], double M[3], double R[9]);
+
 // out = R v (global -> local).
 void ContactToLocal(const double R[9], const double v[3], double out[3]);
 // out = R^T v (local -> global).
