@@ -22,6 +22,10 @@ public:
   // HistorySize() == 0. Returns a KernelStatus.
   virtual int Evaluate(const double E[3], const double *hist_old, double *hist_new, double S[3],
                        double D[9]) const = 0;
+  // Physical seconds from the committed history to the state Evaluate is asked for (the load
+  // stepper sets it per increment; 0, the default, is the committed state's instantaneous
+  // response). Only laws with time read it.
+  virtual void SetIncrementSeconds(double seconds) {}
   // Whether the history holds a plastic strain (then PlasticStrain reads it).
   virtual bool HasPlasticStrain() const { return false; }
   // Plastic strain (Voigt) and its equivalent value from a history record, if the law has one.

@@ -13,25 +13,25 @@ namespace etfe {
 
 constexpr int kMaxPronyTerms = 32;
 
-struct ViscoplasticMaterial {
+struct ViscoelasticPlasticMaterial {
   PlasticMaterial plastic;      // E0 (instantaneous modulus), nu and the hardening curve
   int nterms;                   // Maxwell branches (0: the plastic law itself)
   double tau[kMaxPronyTerms];   // relaxation times [s], increasing
   double g[kMaxPronyTerms];     // modulus fractions of E0, > 0, sum < 1
 };
 
-// History of one element (integration point): ViscoplasticHistorySize(nterms) doubles,
+// History of one element (integration point): ViscoelasticPlasticHistorySize(nterms) doubles,
 //   [0..3]          PlasticState (ep[3], ep_bar)
 //   [4..6]          S0 = D0 (E - Ep): the instantaneous elastic stress of the committed state
 //   [7+3i .. 9+3i]  h_i: the internal stress of Maxwell branch i
-inline int ViscoplasticHistorySize(int nterms) { return 7 + 3 * nterms; }
+inline int ViscoelasticPlasticHistorySize(int nterms) { return 7 + 3 * nterms; }
 
 // 0 or a positive code with a message (the plastic part's check, then the spectrum's: tau > 0
 // and increasing, g > 0, sum g < 1, at most kMaxPronyTerms terms).
-int ViscoplasticMaterialCheck(const ViscoplasticMaterial &m, char *msg, int msglen);
+int ViscoelasticPlasticMaterialCheck(const ViscoelasticPlasticMaterial &m, char *msg, int msglen);
 
 // Relaxation modulus fraction E(t)/E0 of the spectrum (closed form, for checks and reports).
-double ViscoplasticRelaxationFraction(const ViscoplasticMaterial &m, double t);
+double ViscoelasticPlasticRelaxationFraction(const ViscoelasticPlasticMaterial &m, double t);
 
 // One step of reduced length dt >= 0 from the committed history to the total strain E. Every
 // branch sees the elastic strain Ee = E - Ep and integrates exactly over the step for a strain
@@ -43,7 +43,7 @@ double ViscoplasticRelaxationFraction(const ViscoplasticMaterial &m, double t);
 // the return map is the plastic one of modulus geff E0 at the strain E + Deff^-1 Shist and D its
 // consistent tangent. dt = 0 is the instantaneous response (geff = 1). hist_new may alias
 // hist_old. Returns the plastic return map's status (hist_new = hist_old, S = 0 on failure).
-int ViscoplasticUpdate(const ViscoplasticMaterial &m, double dt, const double E[3], const double *hist_old,
+int ViscoelasticPlasticUpdate(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], const double *hist_old,
                        double *hist_new, double S[3], double D[9]);
 
 } // namespace etfe

@@ -1,4 +1,4 @@
-// ETFE viscoelastic-plastic law (see viscoplasticity.h). Pure C++17, no allocation.
+// ETFE viscoelastic-plastic law (see viscoelastic_plastic.h). Pure C++17, no allocation.
 //
 // Formulation
 //  * Small strain on top of large displacement as the plastic law: E = Ee + Ep additively, the
@@ -17,7 +17,7 @@
 //    E~ = E + (geff D0)^-1 Shist: the plastic return map (Simo & Taylor) solves the step and its
 //    consistent tangent dS/dE~ = dS/dE is the algorithmic tangent of this law.
 //  * Units: MPa, seconds (reduced time), strains dimensionless.
-#include "etfe/kernels/viscoplasticity.h"
+#include "etfe/kernels/viscoelastic_plastic.h"
 
 #include <cmath>
 #include <cstdio>
@@ -31,7 +31,7 @@ namespace {
 // gamma = (1 - exp(-x)) / x for x = dt/tau >= 0, 1 at x = 0 (the instantaneous response).
 double StepFactor(double x) { return x > 0.0 ? -std::expm1(-x) / x : 1.0; }
 
-int Terms(const ViscoplasticMaterial &m) {
+int Terms(const ViscoelasticPlasticMaterial &m) {
   if (m.nterms < 0) return 0;
   return m.nterms > kMaxPronyTerms ? kMaxPronyTerms : m.nterms;
 }
@@ -46,7 +46,7 @@ void PlaneStress(double young, double nu, const double e[3], double S[3]) {
 
 } // namespace
 
-int ViscoplasticMaterialCheck(const ViscoplasticMaterial &m, char *msg, int msglen) {
+int ViscoelasticPlasticMaterialCheck(const ViscoelasticPlasticMaterial &m, char *msg, int msglen) {
   char local[1];
   if (msg == nullptr || msglen <= 0) {
     msg = local;
@@ -85,17 +85,17 @@ int ViscoplasticMaterialCheck(const ViscoplasticMaterial &m, char *msg, int msgl
   return 0;
 }
 
-double ViscoplasticRelaxationFraction(const ViscoplasticMaterial &m, double t) {
+double ViscoelasticPlasticRelaxationFraction(const ViscoelasticPlasticMaterial &m, double t) {
   double f = 1.0;
   for (int i = 0; i < Terms(m); ++i) f -= m.g[i] * (1.0 - std::exp(-t / m.tau[i]));
   return f;
 }
 
-int ViscoplasticUpdate(const ViscoplasticMaterial &m, double dt, const double E[3], const double *hist_old,
+int ViscoelasticPlasticUpdate(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], const double *hist_old,
                        double *hist_new, double S[3], double D[9]) {
   const int n = Terms(m);
-  const int nh = ViscoplasticHistorySize(n);
-  double old[ViscoplasticHistorySize(kMaxPronyTerms)];
+  const int nh = ViscoelasticPlasticHistorySize(n);
+  double old[ViscoelasticPlasticHistorySize(kMaxPronyTerms)];
   std::memcpy(old, hist_old, sizeof(double) * (size_t)nh);  // hist_new may alias hist_old
   PlasticState committed, trial;
   std::memcpy(&committed, old, sizeof committed);

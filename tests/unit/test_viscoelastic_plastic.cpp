@@ -1,9 +1,9 @@
-// Unit tests of the ETFE viscoelastic-plastic kernel (viscoplasticity.h): the algorithmic tangent
+// Unit tests of the ETFE viscoelastic-plastic kernel (viscoelastic_plastic.h): the algorithmic tangent
 // against finite differences in every state (viscoelastic, on each yield segment, unloading);
 // the standard linear solid in relaxation (step and ramp) and in creep against its closed forms;
 // no Maxwell branch == the plastic law bit for bit; very short relaxation times == the plastic
 // law at the relaxed modulus; the stress as the sum of the branches; the material checks.
-#include "etfe/kernels/viscoplasticity.h"
+#include "etfe/kernels/viscoelastic_plastic.h"
 
 #include <cmath>
 #include <cstdio>
@@ -18,8 +18,8 @@ using namespace etfe;
 
 namespace {
 
-ViscoplasticMaterial EtfeTwoBranches() {  // thesis Table 4.2 hardening, two Maxwell branches
-  ViscoplasticMaterial m{};
+ViscoelasticPlasticMaterial EtfeTwoBranches() {  // thesis Table 4.2 hardening, two Maxwell branches
+  ViscoelasticPlasticMaterial m{};
   m.plastic.young = 800.0;
   m.plastic.nu = 0.43;
   m.plastic.nseg = 2;
@@ -34,8 +34,8 @@ ViscoplasticMaterial EtfeTwoBranches() {  // thesis Table 4.2 hardening, two Max
 }
 
 // One Maxwell branch, no yield within reach: the standard linear solid.
-ViscoplasticMaterial StandardLinearSolid() {
-  ViscoplasticMaterial m = EtfeTwoBranches();
+ViscoelasticPlasticMaterial StandardLinearSolid() {
+  ViscoelasticPlasticMaterial m = EtfeTwoBranches();
   m.plastic.nseg = 1;
   m.plastic.yield[0] = 1e9;
   m.plastic.H[0] = 0.0;
@@ -47,21 +47,21 @@ ViscoplasticMaterial StandardLinearSolid() {
 
 struct State {
   std::vector<double> h;
-  explicit State(const ViscoplasticMaterial &m) : h((size_t)ViscoplasticHistorySize(m.nterms), 0.0) {}
+  explicit State(const ViscoelasticPlasticMaterial &m) : h((size_t)ViscoelasticPlasticHistorySize(m.nterms), 0.0) {}
 };
 
 // Uniaxial stress along x: with one Poisson's ratio for every branch, E = (e, -nu e, 0) keeps Syy = 0.
-void Uniaxial(const ViscoplasticMaterial &m, double e, double E[3]) {
+void Uniaxial(const ViscoelasticPlasticMaterial &m, double e, double E[3]) {
   E[0] = e, E[1] = -m.plastic.nu * e, E[2] = 0.0;
 }
 
 // The tangent at (dt, E, history) against central differences of the stress.
-void CheckTangent(const ViscoplasticMaterial &m, double dt, const double E[3], const State &s, const char *what) {
-  double S[3], D[9], Dfd[9], scratch[ViscoplasticHistorySize(kMaxPronyTerms)];
-  CHECK(ViscoplasticUpdate(m, dt, E, s.h.data(), scratch, S, D) == KERNEL_OK, "%s: update failed", what);
+void CheckTangent(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], const State &s, const char *what) {
+  double S[3], D[9], Dfd[9], scratch[ViscoelasticPlasticHistorySize(kMaxPronyTerms)];
+  CHECK(ViscoelasticPlasticUpdate(m, dt, E, s.h.data(), scratch, S, D) == KERNEL_OK, "%s: update failed", what);
   auto f = [&](const double *x, double *out) {
-    double Dx[9], hx[ViscoplasticHistorySize(kMaxPronyTerms)];
-    ViscoplasticUpdate(m, dt, x, s.h.data(), hx, out, Dx);
+    double Dx[9], hx[ViscoelasticPlasticHistorySize(kMaxPronyTerms)];
+    ViscoelasticPlasticUpdate(m, dt, x, s.h.data(), hx, out, Dx);
   };
   etfe_test::CentralDifferenceJacobian(f, E, 3, 3, 1e-8, Dfd);
   double scale = 0.0;
@@ -71,13 +71,13 @@ void CheckTangent(const ViscoplasticMaterial &m, double dt, const double E[3], c
 }
 
 // Advances the state by one step and returns S.
-void Step(const ViscoplasticMaterial &m, double dt, const double E[3], State *s, double S[3]) {
+void Step(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], State *s, double S[3]) {
   double D[9];
-  CHECK(ViscoplasticUpdate(m, dt, E, s->h.data(), s->h.data(), S, D) == KERNEL_OK, "step failed");
+  CHECK(ViscoelasticPlasticUpdate(m, dt, E, s->h.data(), s->h.data(), S, D) == KERNEL_OK, "step failed");
 }
 
 void TestTangentEveryState() {
-  const ViscoplasticMaterial m = EtfeTwoBranches();
+  const ViscoelasticPlasticMaterial m = EtfeTwoBranches();
   State s(m);
   double S[3];
   // Biaxial loading in steps of 5 s, staying elastic: viscoelastic state with internal stresses.
@@ -92,22 +92,22 @@ void TestTangentEveryState() {
 
   // First yield segment: a step just past yield.
   const double Ey1[3] = {0.03 * dir[0], 0.03 * dir[1], 0.03 * dir[2]};
-  double scratch[ViscoplasticHistorySize(kMaxPronyTerms)], D[9];
-  ViscoplasticUpdate(m, 5.0, Ey1, s.h.data(), scratch, S, D);
+  double scratch[ViscoelasticPlasticHistorySize(kMaxPronyTerms)], D[9];
+  ViscoelasticPlasticUpdate(m, 5.0, Ey1, s.h.data(), scratch, S, D);
   const double ep_break = (m.plastic.yield[1] - m.plastic.yield[0]) / m.plastic.H[0];
   CHECK(scratch[3] > 0.0 && scratch[3] < ep_break, "segment 0: ep_bar %g in (0, %g)", scratch[3], ep_break);
   CheckTangent(m, 5.0, Ey1, s, "first yield segment");
 
   // Second segment: a large step.
   const double Ey2[3] = {0.25 * dir[0], 0.25 * dir[1], 0.25 * dir[2]};
-  ViscoplasticUpdate(m, 5.0, Ey2, s.h.data(), scratch, S, D);
+  ViscoelasticPlasticUpdate(m, 5.0, Ey2, s.h.data(), scratch, S, D);
   CHECK(scratch[3] > ep_break, "segment 1: ep_bar %g > %g", scratch[3], ep_break);
   CheckTangent(m, 5.0, Ey2, s, "second yield segment");
 
   // Unloading from a yielded state: commit the large step, then step back.
   Step(m, 5.0, Ey2, &s, S);
   const double Eun[3] = {0.24 * dir[0], 0.24 * dir[1], 0.24 * dir[2]};
-  ViscoplasticUpdate(m, 5.0, Eun, s.h.data(), scratch, S, D);
+  ViscoelasticPlasticUpdate(m, 5.0, Eun, s.h.data(), scratch, S, D);
   CHECK(scratch[3] == s.h[3], "unloading is elastic (ep_bar %g -> %g)", s.h[3], scratch[3]);
   CheckTangent(m, 5.0, Eun, s, "unloading");
   // Relaxation under held strain: yielded, then held for 100 s, the stress falls inside the surface.
@@ -116,7 +116,7 @@ void TestTangentEveryState() {
 
 // Step strain e at t = 0, held: S(t) = E0 e (g_inf + g exp(-t/tau)) for any step sizes.
 void TestRelaxationStep() {
-  const ViscoplasticMaterial m = StandardLinearSolid();
+  const ViscoelasticPlasticMaterial m = StandardLinearSolid();
   State s(m);
   const double e = 0.004, E0 = m.plastic.young, ginf = 1.0 - m.g[0];
   double E[3], S[3], t = 0.0;
@@ -138,7 +138,7 @@ void TestRelaxationStep() {
 
 // Strain ramp at rate r to T0, then held: the recursion is exact for piecewise-linear strain.
 void TestRelaxationRamp() {
-  const ViscoplasticMaterial m = StandardLinearSolid();
+  const ViscoelasticPlasticMaterial m = StandardLinearSolid();
   State s(m);
   const double r = 1e-4, T0 = 40.0, E0 = m.plastic.young, tau = m.tau[0], g = m.g[0], ginf = 1.0 - g;
   auto exact = [&](double t) {
@@ -167,18 +167,18 @@ void TestRelaxationRamp() {
 // Stress s0 applied at t = 0 and held: e(t) = s0 J(t), J = 1/E_inf - g/(g_inf E0) exp(-t/tau_c),
 // tau_c = tau/g_inf. The strain is not linear within a step, so small steps (error ~ (dt/tau)^2).
 void TestCreep() {
-  const ViscoplasticMaterial m = StandardLinearSolid();
+  const ViscoelasticPlasticMaterial m = StandardLinearSolid();
   State s(m);
   const double s0 = 5.0, E0 = m.plastic.young, g = m.g[0], ginf = 1.0 - g, tau_c = m.tau[0] / ginf;
   auto J = [&](double t) { return 1.0 / (ginf * E0) - g / (ginf * E0) * std::exp(-t / tau_c); };
   double e = s0 / E0, t = 0.0, E[3], S[3], D[9], worst = 0.0;
   const double dt = m.tau[0] / 1000.0;
-  double scratch[ViscoplasticHistorySize(kMaxPronyTerms)];
+  double scratch[ViscoelasticPlasticHistorySize(kMaxPronyTerms)];
   for (int k = 0; k <= 10000; ++k) {
     const double h = k == 0 ? 0.0 : dt;
     for (int it = 0; it < 20; ++it) {  // Newton on the axial strain, Syy = 0 by construction
       Uniaxial(m, e, E);
-      ViscoplasticUpdate(m, h, E, s.h.data(), scratch, S, D);
+      ViscoelasticPlasticUpdate(m, h, E, s.h.data(), scratch, S, D);
       if (std::fabs(S[0] - s0) <= 1e-14 * s0) break;
       e -= (S[0] - s0) / (D[0] - m.plastic.nu * D[1]);
     }
@@ -201,14 +201,14 @@ std::vector<std::vector<double>> Path() {
 }
 
 void TestNoBranchIsPlastic() {
-  ViscoplasticMaterial m = EtfeTwoBranches();
+  ViscoelasticPlasticMaterial m = EtfeTwoBranches();
   m.nterms = 0;
   State s(m);
   PlasticState ps{};
   bool same = true;
   for (const auto &E : Path()) {
     double S[3], D[9], Sp[3], Dp[9];
-    ViscoplasticUpdate(m, 7.0, E.data(), s.h.data(), s.h.data(), S, D);
+    ViscoelasticPlasticUpdate(m, 7.0, E.data(), s.h.data(), s.h.data(), S, D);
     PlasticReturnMap(m.plastic, E.data(), ps, &ps, Sp, Dp);
     same = same && std::memcmp(S, Sp, sizeof S) == 0 && std::memcmp(D, Dp, sizeof D) == 0 &&
            std::memcmp(s.h.data(), &ps, sizeof ps) == 0;
@@ -217,7 +217,7 @@ void TestNoBranchIsPlastic() {
 }
 
 void TestShortTimesAreRelaxedPlastic() {
-  ViscoplasticMaterial m = EtfeTwoBranches();
+  ViscoelasticPlasticMaterial m = EtfeTwoBranches();
   m.tau[0] = 1e-13, m.tau[1] = 2e-13;  // the branches' weight in a step is g tau/dt
   State s(m);
   PlasticMaterial relaxed = m.plastic;
@@ -226,7 +226,7 @@ void TestShortTimesAreRelaxedPlastic() {
   double worst = 0.0;
   for (const auto &E : Path()) {
     double S[3], D[9], Sp[3], Dp[9];
-    ViscoplasticUpdate(m, 1.0, E.data(), s.h.data(), s.h.data(), S, D);
+    ViscoelasticPlasticUpdate(m, 1.0, E.data(), s.h.data(), s.h.data(), S, D);
     PlasticReturnMap(relaxed, E.data(), ps, &ps, Sp, Dp);
     for (int k = 0; k < 3; ++k) worst = std::fmax(worst, std::fabs(S[k] - Sp[k]) / 23.04);
     for (int k = 0; k < 9; ++k) worst = std::fmax(worst, std::fabs(D[k] - Dp[k]) / relaxed.young);
@@ -239,7 +239,7 @@ void TestShortTimesAreRelaxedPlastic() {
 
 // After every step the stress is the sum of the branches, g_inf S0 + sum h_i.
 void TestStressIsSumOfBranches() {
-  const ViscoplasticMaterial m = EtfeTwoBranches();
+  const ViscoelasticPlasticMaterial m = EtfeTwoBranches();
   State s(m);
   double worst = 0.0;
   for (const auto &E : Path()) {
@@ -255,16 +255,16 @@ void TestStressIsSumOfBranches() {
 }
 
 // The check rejects m with a message that contains `word`.
-void ExpectRejected(const ViscoplasticMaterial &m, const char *word) {
+void ExpectRejected(const ViscoelasticPlasticMaterial &m, const char *word) {
   char msg[256] = "";
-  CHECK(ViscoplasticMaterialCheck(m, msg, sizeof msg) != 0 && std::strstr(msg, word), "'%s' lacks '%s'", msg, word);
+  CHECK(ViscoelasticPlasticMaterialCheck(m, msg, sizeof msg) != 0 && std::strstr(msg, word), "'%s' lacks '%s'", msg, word);
 }
 
 void TestChecks() {
   char msg[256];
-  const ViscoplasticMaterial good = EtfeTwoBranches();
-  CHECK(ViscoplasticMaterialCheck(good, msg, sizeof msg) == 0, "valid material rejected: %s", msg);
-  ViscoplasticMaterial m = good;
+  const ViscoelasticPlasticMaterial good = EtfeTwoBranches();
+  CHECK(ViscoelasticPlasticMaterialCheck(good, msg, sizeof msg) == 0, "valid material rejected: %s", msg);
+  ViscoelasticPlasticMaterial m = good;
   m.tau[0] = -1.0;
   ExpectRejected(m, "relaxation time");
   m = good, m.tau[1] = 5.0;
@@ -273,8 +273,8 @@ void TestChecks() {
   ExpectRejected(m, "g[1]");
   m = good, m.g[1] = 0.8;
   ExpectRejected(m, "sum");
-  CHECK_CLOSE(ViscoplasticRelaxationFraction(good, 0.0), 1.0, 1e-15, 0.0);
-  CHECK_CLOSE(ViscoplasticRelaxationFraction(good, 1e12), 0.65, 1e-15, 0.0);
+  CHECK_CLOSE(ViscoelasticPlasticRelaxationFraction(good, 0.0), 1.0, 1e-15, 0.0);
+  CHECK_CLOSE(ViscoelasticPlasticRelaxationFraction(good, 1e12), 0.65, 1e-15, 0.0);
 }
 
 } // namespace
