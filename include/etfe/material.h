@@ -45,6 +45,10 @@ public:
   virtual PetscErrorCode View(MPI_Comm comm) const = 0;
 };
 
+// Most history doubles per element a law may keep (the element loops hold one on the stack):
+// the viscoelastic-plastic law with 32 Prony terms keeps 7 + 3 * 32.
+constexpr int kMaxHistorySize = 112;
+
 typedef PetscErrorCode (*MaterialCreator)(std::unique_ptr<Material> *);
 
 // Form finding: a constant PK2 stress (s_md, s_td, 0) in the element's MD/TD frame and no

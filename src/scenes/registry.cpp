@@ -17,6 +17,7 @@ PetscErrorCode SceneBuild_Capstan(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Annulus(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Strip(MPI_Comm, SceneSpec *, SceneObserver *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -56,6 +57,9 @@ PetscErrorCode SceneRegisterAll(void) {
                           "pretensioned annulus, rigid hub rotated: wrinkled zone and torque against Stein & "
                           "Hedgepeth's tension-field closed form",
                           "options/annulus.opts"));
+  PetscCall(SceneRegister("strip", SceneBuild_Strip,
+                          "uniaxial strip in the lab: stress relaxation and creep against time (viscoelastic_plastic)",
+                          "options/strip_relaxation.opts, options/strip_creep.opts"));
   PetscFunctionReturn(0);
 }
 
