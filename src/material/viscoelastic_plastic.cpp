@@ -71,7 +71,7 @@ public:
 
 // -material_prony_tau / -material_prony_g, checked by name.
 PetscErrorCode ReadSpectrum(ViscoelasticPlasticMaterial *m) {
-  PetscReal tau[kMaxPronyTerms], g[kMaxPronyTerms];
+  PetscReal tau[kMaxPronyTerms] = {0.0}, g[kMaxPronyTerms] = {0.0};
   PetscInt nt = kMaxPronyTerms, ng = kMaxPronyTerms;
   PetscBool set_t = PETSC_FALSE, set_g = PETSC_FALSE;
   PetscFunctionBeginUser;

@@ -32,8 +32,8 @@ void InsertHoldStage(SceneSpec *scene, int after) {
 
 PetscErrorCode StageClockFromOptions(MPI_Comm comm, bool formfind, SceneSpec *scene, StageClock *clock) {
   const PetscInt max_stages = 256;
-  PetscReal duration[256], hold_duration[256];
-  PetscInt hold_after[256];
+  PetscReal duration[256] = {0.0}, hold_duration[256] = {0.0};
+  PetscInt hold_after[256] = {0};
   PetscInt nd = max_stages, nh = max_stages, nhd = max_stages;
   PetscBool set_d = PETSC_FALSE, set_h = PETSC_FALSE, set_hd = PETSC_FALSE;
   PetscFunctionBeginUser;
