@@ -22,6 +22,10 @@ public:
   // HistorySize() == 0. Returns a KernelStatus.
   virtual int Evaluate(const double E[3], const double *hist_old, double *hist_new, double S[3],
                        double D[9]) const = 0;
+  // Physical seconds from the committed history to the state Evaluate is asked for (the load
+  // stepper sets it per increment; 0, the default, is the committed state's instantaneous
+  // response). Only laws with time read it.
+  virtual void SetIncrementSeconds(double seconds) {}
   // Whether the history holds a plastic strain (then PlasticStrain reads it).
   virtual bool HasPlasticStrain() const { return false; }
   // Plastic strain (Voigt) and its equivalent value from a history record, if the law has one.
@@ -40,6 +44,10 @@ public:
   virtual void ElasticConstants(double *young, double *nu) const = 0;
   virtual PetscErrorCode View(MPI_Comm comm) const = 0;
 };
+
+// Most history doubles per element a law may keep (the element loops hold one on the stack):
+// the viscoelastic-plastic law with 32 Prony terms keeps 7 + 3 * 32.
+constexpr int kMaxHistorySize = 112;
 
 typedef PetscErrorCode (*MaterialCreator)(std::unique_ptr<Material> *);
 

@@ -14,6 +14,7 @@
 #include "etfe/mesh/local_mesh.h"
 #include "etfe/scene.h"
 #include "etfe/solve_diagnostics.h"
+#include "etfe/stage_clock.h"
 
 namespace etfe {
 
@@ -116,6 +117,8 @@ struct Problem {
   // Contact with rigid supports (nullptr when the scene has none).
   ContactSet *contact = nullptr;
 
+  // Seconds of physical time at each load time (-load_stage_duration, -load_hold_*; stage_clock.h).
+  StageClock clock;
   // Load time at which residual and Jacobian are evaluated; set with ProblemSetLoadTime only, so
   // that the prescribed values of the iterate always belong to it.
   double time = 0.0;

@@ -1,6 +1,7 @@
 // A case built from the options (case_setup.h).
 #include "case_setup.h"
 
+#include <cstring>
 #include <memory>
 
 #include "etfe/checkpoint.h"
@@ -29,7 +30,11 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
       !(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
       "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "
       "prescribes the stress: drop the option for -analysis formfind");
+  PetscCheck(!(P->wrinkling && std::strcmp(material->Name(), "viscoelastic_plastic") == 0), comm, PETSC_ERR_ARG_INCOMP,
+             "-membrane_wrinkling tension_field with -material_type viscoelastic_plastic: the wrinkled return map "
+             "has no relaxation; use -material_type plastic or drop the wrinkling model");
   if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
+  PetscCall(StageClockFromOptions(comm, formfind, &scene, &P->clock));
   PetscCall(CheckpointFingerprintScene(comm, scene, P));
   // A load history keeps only each rank's part (form finding keeps the global description on
   // rank 0, which writes the found shape with the scene's topology).

@@ -30,12 +30,15 @@ PetscErrorCode ListEveryOption(MPI_Comm comm) {
   SNES snes;
   SNESLineSearch ls;
   PetscFunctionBeginUser;
-  // The plastic law reads every -material_* option the elastic one does, and its own.
-  PetscCall(PetscOptionsSetValue(nullptr, "-material_type", "plastic"));
+  // The viscoelastic-plastic law reads every -material_* option the elastic and plastic ones do,
+  // and its own.
+  PetscCall(PetscOptionsSetValue(nullptr, "-material_type", "viscoelastic_plastic"));
   PetscCall(FormFindOptionsFromCommandLine(comm, &ffo));
   PetscCall(MaterialCreateFromOptions(comm, &m));
   PetscCall(MembraneOptionsFromCommandLine(comm, &throwaway));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, &lso));
+  SceneSpec no_scene;
+  PetscCall(StageClockFromOptions(comm, false, &no_scene, &throwaway.clock));
   PetscCall(OutputOptionsFromCommandLine(comm, "scene", &oo));
   PetscCall(CheckpointOptionsFromCommandLine(comm, "results/scene/scene", &cko));
   m->ElasticConstants(&young, &nu);

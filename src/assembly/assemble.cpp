@@ -41,7 +41,7 @@ inline int MembraneElement(const Problem *P, PetscInt e, const double x[9], doub
   MembraneKinematics(ref, x, F, E);
   if (MembraneAreaRatio(ref, x, nullptr) < P->min_area_ratio) return KERNEL_COLLAPSED;
   const int nh = P->material->HistorySize();
-  double hist_new[16];
+  double hist_new[kMaxHistorySize];
   const double *hist_old = nh ? &P->history[(size_t)nh * e] : nullptr;
   return P->material->Evaluate(E, hist_old, nh ? hist_new : nullptr, S, D);
 }
@@ -465,7 +465,7 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_tru
   PetscCall(VecGetArray(accl, &a));
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   for (PetscInt e = 0; e < ne; ++e) {
-    double x[9], F[6], E[3], S[3], D[9], hist[16];
+    double x[9], F[6], E[3], S[3], D[9], hist[kMaxHistorySize];
     GatherCoordinates(m, e, u, x);
     MembraneKinematics(m.ref[e], x, F, E);
     const double *h = nh ? &P->history[(size_t)nh * e] : nullptr;

@@ -83,9 +83,9 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
 
   // History only when the material has one.
   const int nh = P->material->HistorySize();
-  // The element loops keep a trial history on the stack (16 doubles).
-  PetscCheck(nh <= 16, comm, PETSC_ERR_SUP, "material %s keeps %d history values per element; at most 16 are supported",
-             P->material->Name(), nh);
+  // The element loops keep a trial history on the stack (kMaxHistorySize doubles).
+  PetscCheck(nh <= kMaxHistorySize, comm, PETSC_ERR_SUP, "material %s keeps %d history values per element; at most %d are supported",
+             P->material->Name(), nh, kMaxHistorySize);
   if (nh > 0) {
     P->history.resize((size_t)nh * m.num_elements);
     P->history_trial.resize((size_t)nh * m.num_elements);

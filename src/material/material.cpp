@@ -1,5 +1,6 @@
 // Material registry (-material_type) and the two laws: plane-stress St. Venant-Kirchhoff and the
-// ETFE elasto-plastic law (SPEC §4). Parameters come from -material_* options.
+// ETFE elasto-plastic law (SPEC §4); the viscoelastic-plastic law is in viscoelastic_plastic.cpp.
+// Parameters come from -material_* options.
 #include <petscsys.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include "etfe/kernels/plasticity.h"
 #include "etfe/kernels/status.h"
 #include "etfe/material.h"
+#include "material_internal.h"
 
 namespace etfe {
 
@@ -115,7 +117,16 @@ PetscErrorCode CreateElastic(std::unique_ptr<Material> *out) {
 
 PetscErrorCode CreatePlastic(std::unique_ptr<Material> *out) {
   auto mat = std::make_unique<PlasticMaterialLaw>();
-  PlasticMaterial &m = mat->m;
+  PetscFunctionBeginUser;
+  PetscCall(ReadPlasticMaterial(&mat->m));
+  *out = std::move(mat);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode ReadPlasticMaterial(PlasticMaterial *mp) {
+  PlasticMaterial &m = *mp;
   PetscFunctionBeginUser;
   m.young = 800.0;
   m.nu = 0.43;
@@ -144,11 +155,8 @@ PetscErrorCode CreatePlastic(std::unique_ptr<Material> *out) {
   char msg[256] = "";
   PetscCheck(PlasticMaterialCheck(m, msg, sizeof msg) == 0, PETSC_COMM_WORLD,
              PETSC_ERR_ARG_OUTOFRANGE, "plastic material: %s (options -material_*)", msg);
-  *out = std::move(mat);
   PetscFunctionReturn(0);
 }
-
-} // namespace
 
 std::unique_ptr<Material> MaterialCreatePrescribedStress(double s_md, double s_td) {
   return std::make_unique<PrescribedStressMaterial>(s_md, s_td);
@@ -159,6 +167,7 @@ PetscErrorCode MaterialRegisterAll(void) {
   if (material_list) PetscFunctionReturn(0);
   PetscCall(PetscFunctionListAdd(&material_list, "elastic", CreateElastic));
   PetscCall(PetscFunctionListAdd(&material_list, "plastic", CreatePlastic));
+  PetscCall(PetscFunctionListAdd(&material_list, "viscoelastic_plastic", CreateViscoelasticPlastic));
   PetscFunctionReturn(0);
 }
 
@@ -174,7 +183,7 @@ PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material
   PetscOptionsEnd();
   PetscCall(PetscFunctionListFind(material_list, type, &create));
   PetscCheck(create, comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "-material_type %s is unknown; the registered laws are: elastic, plastic", type);
+             "-material_type %s is unknown; the registered laws are: elastic, plastic, viscoelastic_plastic", type);
   PetscCall(create(material));
   PetscFunctionReturn(0);
 }

@@ -37,6 +37,7 @@ public:
     return inner->PlasticStrain(h, ep, ep_bar);
   }
   void ElasticConstants(double *e, double *n) const override { inner->ElasticConstants(e, n); }
+  void SetIncrementSeconds(double seconds) override { inner->SetIncrementSeconds(seconds); }
   // The wrapped law's plastic parameters: the relaxed film yields where the inner law does.
   const PlasticMaterial *PlasticLaw() const override { return inner->PlasticLaw(); }
 

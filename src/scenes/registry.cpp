@@ -19,6 +19,7 @@ PetscErrorCode SceneBuild_Catenoid(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Saddle(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Annulus(MPI_Comm, SceneSpec *, SceneObserver *);
 PetscErrorCode SceneBuild_Structure(MPI_Comm, SceneSpec *, SceneObserver *);
+PetscErrorCode SceneBuild_Strip(MPI_Comm, SceneSpec *, SceneObserver *);
 
 namespace {
 PetscFunctionList scene_list = nullptr;
@@ -62,6 +63,9 @@ PetscErrorCode SceneRegisterAll(void) {
                           "your own structure: a Gmsh mesh whose physical groups are held, drawn, loaded (pressure, "
                           "wind, snow, self-weight) or laid on rigid supports, by options keyed by group name",
                           "options/structure/*.opts (docs/own-structure.md)"));
+  PetscCall(SceneRegister("strip", SceneBuild_Strip,
+                          "uniaxial strip in the lab: stress relaxation and creep against time (viscoelastic_plastic)",
+                          "options/strip_relaxation.opts, options/strip_creep.opts"));
   PetscFunctionReturn(0);
 }
 

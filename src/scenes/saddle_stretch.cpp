@@ -139,6 +139,7 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
     for (size_t k = 0; k < c->slide_nodes.size(); ++k)
       header += ",slide" + std::to_string(k + 1) + "_X,slide" + std::to_string(k + 1) + "_Y";
     header += ",pairs_open,pairs_stick,pairs_slip,work,shift_work";
+    if (P->clock.Active()) header += ",seconds";  // physical time (-load_stage_duration, -load_hold_*)
     FILE *out = CsvHistoryOpen(path, step, header.c_str());
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
     std::fprintf(out, "%lld,%.10g", (long long)step, t);
@@ -148,7 +149,9 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
     for (double x : v.slide) std::fprintf(out, ",%.8e", x);
     std::fprintf(out, ",%lld,%lld,%lld", (long long)status_all[0], (long long)status_all[1], (long long)status_all[2]);
     // The increment's work on the film and what the tangent shift would dissipate (N mm).
-    std::fprintf(out, ",%.8e,%.8e\n", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
+    std::fprintf(out, ",%.8e,%.8e", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
+    if (P->clock.Active()) std::fprintf(out, ",%.10g", P->clock.Seconds(t));
+    std::fprintf(out, "\n");
     std::fclose(out);
   }
   PetscFunctionReturn(0);

@@ -312,6 +312,7 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&inc->start));
   PetscCall(PredictIncrement(s, *inc));
+  P->material->SetIncrementSeconds(P->clock.Seconds(inc->t_new) - P->clock.Seconds(inc->t));
   PetscCall(ProblemSetLoadTime(P, inc->t_new, P->U));
   inc->max_it = (s->step > 0 && o.max_it > 0) ? std::min(o.max_it, s->snes_max_it) : s->snes_max_it;
   PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, inc->max_it, s->snes_max_f));
@@ -378,6 +379,7 @@ PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt co
   Problem *P = s->P;
   PetscFunctionBeginUser;
   PetscCall(CommitHistory(P, P->U));
+  P->material->SetIncrementSeconds(0.0);  // from here on the committed state's own stress
   PetscCall(AccountIncrementWork(s));
   for (int i = 0; i < 4; ++i) contact_counts[i] = 0;
   if (P->contact) PetscCall(ContactCommit(P, contact_counts));

@@ -81,6 +81,9 @@ PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const P
                   (long long)counts[1], (long long)counts[2], lifted);
     contact = buf;
   }
+  // With a clock (-load_stage_duration, -load_hold_*): the physical time after the increment.
+  char seconds[48] = "";
+  if (P->clock.Active()) std::snprintf(seconds, sizeof seconds, "  time %.6g s", P->clock.Seconds(t));
   char cut[96] = "";
   if (s.res->cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)s.res->cutbacks);
   // A stabilized increment says so, with its force's work against the increment's on the film.
@@ -96,10 +99,10 @@ PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const P
     contact += buf;
   }
   PetscCall(PetscPrintf(P->comm,
-                        "step %5" PetscInt_FMT "/%" PetscInt_FMT " %5.1f%%  t %.5f  stage %d/%d %s  newton %2" PetscInt_FMT
+                        "step %5" PetscInt_FMT "/%" PetscInt_FMT " %5.1f%%  t %.5f  stage %d/%d %s%s  newton %2" PetscInt_FMT
                         "  |R| %.2e%s%s  %.2f s  elapsed %s  ETA %s\n",
                         s.step, s.per_stage * s.nstages, 100.0 * done, t, stage, s.nstages,
-                        StageDescription(P->scene, t).c_str(), inc.its, (double)inc.fnorm, contact.c_str(), cut,
+                        StageDescription(P->scene, t).c_str(), seconds, inc.its, (double)inc.fnorm, contact.c_str(), cut,
                         now - inc.start, Clock(elapsed_s).c_str(),
                         done > 0 ? Clock(elapsed_s * (1.0 - done) / done).c_str() : "-"));
   PetscFunctionReturn(0);
