@@ -27,7 +27,9 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
 // setup, on the distributed problem (SceneObserver::setup).
 bool SceneHoldsMesh(MPI_Comm comm);
 // Reads, orients and checks the Gmsh file on rank 0 (the mesh of the other ranks gets the source
-// name only); used by scenes that accept a file instead of their generator.
+// name only); used by scenes that accept a file instead of their generator. A CAD file (STEP,
+// IGES, BREP) is meshed by Gmsh there at -mesh_cad_size (etfe/mesh/cad_reader.h); a mesh whose
+// extent is implausible for a membrane (etfe/plausibility.h) gets a warning.
 PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh);
 
 } // namespace etfe

@@ -5,7 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "etfe/input_plausibility.h"
+#include "etfe/mesh/cad_reader.h"
 #include "etfe/mesh/gmsh_reader.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
 
@@ -129,11 +132,15 @@ PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh) {
   PetscMPIInt rank;
   int ok = 1;
   std::string err;
+  double cad_size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) ok = ReadGmshFile(path, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
+  PetscCall(MeshCadSizeFromOptions(comm, path, &cad_size));
+  if (rank == 0)
+    ok = ReadMeshFile(path, cad_size, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &note : mesh->notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", path, note.c_str()));
+  if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(*mesh, path)));
   mesh->source = path;
   PetscFunctionReturn(0);
 }
