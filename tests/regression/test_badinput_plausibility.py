@@ -6,6 +6,8 @@ value, the run stops with the message. Also: a CAD surface (meshes/cad_vault.ste
 meshed by Gmsh on rank 0 (the same lines on 1 and 2 ranks), or refused by a build without the
 Gmsh API with a message naming the file and libgmsh-dev."""
 import os
+import shutil
+import subprocess
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in the repository
@@ -81,6 +83,14 @@ def test_cad(etfe, chk, tmp):
     mine = [l for l in one.splitlines() if l.startswith(("mesh ", "cutpattern:"))]
     chk.check(mine and mine == [l for l in two.splitlines() if l.startswith(("mesh ", "cutpattern:"))],
               "2 ranks print the same mesh and pattern lines as 1 (Gmsh runs on rank 0 only)")
+    if shutil.which("gmsh"):  # scripts/surface2msh meshes it with the gmsh command line
+        msh = os.path.join(tmp, "vault.msh")
+        res = subprocess.run([sys.executable, os.path.join(T.REPO, "scripts", "surface2msh"), VAULT, msh, "--size",
+                              "100"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+        chk.check(res.returncode == 0 and "element size 100 mm" in res.stdout, "surface2msh meshes the STEP file")
+        rc, out = T.run(etfe, cut[:2] + ["-mesh_file", msh] + cut[4:6])
+        chk.check("strip surface_1" in out and "strip surface_2" in out,
+                  "its .msh has the faces as physical surfaces surface_<tag>")
 
 
 def main_test(etfe, chk):
