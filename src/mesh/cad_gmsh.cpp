@@ -5,6 +5,7 @@
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cctype>
 #include <clocale>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,9 @@
 namespace {
 
 constexpr double kDefaultSizeFraction = 1.0 / 50.0;  // of the bounding-box diagonal
+// A surface filling its bounding box has about (diagonal / size)^2 triangles: past 2^24 (as for
+// the generated meshes) the size is taken for a mistake of unit rather than meshed for hours.
+constexpr double kMaxDiagonalOverSize = 4096.0;
 
 // Gmsh initialized for one reading and finalized after it, whatever happens in between; the
 // process's locale, which gmsh::initialize changes (LC_CTYPE and others from the environment),
@@ -204,6 +208,14 @@ extern "C" int etfe_cad_mesh(const char *path, double size, etfe::MeshData *mesh
       }
       const bool by_default = !(size > 0);
       if (by_default) size = kDefaultSizeFraction * diagonal;
+      if (diagonal / size > kMaxDiagonalOverSize) {
+        *err = file + Format(": -mesh_cad_size %g mm on a model whose bounding-box diagonal is %g mm", size,
+                             diagonal) +
+               Format(" would make up to %.3g triangles: give a larger size (or check the model's unit: STEP and "
+                      "IGES are converted to mm, BREP is taken as mm)",
+                      (diagonal / size) * (diagonal / size));
+        return 0;
+      }
       notes.insert(notes.begin(), Format("meshed by Gmsh at the target element size %.4g mm", size) +
                                       (by_default ? Format(" (1/50 of the model's bounding-box diagonal %.4g mm; "
                                                            "-mesh_cad_size sets it)", diagonal)
@@ -213,7 +225,7 @@ extern "C" int etfe_cad_mesh(const char *path, double size, etfe::MeshData *mesh
     } catch (...) {
       std::string last;
       gmsh::logger::getLastError(last);
-      *err = file + ": Gmsh could not mesh it: " + (last.empty() ? std::string("no reason given") : last);
+      *err = file + ": Gmsh could not read or mesh it: " + (last.empty() ? std::string("no reason given") : last);
       return 0;
     }
   } catch (...) {

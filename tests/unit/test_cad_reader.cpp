@@ -1,8 +1,9 @@
 // CAD surfaces through Gmsh's API (etfe/mesh/cad_reader.h): meshes/cad_vault.step (a 60-degree
 // cylindrical vault of radius 1000 mm and a flat apron, both 1500 mm long, named "vault" and
 // "apron" in the file) meshed at 50 mm gives positive triangles, a conforming oriented mesh, the
-// named groups and the analytic areas. Without the Gmsh API in the build, the refusal names the
-// file and the way out. File names are recognized by their extension.
+// named groups and the analytic areas; the same as BREP (cad_vault.brep) gives faces by tag.
+// Without the Gmsh API in the build, the refusal names the file and the way out. File names are
+// recognized by their extension.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -94,10 +95,28 @@ void TestVault(const std::string &dir) {
 
   CHECK(!etfe::ReadCadFile(dir + "/no_such_file.step", 0.0, &d, &err) && Contains(err, "no_such_file.step"),
         "missing file: %s", err.c_str());
+  CHECK(!etfe::ReadCadFile(path, 0.1, &d, &err) && Contains(err, "would make up to"),
+        "a size 20000 times below the extent (a unit mistake) is refused: %s", err.c_str());
   const std::string junk = "test_cad_reader_junk.step";
   std::ofstream(junk) << "ISO-10303-21;\nthis is no STEP data\n";
   CHECK(!etfe::ReadCadFile(junk, 0.0, &d, &err) && Contains(err, junk), "junk file: %s", err.c_str());
   std::remove(junk.c_str());
+}
+
+// The same geometry as BREP (no names, no unit): the faces are surface_<tag>, in mm.
+void TestBrep(const std::string &dir) {
+  const double pi = std::acos(-1.0);
+  MeshData m;
+  std::string err;
+  CHECK(etfe::ReadMeshFile(dir + "/cad_vault.brep", 50.0, &m, &err), "%s", err.c_str());
+  CHECK(m.element_sets.size() == 2 && m.element_sets.count("surface_1") && m.element_sets.count("surface_2"),
+        "unnamed faces by tag (%zu sets)", m.element_sets.size());
+  if (m.element_sets.count("surface_1") && m.element_sets.count("surface_2")) {
+    CHECK_CLOSE(SetArea(m, "surface_1"), 1000.0 * pi / 3.0 * 1500.0, 1e-3, 0.0);
+    CHECK_CLOSE(SetArea(m, "surface_2"), 500.0 * 1500.0, 1e-9, 0.0);
+  }
+  CHECK(m.notes.size() == 2 && Contains(m.notes[1], "faces named in the file: none"), "note: %s",
+        m.notes.size() > 1 ? m.notes[1].c_str() : "");
 }
 
 } // namespace
@@ -105,9 +124,10 @@ void TestVault(const std::string &dir) {
 int main(int argc, char **argv) {
   const std::string dir = argc > 1 ? argv[1] : "meshes";
   TestNames();
-  if (etfe::CadMeshingBuiltIn())
+  if (etfe::CadMeshingBuiltIn()) {
     TestVault(dir);
-  else
+    TestBrep(dir);
+  } else
     TestWithoutApi(dir);
   TEST_MAIN_END();
 }
