@@ -63,11 +63,23 @@ std::map<int, std::string> ImportFused(const std::string &path, std::vector<std:
   std::vector<gmsh::vectorpair> map;
   gmsh::model::occ::importShapes(path, imported, false);
   gmsh::model::occ::synchronize();
+  // Names of faces, and of solids (a cushion drawn as a closed body), which their faces take.
   std::map<std::pair<int, int>, std::string> before;
-  for (const auto &e : imported) {
-    std::string label;
-    gmsh::model::getEntityName(e.first, e.second, label);
-    if (e.first == 2 && !label.empty()) before[e] = GroupName(label);
+  for (int dim : {3, 2}) {
+    gmsh::vectorpair ents;
+    gmsh::model::getEntities(ents, dim);
+    for (const auto &e : ents) {
+      std::string label;
+      gmsh::model::getEntityName(e.first, e.second, label);
+      if (label.empty()) continue;
+      if (dim == 2) {
+        before[e] = GroupName(label);
+        continue;
+      }
+      gmsh::vectorpair boundary;
+      gmsh::model::getBoundary({e}, boundary, false, false, false);
+      for (const auto &f : boundary) before.emplace(f, GroupName(label));
+    }
   }
   gmsh::vectorpair all, curves;  // getEntities replaces its output
   gmsh::model::getEntities(all, 2);

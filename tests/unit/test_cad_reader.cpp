@@ -1,7 +1,8 @@
 // CAD surfaces through Gmsh's API (etfe/mesh/cad_reader.h): meshes/cad_vault.step (a 60-degree
 // cylindrical vault of radius 1000 mm and a flat apron, both 1500 mm long, named "vault" and
 // "apron" in the file) meshed at 50 mm gives positive triangles, a conforming oriented mesh, the
-// named groups and the analytic areas; the same as BREP (cad_vault.brep) gives faces by tag.
+// named groups and the analytic areas; the same as BREP (cad_vault.brep) gives faces by tag; a
+// named solid (cad_cushion.step) names its faces.
 // Without the Gmsh API in the build, the refusal names the file and the way out. File names are
 // recognized by their extension.
 #include <cmath>
@@ -119,6 +120,17 @@ void TestBrep(const std::string &dir) {
         m.notes.size() > 1 ? m.notes[1].c_str() : "");
 }
 
+// A solid named in the STEP file (meshes/cad_cushion.step, a 1000 x 1000 x 500 mm box): its six
+// faces take its name, and their mesh is one closed, consistently oriented surface.
+void TestSolid(const std::string &dir) {
+  MeshData m;
+  std::string err;
+  CHECK(etfe::ReadMeshFile(dir + "/cad_cushion.step", 100.0, &m, &err), "%s", err.c_str());
+  CHECK(m.element_sets.size() == 1 && m.element_sets.count("cushion"), "the faces take the solid's name");
+  if (m.element_sets.count("cushion")) CHECK_CLOSE(SetArea(m, "cushion"), 4e6, 1e-9, 0.0);
+  CHECK(etfe::MeshOrient(&m, &err) && etfe::MeshCheck(m, 1e-6, &err), "%s", err.c_str());
+}
+
 } // namespace
 
 int main(int argc, char **argv) {
@@ -127,6 +139,7 @@ int main(int argc, char **argv) {
   if (etfe::CadMeshingBuiltIn()) {
     TestVault(dir);
     TestBrep(dir);
+    TestSolid(dir);
   } else
     TestWithoutApi(dir);
   TEST_MAIN_END();

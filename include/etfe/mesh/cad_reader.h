@@ -19,7 +19,8 @@
 //     ("Shapes/<assembly>/<n>/<name>") and makes no physical groups of them. A face carrying a
 //     name goes into the element set and node set named by its last path part (characters other
 //     than letters, digits, '_', '.', '-' become '_'; faces of one name share the set); a face
-//     without one into "surface_<tag>". So the element sets partition the film (the cutting
+//     without a name of its own takes that of its solid (a cushion drawn as a closed body); a
+//     face without either goes into "surface_<tag>". So the element sets partition the film (the cutting
 //     patterns take them as strips). Every curve tag c and point tag p give the node sets
 //     "curve_<c>" and "point_<p>". Tags are Gmsh's after the fusion. Names of STEP faces
 //     themselves (ADVANCED_FACE) and of curves are not read by Gmsh 4.8, and IGES and BREP carry
