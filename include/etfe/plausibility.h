@@ -9,6 +9,10 @@
 //   -material_young                  100 .. 5000 MPa      > 1e6 MPa                     stiffer than any solid
 //   -material_yield (each)           1 .. 100 MPa         above -material_young         yield strain > 100 %
 //   -cutpattern_compensation_md/td   |c| > 0.05 (5 %)     |c| >= 0.5 (50 %)             the strips cut at 2/3 or less
+//   -cutpattern_prestress (larger    above 30 MPa         -                             (the stress compensation
+//     principal stress)                                                                  refuses what no stretch reaches)
+//   a scene's pressure (largest |p|  above 0.05 MPa       above 10 MPa                  bursts a foil even over 1 cm
+//     over its stages)               (50 kPa)
 // A warning names the option, the unit and, when the value times a power of 1000 (or 0.01 for a
 // fraction) falls in the range, the likely intent ("did you mean 0.25?"). An error is reserved
 // for values no film can have, so a study outside ETFE's range (another foil, a thick test
@@ -34,6 +38,9 @@ constexpr double kYieldMin = 1.0;             // MPa
 constexpr double kYieldMax = 100.0;           // MPa: ETFE yields at 10-30 MPa
 constexpr double kCompensationWarn = 0.05;    // fraction: films are drawn 0.5-3 %
 constexpr double kCompensationError = 0.5;    // fraction: a percentage typed as a fraction
+constexpr double kPrestressMax = 30.0;        // MPa: ETFE yields at 10-30 MPa, films are prestressed 1-10
+constexpr double kPressureWarn = 0.05;        // MPa: 50 kPa, 10x the heaviest snow or wind on a roof
+constexpr double kPressureError = 10.0;       // MPa: p R / 2h is 200 MPa at R = 10 mm, h = 0.25 mm
 } // namespace plausible
 
 enum class Plausibility { Fine, Warning, Error };
@@ -53,5 +60,9 @@ PlausibilityCheck CheckYoung(double young);
 PlausibilityCheck CheckYield(const double *yield, int n, double young);
 // A uniform cutting-pattern compensation given by `option` (a fraction: 0.01 = 1 %).
 PlausibilityCheck CheckCompensation(const char *option, double compensation);
+// A design prestress given by `option`: its larger principal stress (MPa).
+PlausibilityCheck CheckPrestress(const char *option, double stress);
+// The largest |pressure| (MPa) over the stages of a load; `what` names it and its options.
+PlausibilityCheck CheckPressure(const std::string &what, double pressure);
 
 } // namespace etfe

@@ -76,6 +76,8 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
     PetscCheck(smin >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-cutpattern_prestress %s: a film carries no compression, so no pattern reaches it; give a tensile "
                "(or zero) prestress", what);
+    const double smax = 0.5 * (S[0] + S[1]) + std::sqrt(0.25 * (S[0] - S[1]) * (S[0] - S[1]) + S[2] * S[2]);
+    PetscCall(ReportPlausibility(comm, CheckPrestress("-cutpattern_prestress", smax)));
   }
   if (o->compensation == Compensation::Stress) {
     // The prestress is reached elastically: the material component's elastic constants.

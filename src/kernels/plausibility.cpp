@@ -112,4 +112,29 @@ PlausibilityCheck CheckCompensation(const char *option, double c) {
                      intent);
 }
 
+PlausibilityCheck CheckPrestress(const char *option, double S) {
+  if (S <= kPrestressMax) return {};
+  return Verdict(Plausibility::Warning,
+                 std::string(option) + ": the larger principal stress " + Num(S) +
+                     " MPa is above ETFE's yield (10-30 MPa; films are prestressed to 1-10 MPa); stresses are in "
+                     "MPa." +
+                     Intent(S, 0.1, kPrestressMax, {{1e-3, "kPa"}, {1e-6, "Pa"}}));
+}
+
+PlausibilityCheck CheckPressure(const std::string &what, double p) {
+  if (std::fabs(p) <= kPressureWarn) return {};
+  const bool error = std::fabs(p) > kPressureError;
+  std::string intent;
+  for (double f : {1e-3, 1e-6})
+    if (intent.empty() && std::fabs(p) * f <= kPressureWarn && std::fabs(p) * f >= 1e-5)
+      intent = " Did you mean " + Num(p * f) + " MPa (a unit " + Num(1 / f) + " times smaller)?";
+  return Verdict(error ? Plausibility::Error : Plausibility::Warning,
+                 what + " reaches " + Num(p) + " MPa (" + Num(1e3 * p) +
+                     " kPa): roofs and cushions carry 0.2-5 kPa" +
+                     (error ? "; above " + Num(kPressureError) + " MPa a foil bursts even over 1 cm."
+                            : ", above " + Num(1e3 * kPressureWarn) + " kPa a foil bursts unless its span is a "
+                                                                    "few cm.") +
+                     intent);
+}
+
 } // namespace etfe

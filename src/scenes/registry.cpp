@@ -1,6 +1,7 @@
 // Scene registry (-scene, -scene_list) and the shared mesh input (-mesh_file).
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -125,6 +126,14 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_OUTOFRANGE));
   PetscCheck(std::isfinite(scene->pressure.value.coef[0]) && std::isfinite(scene->pressure.value.coef[1]), comm,
              PETSC_ERR_ARG_OUTOFRANGE, "scene %s: the pressure is not finite", name);
+  // A pressure off by a unit (Pa or kPa for MPa), at its largest over the stage ends.
+  int stages = 0;
+  for (const Schedule &sc : scene->schedules) stages = std::max(stages, sc.NumStages());
+  double pmax = 0.0;
+  for (int t = 0; t <= stages; ++t)
+    pmax = std::max(pmax, std::fabs(scene->pressure.value.At(scene->schedules, (double)t)));
+  PetscCall(ReportPlausibility(
+      comm, CheckPressure("scene " + std::string(name) + ": the pressure (-" + std::string(name) + "_* options)", pmax)));
   PetscFunctionReturn(0);
 }
 

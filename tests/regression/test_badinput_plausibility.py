@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Inputs off by a unit or a scale are stated before the run (include/etfe/plausibility.h): a mesh
-in m, a thickness in m, Young's modulus or yield stresses in Pa, a compensation given in percent.
-A warning names the option and the likely intent and the run goes on; where no film can have the
-value, the run stops with the message. Also: a CAD surface (meshes/cad_vault.step) as -mesh_file,
+in m, a thickness in m, Young's modulus or yield stresses in Pa, a compensation given in percent,
+a pressure in Pa. A warning names the option and the likely intent and the run goes on; where no
+film can have the value, the run stops with the message. Also: a CAD surface (meshes/cad_vault.step) as -mesh_file,
 meshed by Gmsh on rank 0 (the same lines on 1 and 2 ranks), or refused by a build without the
 Gmsh API with a message naming the file and libgmsh-dev."""
 import os
@@ -43,6 +43,8 @@ def test_options(etfe, chk):
     chk.check(warned(out, "Did you mean 800 (the value in kPa)?") == 1, "-material_young 8e5 warns and runs")
     refused(etfe, chk, PATCH + ["-material_type", "plastic", "-material_yield", "1.328e7,2.304e7"],
             "-material_yield 1.328e+07 (value 1)", "-material_yield in Pa")
+    refused(etfe, chk, ["-options_file", T.opts("hencky"), "-output", "0", "-hencky_pressure", "2000"],
+            "scene hencky: the pressure (-hencky_* options) reaches 2000 MPa", "-hencky_pressure 2000 (Pa for MPa)")
 
 
 def test_mesh_extent(etfe, chk, tmp):

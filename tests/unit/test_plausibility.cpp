@@ -77,6 +77,21 @@ void TestCompensation() {
   CHECK(CheckCompensation("-cutpattern_compensation_md", -0.6).level == Plausibility::Error, "-60 %%");
 }
 
+void TestLoads() {
+  CHECK(etfe::CheckPrestress("-cutpattern_prestress", 5.0).level == Plausibility::Fine, "5 MPa");
+  const PlausibilityCheck s = etfe::CheckPrestress("-cutpattern_prestress", 3000.0);
+  CHECK(Says(s, Plausibility::Warning, "Did you mean 3 (the value in kPa)?"), "3000: %s", s.message.c_str());
+  for (double p : {2e-4, -1e-3, 0.002, 0.05})
+    CHECK(etfe::CheckPressure("scene x: the pressure", p).level == Plausibility::Fine, "%g MPa", p);
+  const PlausibilityCheck w = etfe::CheckPressure("scene x: the pressure", 0.2);
+  CHECK(Says(w, Plausibility::Warning, "scene x: the pressure reaches 0.2 MPa (200 kPa)") &&
+            Says(w, Plausibility::Warning, "Did you mean 0.0002 MPa (a unit 1000 times smaller)?"),
+        "0.2 MPa: %s", w.message.c_str());
+  const PlausibilityCheck e = etfe::CheckPressure("scene x: the pressure", 2000.0);
+  CHECK(Says(e, Plausibility::Error, "Did you mean 0.002 MPa (a unit 1e+06 times smaller)?"), "2000 MPa: %s",
+        e.message.c_str());
+}
+
 } // namespace
 
 int main() {
@@ -84,5 +99,6 @@ int main() {
   TestThickness();
   TestMaterial();
   TestCompensation();
+  TestLoads();
   TEST_MAIN_END();
 }
