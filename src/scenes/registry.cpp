@@ -8,7 +8,6 @@
 
 #include "etfe/input_plausibility.h"
 #include "etfe/mesh/cad_reader.h"
-#include "etfe/mesh/gmsh_reader.h"
 #include "etfe/mesh/mesh_options.h"
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
@@ -62,6 +61,22 @@ PetscErrorCode SceneRegisterAll(void) {
                           "options/annulus.opts"));
   PetscFunctionReturn(0);
 }
+
+namespace {
+
+// A pressure off by a unit (Pa or kPa for MPa), at its largest over the stage ends.
+PetscErrorCode ReportPressurePlausibility(MPI_Comm comm, const SceneSpec &scene) {
+  int stages = 0;
+  double pmax = 0.0;
+  PetscFunctionBeginUser;
+  for (const Schedule &sc : scene.schedules) stages = std::max(stages, sc.NumStages());
+  for (int t = 0; t <= stages; ++t) pmax = std::max(pmax, std::fabs(scene.pressure.value.At(scene.schedules, t)));
+  PetscCall(ReportPlausibility(
+      comm, CheckPressure("scene " + scene.name + ": the pressure (-" + scene.name + "_* options)", pmax)));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
 
 PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   char name[64] = "";
@@ -126,14 +141,7 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_OUTOFRANGE));
   PetscCheck(std::isfinite(scene->pressure.value.coef[0]) && std::isfinite(scene->pressure.value.coef[1]), comm,
              PETSC_ERR_ARG_OUTOFRANGE, "scene %s: the pressure is not finite", name);
-  // A pressure off by a unit (Pa or kPa for MPa), at its largest over the stage ends.
-  int stages = 0;
-  for (const Schedule &sc : scene->schedules) stages = std::max(stages, sc.NumStages());
-  double pmax = 0.0;
-  for (int t = 0; t <= stages; ++t)
-    pmax = std::max(pmax, std::fabs(scene->pressure.value.At(scene->schedules, (double)t)));
-  PetscCall(ReportPlausibility(
-      comm, CheckPressure("scene " + std::string(name) + ": the pressure (-" + std::string(name) + "_* options)", pmax)));
+  PetscCall(ReportPressurePlausibility(comm, *scene));
   PetscFunctionReturn(0);
 }
 
