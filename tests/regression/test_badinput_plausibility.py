@@ -85,6 +85,12 @@ def test_cad(etfe, chk, tmp):
     mine = [l for l in one.splitlines() if l.startswith(("mesh ", "cutpattern:"))]
     chk.check(mine and mine == [l for l in two.splitlines() if l.startswith(("mesh ", "cutpattern:"))],
               "2 ranks print the same mesh and pattern lines as 1 (Gmsh runs on rank 0 only)")
+    # A scene reads it through SceneReadMesh (rank 0) too: the patch scene meshes it, then asks for
+    # its edge groups, which a CAD file names by tag.
+    rc, out = T.run(etfe, PATCH + ["-mesh_file", VAULT, "-mesh_cad_size", "200"], np=2, expect_fail=True)
+    chk.check("meshed by Gmsh at the target element size 200 mm" in out
+              and 'needs a physical group named "left"' in T.error_message(out),
+              "a scene on 2 ranks reads the CAD file and checks its groups")
     if shutil.which("gmsh"):  # scripts/surface2msh meshes it with the gmsh command line
         msh = os.path.join(tmp, "vault.msh")
         res = subprocess.run([sys.executable, os.path.join(T.REPO, "scripts", "surface2msh"), VAULT, msh, "--size",
