@@ -49,6 +49,7 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
 // -analysis cutpattern (cutpattern_surface.cpp): the strips of any surface mesh.
 struct CutPatternSurfaceOptions {
   std::string mesh_file;     // -mesh_file: Gmsh surface, physical surfaces = strips
+  double cad_size = 0.0;     // -mesh_cad_size: element size when mesh_file is a CAD surface (mm)
   std::string results_path;  // -output_file: the pattern files go beside it, named by its stem
   CutPatternOptions cutpattern;
   GeodesicCutOptions geodesic;  // -cutpattern_strip_width/_direction: strips cut by geodesics

@@ -29,7 +29,9 @@ bool SceneHoldsMesh(MPI_Comm comm);
 // -scene_mesh_out FILE: rank 0 writes the built scene's mesh with its groups as Gmsh (collective).
 PetscErrorCode SceneWriteMesh(MPI_Comm comm, const SceneSpec &scene);
 // Reads, orients and checks the Gmsh file on rank 0 (the mesh of the other ranks gets the source
-// name only); used by scenes that accept a file instead of their generator.
+// name only); used by scenes that accept a file instead of their generator. A CAD file (STEP,
+// IGES, BREP) is meshed by Gmsh there at -mesh_cad_size (etfe/mesh/cad_reader.h); a mesh whose
+// extent is implausible for a membrane (etfe/plausibility.h) gets a warning.
 PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh);
 
 } // namespace etfe

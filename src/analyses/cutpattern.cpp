@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 
+#include "etfe/input_plausibility.h"
 #include "etfe/kernels/compensation.h"
 #include "etfe/kernels/status.h"
 #include "etfe/material.h"
@@ -61,6 +62,10 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
   PetscCheck(o->compensation != Compensation::Uniform || o->comp_md != 0 || o->comp_td != 0, comm,
              PETSC_ERR_USER_INPUT,
              "-cutpattern_compensation uniform needs -cutpattern_compensation_md and/or _td (e.g. 0.01)");
+  if (o->compensation == Compensation::Uniform) {
+    PetscCall(ReportPlausibility(comm, CheckCompensation("-cutpattern_compensation_md", o->comp_md)));
+    PetscCall(ReportPlausibility(comm, CheckCompensation("-cutpattern_compensation_td", o->comp_td)));
+  }
   o->prestress_given = ps_set;
   if (ps_set) {
     // A film carries no compression (it wrinkles): the smaller principal prestress must be >= 0.
@@ -71,11 +76,14 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
     PetscCheck(smin >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
                "-cutpattern_prestress %s: a film carries no compression, so no pattern reaches it; give a tensile "
                "(or zero) prestress", what);
+    const double smax = 0.5 * (S[0] + S[1]) + std::sqrt(0.25 * (S[0] - S[1]) * (S[0] - S[1]) + S[2] * S[2]);
+    PetscCall(ReportPlausibility(comm, CheckPrestress("-cutpattern_prestress", smax)));
   }
   if (o->compensation == Compensation::Stress) {
     // The prestress is reached elastically: the material component's elastic constants.
     std::unique_ptr<Material> m;
     PetscCall(MaterialCreateFromOptions(comm, &m));
+    PetscCall(MaterialCheckPlausible(comm, *m));
     m->ElasticConstants(&o->young, &o->nu);
     double E[3], M[3];
     PetscCheck(!ps_set || (CompensationPlaneStressStrain(o->young, o->nu, o->prestress, E) == KERNEL_OK &&

@@ -16,6 +16,8 @@
 #include <vector>
 
 #include "etfe/cutpattern.h"
+#include "etfe/input_plausibility.h"
+#include "etfe/mesh/cad_reader.h"
 #include "etfe/mesh/gmsh_reader.h"
 #include "etfe/mesh/mesh_options.h"
 #include "etfe/output.h"
@@ -207,6 +209,7 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
              "flatten the physical surfaces as the strips)", (double)o->geodesic.width);
   PetscCall(CutPatternOptionsFromCommandLine(comm, &o->cutpattern));
   o->mesh_file = mesh.file;
+  PetscCall(MeshCadSizeFromOptions(comm, mesh.file.c_str(), &o->cad_size));
   const std::string stem = mesh.file.empty() ? std::string("surface") : std::filesystem::path(mesh.file).stem().string();
   OutputOptions oo;
   PetscCall(OutputOptionsFromCommandLine(comm, stem.c_str(), &oo));
@@ -234,13 +237,14 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
   if (rank == 0) {
     std::error_code ec;
     if (o.geodesic.width > 0) std::filesystem::create_directories(dir, ec);
-    ok = ReadGmshFile(o.mesh_file, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
+    ok = ReadMeshFile(o.mesh_file, o.cad_size, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
          (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err)) &&
          CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err) &&
          (o.geodesic.width <= 0 || WriteGmshFile(cut_file, mesh, &err));
   }
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &n : mesh.notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", o.mesh_file.c_str(), n.c_str()));
+  if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(mesh, o.mesh_file)));
   for (const std::string &n : notes) PetscCall(PetscPrintf(comm, "cutpattern: %s\n", n.c_str()));
   if (o.geodesic.width > 0) PetscCall(PetscPrintf(comm, "cutpattern: the cut surface: %s\n", cut_file.c_str()));
   PetscCall(CutPatternRun(comm, mesh, o.cutpattern, dir, out.stem().string()));

@@ -6,6 +6,7 @@
 
 #include "etfe/checkpoint.h"
 #include "etfe/contact.h"
+#include "etfe/input_plausibility.h"
 #include "etfe/material.h"
 #include "solver_defaults.h"
 
@@ -21,11 +22,13 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
     material = MaterialCreatePrescribedStress(c->ffo.ratio * c->ffo.stress, c->ffo.stress);
   } else {
     PetscCall(MaterialCreateFromOptions(comm, &material));
+    PetscCall(MaterialCheckPlausible(comm, *material));
   }
   auto *P = new Problem();
   c->P = P;
   P->thickness = scene.thickness;
   PetscCall(MembraneOptionsFromCommandLine(comm, P));
+  PetscCall(ReportPlausibility(comm, CheckThickness(P->thickness)));
   PetscCheck(
       !(formfind && P->wrinkling), comm, PETSC_ERR_ARG_INCOMP,
       "-membrane_wrinkling tension_field needs a material law (-analysis stretch); form finding "

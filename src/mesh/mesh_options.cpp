@@ -1,7 +1,10 @@
 // The -mesh_* options of every scene (see mesh_options.h).
 #include "etfe/mesh/mesh_options.h"
 
+#include <cmath>
 #include <string>
+
+#include "etfe/mesh/cad_reader.h"
 
 namespace etfe {
 
@@ -28,7 +31,8 @@ PetscErrorCode MeshOptionsFromCommandLine(MPI_Comm comm, const char *owner, Mesh
                                  "Gmsh mesh (.msh) instead of the generated one: patch, a flat rectangle with node "
                                  "sets left, right, bottom, top; saddle, a surface such as a form-found .msh; "
                                  "-analysis cutpattern, the strips as physical surfaces (OBJ groups / STL solids: "
-                                 "convert with scripts/surface2msh)",
+                                 "convert with scripts/surface2msh); a CAD surface (.step, .stp, .iges, .igs, .brep) "
+                                 "is meshed by Gmsh at -mesh_cad_size",
                                  "", o->file.c_str(), file, sizeof file, nullptr));
   if (o->keys & kMeshGrid) {
     PetscCall(PetscOptionsInt("-mesh_nx", "Grid cells along the length (patch: in X; capstan: along the wrap)", "",
@@ -69,6 +73,24 @@ PetscErrorCode MeshOptionsFromCommandLine(MPI_Comm comm, const char *owner, Mesh
                pattern);
     o->pattern = kPatterns[k];
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MeshCadSizeFromOptions(MPI_Comm comm, const char path[], double *size) {
+  PetscBool help = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  *size = 0.0;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (!IsCadFile(path) && !help) PetscFunctionReturn(0);
+  PetscOptionsBegin(comm, nullptr, "CAD surface of -mesh_file, meshed by Gmsh", "Mesh");
+  PetscCall(PetscOptionsReal("-mesh_cad_size",
+                             "Target element size [mm] when -mesh_file is a CAD surface (STEP, IGES, BREP); 0: 1/50 "
+                             "of the model's bounding-box diagonal",
+                             "", *size, size, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(*size >= 0 && std::isfinite(*size), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_cad_size %g: give the target element size in mm (> 0), or 0 for 1/50 of the model's extent",
+             *size);
   PetscFunctionReturn(0);
 }
 

@@ -1,12 +1,15 @@
 // Scene registry (-scene, -scene_list) and the shared mesh input (-mesh_file).
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "etfe/mesh/gmsh_reader.h"
+#include "etfe/input_plausibility.h"
+#include "etfe/mesh/cad_reader.h"
+#include "etfe/mesh/mesh_options.h"
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
 
@@ -68,6 +71,25 @@ PetscErrorCode SceneRegisterAll(void) {
                           "options/strip_relaxation.opts, options/strip_creep.opts"));
   PetscFunctionReturn(0);
 }
+
+namespace {
+
+// A pressure off by a unit (Pa or kPa for MPa), at its largest over the stage ends.
+PetscErrorCode ReportPressurePlausibility(MPI_Comm comm, const SceneSpec &scene) {
+  int stages = 0;
+  double pmax = 0.0;
+  PetscFunctionBeginUser;
+  for (const Schedule &sc : scene.schedules) stages = std::max(stages, sc.NumStages());
+  // The general scene checks each of its load options itself, naming it (structure_loads.cpp).
+  if (scene.name == "structure") PetscFunctionReturn(0);
+  for (const PressureSpec &p : scene.pressures)
+    for (int t = 0; t <= stages; ++t) pmax = std::max(pmax, std::fabs(p.value.At(scene.schedules, t)));
+  PetscCall(ReportPlausibility(
+      comm, CheckPressure("scene " + scene.name + ": the pressure (-" + scene.name + "_* options)", pmax)));
+  PetscFunctionReturn(0);
+}
+
+} // namespace
 
 PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
   char name[64] = "";
@@ -133,6 +155,7 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
   for (const PressureSpec &p : scene->pressures)
     PetscCheck(std::isfinite(p.value.coef[0]) && std::isfinite(p.value.coef[1]), comm, PETSC_ERR_ARG_OUTOFRANGE,
                "scene %s: the pressure is not finite", name);
+  PetscCall(ReportPressurePlausibility(comm, *scene));
   PetscCall(SceneWriteMesh(comm, *scene));
   PetscFunctionReturn(0);
 }
@@ -165,11 +188,15 @@ PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh) {
   PetscMPIInt rank;
   int ok = 1;
   std::string err;
+  double cad_size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) ok = ReadGmshFile(path, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
+  PetscCall(MeshCadSizeFromOptions(comm, path, &cad_size));
+  if (rank == 0)
+    ok = ReadMeshFile(path, cad_size, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &note : mesh->notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", path, note.c_str()));
+  if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(*mesh, path)));
   mesh->source = path;
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,104 @@
+// Plausibility of inputs (etfe/plausibility.h): each check is fine inside its range, warns
+// outside it and refuses where no film can be; the message names the option (or file), the unit
+// and, for a value off by a unit, the value meant.
+#include <string>
+
+#include "check.h"
+#include "etfe/plausibility.h"
+
+using etfe::CheckCompensation;
+using etfe::CheckMeshExtent;
+using etfe::CheckThickness;
+using etfe::CheckYield;
+using etfe::CheckYoung;
+using etfe::Plausibility;
+using etfe::PlausibilityCheck;
+
+namespace {
+
+bool Says(const PlausibilityCheck &c, Plausibility level, const std::string &part) {
+  return c.level == level && c.message.find(part) != std::string::npos;
+}
+
+etfe::MeshData Square(double side) {
+  etfe::MeshData m;
+  m.coords = {0, 0, 0, side, 0, 0, side, side, 0, 0, side, 0};
+  m.triangles = {0, 1, 2, 0, 2, 3};
+  return m;
+}
+
+void TestMeshExtent() {
+  CHECK(CheckMeshExtent(Square(2000.0), "a.msh").level == Plausibility::Fine, "a 2 m square");
+  CHECK(CheckMeshExtent(Square(71.0), "a.msh").level == Plausibility::Fine, "diagonal 100.4 mm");
+  CHECK(CheckMeshExtent(Square(7e5), "a.msh").level == Plausibility::Fine, "diagonal 990 m");
+  const PlausibilityCheck m = CheckMeshExtent(Square(3.0), "roof.msh");
+  CHECK(Says(m, Plausibility::Warning, "mesh roof.msh spans 4.24264 mm") && Says(m, Plausibility::Warning, "in m"),
+        "a 3 m roof in m: %s", m.message.c_str());
+  CHECK(Says(CheckMeshExtent(Square(3e6), "roof.msh"), Plausibility::Warning, "in um"), "a 3 km square");
+  CHECK(CheckMeshExtent(etfe::MeshData(), "empty").level == Plausibility::Fine, "no nodes: nothing to say");
+}
+
+void TestThickness() {
+  for (double h : {0.05, 0.1, 0.25, 0.5}) CHECK(CheckThickness(h).level == Plausibility::Fine, "%g mm", h);
+  CHECK(Says(CheckThickness(0.00025), Plausibility::Error, "Did you mean 0.25 (the value in m)?"),
+        "0.00025: %s", CheckThickness(0.00025).message.c_str());
+  CHECK(Says(CheckThickness(250), Plausibility::Error, "Did you mean 0.25 (the value in um)?"), "250 um");
+  CHECK(Says(CheckThickness(0.02), Plausibility::Warning, "-membrane_thickness 0.02: the thickness is in mm"),
+        "0.02 mm: %s", CheckThickness(0.02).message.c_str());
+  CHECK(Says(CheckThickness(1.0), Plausibility::Warning, "0.05-0.5 mm"), "1 mm");
+  CHECK(Says(CheckThickness(12.0), Plausibility::Error, "no film"), "12 mm");
+}
+
+void TestMaterial() {
+  for (double E : {100.0, 800.0, 5000.0}) CHECK(CheckYoung(E).level == Plausibility::Fine, "%g MPa", E);
+  CHECK(Says(CheckYoung(8e8), Plausibility::Error, "Did you mean 800 (the value in Pa)?"), "8e8: %s",
+        CheckYoung(8e8).message.c_str());
+  CHECK(Says(CheckYoung(8e5), Plausibility::Warning, "Did you mean 800 (the value in kPa)?"), "8e5: %s",
+        CheckYoung(8e5).message.c_str());
+  CHECK(Says(CheckYoung(0.8), Plausibility::Warning, "Did you mean 800 (the value in GPa)?"), "0.8");
+  const double thesis[2] = {13.28, 23.04}, low[2] = {3, 25}, pa[2] = {1.328e7, 2.304e7}, small[1] = {0.5};
+  CHECK(CheckYield(thesis, 2, 800).level == Plausibility::Fine, "thesis Table 4.2");
+  CHECK(CheckYield(low, 2, 800).level == Plausibility::Fine, "3,25 MPa");
+  CHECK(Says(CheckYield(pa, 2, 800), Plausibility::Error, "Did you mean 13.28 (the value in Pa)?"), "in Pa: %s",
+        CheckYield(pa, 2, 800).message.c_str());
+  CHECK(Says(CheckYield(small, 1, 800), Plausibility::Warning, "-material_yield 0.5 (value 1)"), "0.5 MPa");
+}
+
+void TestCompensation() {
+  for (double c : {0.0, 0.01, -0.02, 0.05})
+    CHECK(CheckCompensation("-cutpattern_compensation_md", c).level == Plausibility::Fine, "%g", c);
+  const PlausibilityCheck w = CheckCompensation("-cutpattern_compensation_td", 0.08);
+  CHECK(Says(w, Plausibility::Warning, "-cutpattern_compensation_td 0.08: the compensation is a fraction (0.01 = 1 %)"),
+        "8 %%: %s", w.message.c_str());
+  const PlausibilityCheck e = CheckCompensation("-cutpattern_compensation_md", 1.0);
+  CHECK(Says(e, Plausibility::Error, "this is 100 % and cuts the strips at 1/2 of the design") &&
+            Says(e, Plausibility::Error, "Did you mean 0.01 (1 %)?"),
+        "100 %%: %s", e.message.c_str());
+  CHECK(CheckCompensation("-cutpattern_compensation_md", -0.6).level == Plausibility::Error, "-60 %%");
+}
+
+void TestLoads() {
+  CHECK(etfe::CheckPrestress("-cutpattern_prestress", 5.0).level == Plausibility::Fine, "5 MPa");
+  const PlausibilityCheck s = etfe::CheckPrestress("-cutpattern_prestress", 3000.0);
+  CHECK(Says(s, Plausibility::Warning, "Did you mean 3 (the value in kPa)?"), "3000: %s", s.message.c_str());
+  for (double p : {2e-4, -1e-3, 0.002, 0.05})
+    CHECK(etfe::CheckPressure("scene x: the pressure", p).level == Plausibility::Fine, "%g MPa", p);
+  const PlausibilityCheck w = etfe::CheckPressure("scene x: the pressure", 0.2);
+  CHECK(Says(w, Plausibility::Warning, "scene x: the pressure reaches 0.2 MPa (200 kPa)") &&
+            Says(w, Plausibility::Warning, "Did you mean 0.0002 MPa (a unit 1000 times smaller)?"),
+        "0.2 MPa: %s", w.message.c_str());
+  const PlausibilityCheck e = etfe::CheckPressure("scene x: the pressure", 2000.0);
+  CHECK(Says(e, Plausibility::Error, "Did you mean 0.002 MPa (a unit 1e+06 times smaller)?"), "2000 MPa: %s",
+        e.message.c_str());
+}
+
+} // namespace
+
+int main() {
+  TestMeshExtent();
+  TestThickness();
+  TestMaterial();
+  TestCompensation();
+  TestLoads();
+  TEST_MAIN_END();
+}
