@@ -9,6 +9,7 @@
 
 #include "etfe/input_plausibility.h"
 #include "etfe/mesh/cad_reader.h"
+#include "etfe/mesh/gmsh_reader.h"
 #include "etfe/mesh/mesh_options.h"
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
