@@ -18,6 +18,7 @@
 namespace etfe {
 
 struct ContactSet;
+struct ChamberSet;
 struct Problem;
 
 // What the scene that made the problem watches of a run: its report after the last increment,
@@ -106,6 +107,8 @@ struct Problem {
   struct PressureLoad {
     std::vector<PetscInt> elements;
     ScheduledValue value;
+    int chamber = -1;  // the boundary of a gas chamber: its pressure (chamber.h) times sign
+    double sign = 1.0;
   };
   std::vector<PressureLoad> pressures;
 
@@ -115,6 +118,8 @@ struct Problem {
 
   // Contact with rigid supports (nullptr when the scene has none).
   ContactSet *contact = nullptr;
+  // Gas chambers (nullptr when the scene has none).
+  ChamberSet *chambers = nullptr;
 
   // Load time at which residual and Jacobian are evaluated; set with ProblemSetLoadTime only, so
   // that the prescribed values of the iterate always belong to it.
