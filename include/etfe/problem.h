@@ -19,6 +19,7 @@
 namespace etfe {
 
 struct ContactSet;
+struct ChamberSet;
 struct Problem;
 
 // What the scene that made the problem watches of a run: its report after the last increment,
@@ -107,6 +108,8 @@ struct Problem {
   struct PressureLoad {
     std::vector<PetscInt> elements;
     ScheduledValue value;
+    int chamber = -1;  // the boundary of a gas chamber: its pressure (chamber.h) times sign
+    double sign = 1.0;
   };
   std::vector<PressureLoad> pressures;
 
@@ -116,6 +119,8 @@ struct Problem {
 
   // Contact with rigid supports (nullptr when the scene has none).
   ContactSet *contact = nullptr;
+  // Gas chambers (nullptr when the scene has none).
+  ChamberSet *chambers = nullptr;
 
   // Seconds of physical time at each load time (-load_stage_duration, -load_hold_*; stage_clock.h).
   StageClock clock;

@@ -26,6 +26,22 @@ struct DofConstraint {
 struct PressureSpec {
   std::vector<int> elements;
   ScheduledValue value;  // MPa
+  // The boundary of gas chamber `chamber` (-1: none): its pressure is the chamber's (its gas law),
+  // times `sign` (-1 where the elements' normals point into the chamber); value is unused.
+  int chamber = -1;
+  double sign = 1.0;
+};
+
+// A gas chamber (kernels/chamber.h, src/assembly/chamber.cpp): the pressure loads with its index
+// bound it. Supplied: the gauge pressure follows `supplied`; from the start of stage
+// `sealed_from_stage` (1-based; 0: never) it is sealed with the gas it holds then.
+struct ChamberSpec {
+  std::string name;
+  double origin[3] = {0, 0, 0};  // on the planes that close it, if any
+  ScheduledValue supplied;       // gauge pressure [MPa] while supplied
+  int sealed_from_stage = 0;
+  double kappa = 1.0;            // p V^kappa = const when sealed
+  double extra_volume = 0.0;     // mm^3 beyond the membranes (ducts, a reservoir)
 };
 
 // A dead nodal force (e.g. the tension T1 held on one end of the capstan strip).
@@ -73,6 +89,8 @@ struct SceneSpec {
   std::vector<Schedule> schedules;       // every schedule has the same number of stages
   std::vector<DofConstraint> constraints;
   std::vector<PressureSpec> pressures;
+  std::vector<ChamberSpec> chambers;
+  double atmosphere = 0.101325;  // MPa, absolute: the chambers' gas laws
   std::vector<NodalForce> nodal_forces;
   ContactSpec contact;
   std::vector<double> element_stress_ratio;  // form finding: MD:TD per element (empty: uniform)

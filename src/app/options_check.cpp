@@ -18,7 +18,7 @@ const char *const kKnown[] = {
 const char *const kPrefixes[] = {"scene", "analysis", "mesh", "material", "membrane", "contact", "load", "plan",
                                  "output", "checkpoint", "restart", "formfind", "cutpattern", "saddle",
                                  "hencky", "patch", "capstan", "catenoid", "etfe", "snes_linesearch_etfe",
-                                 "structure", "bc", "film", "rigid", "region"};
+                                 "structure", "bc", "film", "rigid", "region", "chamber"};
 
 bool IsOurs(const std::string &name) {
   // The planner's TAO reads PETSc's own options under our prefix (-plan_tao_type, ...), late.

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "etfe/assembly.h"
+#include "etfe/chamber.h"
 #include "etfe/linesearch.h"
 #include "etfe/tangent_shift.h"
 
@@ -58,17 +59,33 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(VecDuplicate(P->U, &F));
   PetscCall(SNESSetFunction(*snes, F, FormResidual, P));
   PetscCall(VecDestroy(&F));
-  PetscCall(SNESSetJacobian(*snes, P->J, P->J, FormShiftedJacobian, P));
+  // Sealed gas chambers: Newton's matrix is the sparse tangent plus their rank-one stiffness
+  // (chamber.h), solved by GMRES preconditioned with the sparse tangent's factorization.
+  const bool lrc = P->chambers && P->chambers->may_seal;
+  PetscCall(SNESSetJacobian(*snes, lrc ? P->chambers->J : P->J, P->J, FormShiftedJacobian, P));
   PetscCall(SNESSetType(*snes, SNESNEWTONLS));
   PetscCall(SNESSetTolerances(*snes, 1e-9, 1e-10, 1e-14, 30, 10000));
   PetscCall(SNESGetKSP(*snes, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPSetType(ksp, lrc ? KSPGMRES : KSPPREONLY));
+  if (lrc) PetscCall(KSPSetTolerances(ksp, 1e-12, 1e-50, PETSC_DEFAULT, 50));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCLU));
   PetscCall(ChooseLUPackage(P, pc));
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
   PetscCall(SNESSetFromOptions(*snes));
+  if (lrc) {
+    // A direct solve alone (-ksp_type preonly, as the solver files set) would drop the sealed gas's
+    // rank-one stiffness and cost Newton its quadratic rate: GMRES adds it back, preconditioned by
+    // that same factorization (chambers + 1 iterations).
+    KSPType type;
+    PetscCall(KSPGetType(ksp, &type));
+    if (!std::strcmp(type, KSPPREONLY)) {
+      PetscCall(KSPSetType(ksp, KSPGMRES));
+      PetscCall(KSPSetTolerances(ksp, 1e-12, 1e-50, PETSC_DEFAULT, 50));
+      PetscCall(PetscInfo(ksp, "sealed gas chambers: KSP preonly replaced by GMRES on the rank-one-updated tangent\n"));
+    }
+  }
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchEtfeSetProblem(ls, P));
   PetscFunctionReturn(0);

@@ -12,6 +12,7 @@
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
 #include "etfe/kernels/pressure.h"
+#include "etfe/chamber.h"
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
 #include "etfe/kernels/wrinkling.h"
@@ -180,8 +181,14 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscFunctionBeginUser;
   PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
   AddMembraneForces(P, u, f, &status, &bad);
+  if (P->chambers) {
+    PetscCall(ChamberEvaluate(P, u));
+    for (double g : P->chambers->gauge)
+      if (!std::isfinite(g)) status = std::max(status, (int)KERNEL_NONFINITE);  // a chamber turned inside out
+  }
   for (const Problem::PressureLoad &load : P->pressures) {
-    const double p = load.value.At(P->scene.schedules, P->time);
+    const double p = load.chamber >= 0 ? ChamberLoadPressure(P, load.chamber, load.sign)
+                                       : load.value.At(P->scene.schedules, P->time);
     for (PetscInt e : load.elements) {
       double x[9], fe[9];
       GatherCoordinates(m, e, u, x);
@@ -262,9 +269,11 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   PetscCall(MatZeroEntries(Pmat));
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   // Per element the pressure of every load on it (the load stiffness is linear in p).
+  if (P->chambers) PetscCall(ChamberEvaluate(P, u));
   std::vector<double> pressure;
   for (const Problem::PressureLoad &load : P->pressures) {
-    const double p = load.value.At(P->scene.schedules, P->time);
+    const double p = load.chamber >= 0 ? ChamberLoadPressure(P, load.chamber, load.sign)
+                                       : load.value.At(P->scene.schedules, P->time);
     if (p == 0.0) continue;
     if (pressure.empty()) pressure.assign(m.num_elements, 0.0);
     for (PetscInt e : load.elements) pressure[e] += p;
@@ -309,6 +318,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
       PetscCall(MatSetValuesBlockedLocal(Pmat, 1, &l, 1, &l, K, ADD_VALUES));
     }
   }
+  if (P->chambers) PetscCall(ChamberTangent(P, u));
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   for (PetscInt d : P->con_owned_dof) {
     const PetscScalar one = 1.0;

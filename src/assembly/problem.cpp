@@ -12,6 +12,7 @@
 #include <string>
 
 #include "etfe/assembly.h"
+#include "etfe/chamber.h"
 #include "etfe/contact.h"
 #include "etfe/gather.h"
 #include "scene_share.h"
@@ -119,7 +120,8 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   // Pressures only when the scene has them (every rank has the small list, its own elements).
   P->has_pressure = !P->scene.pressures.empty();
   for (size_t k = 0; k < P->scene.pressures.size(); ++k)
-    P->pressures.push_back({std::move(share.pressure_elements[k]), P->scene.pressures[k].value});
+    P->pressures.push_back({std::move(share.pressure_elements[k]), P->scene.pressures[k].value,
+                            P->scene.pressures[k].chamber, P->scene.pressures[k].sign});
 
   // Dead nodal forces on owned DOFs.
   for (const NodalForce &f : share.forces) {
@@ -148,6 +150,7 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
     PetscCall(VecRestoreArray(P->U, &u));
   }
   PetscCall(ProblemSetLoadTime(P, 0.0, P->U));
+  if (!P->scene.chambers.empty()) PetscCall(ChamberCreate(P));
   PetscFunctionReturn(0);
 }
 
@@ -212,6 +215,7 @@ void SceneObserverDestroy(SceneObserver *o) {
 
 PetscErrorCode ProblemDestroy(Problem *P) {
   PetscFunctionBeginUser;
+  PetscCall(ChamberDestroy(P));  // its LRC holds a reference to J
   PetscCall(VecDestroy(&P->U));
   PetscCall(StabilizationDestroy(P));
   PetscCall(VecDestroy(&P->U_work));

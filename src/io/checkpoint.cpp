@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "checkpoint_compare.h"
+#include "etfe/chamber.h"
 #include "etfe/contact.h"
 #include "etfe/h5io.h"
 #include "etfe/rank0.h"
@@ -145,13 +146,14 @@ std::string VerifyIntegrity(const std::string &path) {
         good = good && rows(d.name, (hsize_t)shape[d.shape_index], (hsize_t)d.cols, &v);
         if (good) DataChecksum(PETSC_COMM_SELF, d.name, 0, shape[d.shape_index], (int)d.cols, v.data(), &sum);
       }
-      if (good && H5Lexists(f, "scene_state", H5P_DEFAULT) > 0) {
-        hid_t d = H5Dopen2(f, "scene_state", H5P_DEFAULT);
+      for (const char *state : {"scene_state", "chamber_state"}) {
+        if (!good || H5Lexists(f, state, H5P_DEFAULT) <= 0) continue;
+        hid_t d = H5Dopen2(f, state, H5P_DEFAULT);
         hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
         const hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
         if (sp >= 0) H5Sclose(sp);
         if (d >= 0) H5Dclose(d);
-        good = n >= 0 && rows("scene_state", (hsize_t)n, 1, &v);
+        good = n >= 0 && rows(state, (hsize_t)n, 1, &v);
         if (good) sum += SceneStateChecksum(v);
       }
       if (!good) why = "an attribute or dataset is missing or cannot be read (truncated or corrupt)";
@@ -215,6 +217,13 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
     std::vector<double> v;
     P->observer.state_get(P->observer.ctx, &v);
     PetscCall(H5WriteRows(tmp, f, "scene_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, P->rank == 0 ? v.size() : 0,
+                          v.data()));
+    sum += SceneStateChecksum(v);
+  }
+  if (P->chambers) {  // which chambers are sealed and the gas they hold (the same on every rank)
+    std::vector<double> v;
+    ChamberStateGet(P, &v);
+    PetscCall(H5WriteRows(tmp, f, "chamber_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, P->rank == 0 ? v.size() : 0,
                           v.data()));
     sum += SceneStateChecksum(v);
   }
@@ -391,6 +400,12 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
     P->observer.state_get(P->observer.ctx, &v);  // its size
     PetscCall(H5ReadRows(path, f, "scene_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, v.size(), v.data()));
     P->observer.state_set(P->observer.ctx, v);
+  }
+  if (P->chambers) {
+    std::vector<double> v;
+    ChamberStateGet(P, &v);  // its size
+    PetscCall(H5ReadRows(path, f, "chamber_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, v.size(), v.data()));
+    ChamberStateSet(P, v);
   }
   PetscFunctionReturn(0);
 }

@@ -137,7 +137,11 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   h.Add(s.constraints.size());
   for (const DofConstraint &c : s.constraints) h.Add(c.node), h.Add(c.comp), value(c.value);
   h.Add(s.pressures.size());
-  for (const PressureSpec &p : s.pressures) h.Add(p.elements), value(p.value);
+  for (const PressureSpec &p : s.pressures) h.Add(p.elements), value(p.value), h.Add(p.chamber), h.Add(p.sign);
+  h.Add(s.chambers.size());
+  for (const ChamberSpec &c : s.chambers)
+    h.Add(c.name), h.Add(c.origin), value(c.supplied), h.Add(c.sealed_from_stage), h.Add(c.kappa), h.Add(c.extra_volume);
+  if (!s.chambers.empty()) h.Add(s.atmosphere);
   h.Add(s.nodal_forces.size());
   for (const NodalForce &f : s.nodal_forces) h.Add(f.node), h.Add(f.comp), value(f.value);
   h.Add(s.contact.active), h.Add(s.contact.node_set), h.Add(s.contact.search_tol);

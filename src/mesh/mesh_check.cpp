@@ -117,6 +117,10 @@ bool CheckTopology(const MeshData &mesh, std::string *err) {
   for (size_t i = 0; i < edges.size();) {
     size_t j = i + 1;
     while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
+    if (j - i > 2 && mesh.welds) {  // layers welded along this edge: each layer is checked alone
+      i = j;
+      continue;
+    }
     if (j - i > 2) {
       std::string who;
       for (size_t k = i; k < j && k < i + 4; ++k) {
@@ -128,7 +132,8 @@ bool CheckTopology(const MeshData &mesh, std::string *err) {
                       Id(j - i) + ": " + who +
                       "), so the surface is not a membrane (non-manifold): a membrane "
                       "edge has one or two triangles; split the mesh or remove the "
-                      "extra surface");
+                      "extra surface (layers welded along it, as a three-layer cushion's rim: "
+                      "-mesh_welds)");
     }
     if (j - i == 2 && edges[i].forward == edges[i + 1].forward) {
       return Fail(mesh, err,

@@ -191,10 +191,20 @@ PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh) {
   std::string err;
   double cad_size;
   PetscFunctionBeginUser;
+  PetscBool welds = PETSC_FALSE;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCall(MeshCadSizeFromOptions(comm, path, &cad_size));
-  if (rank == 0)
-    ok = ReadMeshFile(path, cad_size, mesh, &err) && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
+  PetscOptionsBegin(comm, nullptr, "Mesh file", "Mesh");
+  PetscCall(PetscOptionsBool("-mesh_welds",
+                             "Edges of three or more triangles are welds of layers (a three-layer cushion's rim), "
+                             "not an error",
+                             "", welds, &welds, nullptr));
+  PetscOptionsEnd();
+  if (rank == 0) {
+    ok = ReadMeshFile(path, cad_size, mesh, &err) ? 1 : 0;
+    mesh->welds = welds;
+    ok = ok && MeshOrient(mesh, &err) && MeshCheck(*mesh, 0.0, &err) ? 1 : 0;
+  }
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &note : mesh->notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", path, note.c_str()));
   if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(*mesh, path)));

@@ -92,6 +92,7 @@ std::string InitialBulge(double h, SceneSpec *scene) {
 PetscErrorCode BuildLoadHistory(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
   PetscFunctionBeginUser;
   PetscCall(StructureAddLoads(comm, in, stages, scene));
+  PetscCall(StructureAddChambers(comm, in, stages, scene));
   PetscCall(StructureAddRigid(comm, in, scene));
   if (in.reference == 1) {
     PatternStrips strips{in.pattern_strips, "-structure_reference pattern", "structure",

@@ -57,6 +57,17 @@ struct RigidInput {
   bool fixed_nodes = false;       // also pair nodes whose three DOFs are prescribed (a grip)
 };
 
+// -chamber_<name>_*: a gas chamber bounded by surface groups (signs -1 where their normals point
+// into it), supplied with a gauge pressure per stage, sealed from a stage on.
+struct ChamberInput {
+  std::string name;
+  std::vector<std::string> groups;
+  std::vector<double> signs, origin = {0, 0, 0};
+  StageArray pressure;         // supplied gauge pressure [kPa]
+  PetscInt sealed_from_stage = 0;
+  double kappa = 1.0, extra_volume = 0.0;  // extra volume in m^3
+};
+
 // -region_<name>_box: the elements whose centroid lies in a plan box, reported as a group.
 struct RegionInput {
   std::string name;
@@ -76,6 +87,8 @@ struct StructureInputs {
   std::vector<FilmInput> films;
   std::vector<RigidInput> rigids;
   std::vector<RegionInput> regions;
+  std::vector<ChamberInput> chambers;
+  double atmosphere = 101.325;                            // kPa
   std::vector<std::string> report;                        // element groups and regions reported
   std::vector<double> probe_elements, probe_nodes;        // plan points, 2 each
   std::string history;                                    // -structure_history ("": beside the results)
@@ -95,6 +108,8 @@ PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, in
 PetscErrorCode StructureAddLoads(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
 // Per-element thickness and MD direction of the surface groups that set them.
 PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
+// Gas chambers: their specs and boundary pressure loads.
+PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
 // Rigid supports and their candidate nodes (node set "structure_contact").
 PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
 

@@ -211,6 +211,40 @@ PetscErrorCode FitRigidCurve(MPI_Comm comm, const MeshData &m, const RigidInput 
 
 } // namespace
 
+PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
+  PetscFunctionBeginUser;
+  scene->atmosphere = kPaToMPa * in.atmosphere;
+  for (size_t k = 0; k < in.chambers.size(); ++k) {
+    const ChamberInput &c = in.chambers[k];
+    ChamberSpec spec;
+    spec.name = c.name;
+    for (int i = 0; i < 3; ++i) spec.origin[i] = c.origin[i];
+    std::vector<double> p;
+    for (double x : c.pressure.values) p.push_back(kPaToMPa * x);
+    for (double x : c.pressure.values)
+      PetscCheck(x > -in.atmosphere, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "%s: a gauge pressure of %g kPa is below minus the atmosphere (%g kPa): no gas is that thin",
+                 c.pressure.option.c_str(), x, in.atmosphere);
+    if (c.pressure.Given()) PetscCall(CheckLoadScale(comm, c.pressure));
+    const int id = StructureAddSchedule(scene, c.name + ".p", p, stages, "kPa", 1e3);
+    spec.supplied = {{1.0, 0.0}, {id, -1}};
+    PetscCheck(c.sealed_from_stage <= stages, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-chamber_%s_sealed_from_stage %d: the analysis has %d stages", c.name.c_str(), (int)c.sealed_from_stage,
+               stages);
+    spec.sealed_from_stage = (int)c.sealed_from_stage;
+    spec.kappa = c.kappa;
+    spec.extra_volume = 1e9 * c.extra_volume;  // m^3 -> mm^3
+    scene->chambers.push_back(spec);
+    for (size_t g = 0; g < c.groups.size(); ++g) {
+      PressureSpec load;
+      if (SceneHoldsMesh(comm)) load.elements = scene->mesh.element_sets.at(c.groups[g]);
+      load.chamber = (int)k, load.sign = c.signs[g];
+      scene->pressures.push_back(load);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene) {
   MeshData &m = scene->mesh;
   bool any_h = false, any_md = false;

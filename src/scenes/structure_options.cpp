@@ -189,6 +189,45 @@ PetscErrorCode ReadRigid(MPI_Comm comm, const std::string &name, RigidInput *r) 
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode ReadChamber(MPI_Comm comm, const std::string &name, ChamberInput *c) {
+  const std::string prefix = "chamber_" + name + "_";
+  PetscFunctionBeginUser;
+  c->name = name;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Gas chamber " + name).c_str(), "Scene");
+  PetscCall(OptionsNameList(PetscOptionsObject, "-groups", "Surface groups that bound it", &c->groups));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-signs",
+                             "Per group +1 where its normals point out of the chamber, -1 where they point in "
+                             "(default +1)",
+                             &c->signs, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-origin",
+                             "A point on the planes that close it, if any (symmetry planes, a rigid base) [mm]",
+                             &c->origin, nullptr));
+  PetscCall(ReadStageArray(PetscOptionsObject, prefix, "pressure",
+                           "Supplied gauge pressure [kPa] at the end of each stage (while not sealed)", &c->pressure));
+  PetscCall(PetscOptionsInt("-sealed_from_stage",
+                            "Sealed from the start of this stage on (1: from the start; 0: supplied throughout): "
+                            "p V^kappa keeps the value it has then",
+                            "", c->sealed_from_stage, &c->sealed_from_stage, nullptr));
+  PetscCall(PetscOptionsReal("-kappa", "Gas law exponent when sealed (1 isothermal, 1.4 adiabatic air)", "", c->kappa,
+                             &c->kappa, nullptr));
+  PetscCall(PetscOptionsReal("-extra_volume", "Volume beyond the membranes (ducts, a reservoir) [m^3]", "",
+                             c->extra_volume, &c->extra_volume, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(!c->groups.empty(), comm, PETSC_ERR_ARG_WRONG,
+             "chamber %s: give the surface groups that bound it (-%sgroups top,bottom)", name.c_str(), prefix.c_str());
+  if (c->signs.empty()) c->signs.assign(c->groups.size(), 1.0);
+  PetscCheck(c->signs.size() == c->groups.size(), comm, PETSC_ERR_ARG_SIZ,
+             "-%ssigns: one sign per group of -%sgroups (%zu for %zu)", prefix.c_str(), prefix.c_str(), c->signs.size(),
+             c->groups.size());
+  for (double s : c->signs)
+    PetscCheck(s == 1.0 || s == -1.0, comm, PETSC_ERR_ARG_WRONG, "-%ssigns: each sign is 1 or -1", prefix.c_str());
+  PetscCheck(c->origin.size() == 3, comm, PETSC_ERR_ARG_SIZ, "-%sorigin: give x,y,z", prefix.c_str());
+  PetscCheck(c->kappa > 0 && c->extra_volume >= 0 && c->sealed_from_stage >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "chamber %s: -%skappa must be positive, -%sextra_volume and -%ssealed_from_stage not negative",
+             name.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode ReadRegion(MPI_Comm comm, const std::string &name, RegionInput *r) {
   const std::string prefix = "region_" + name + "_";
   PetscFunctionBeginUser;
@@ -211,8 +250,10 @@ PetscErrorCode CheckKeyedOptions(MPI_Comm comm, const StructureInputs &in) {
   PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
   std::string bad;
   for (PetscInt i = 0; i < n && bad.empty(); ++i)
-    for (const char *p : {"bc_", "film_", "rigid_", "region_"})
-      if (std::strncmp(names[i], p, std::strlen(p)) == 0) bad = names[i];
+    for (const char *p : {"bc_", "film_", "rigid_", "region_", "chamber_"})
+      // -chamber_rank_one belongs to the chambers' component, read when the problem is made.
+      if (std::strncmp(names[i], p, std::strlen(p)) == 0 && std::strcmp(names[i], "chamber_rank_one") != 0)
+        bad = names[i];
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
   if (bad.empty()) PetscFunctionReturn(0);
   auto join = [](const std::vector<std::string> &v) {
@@ -226,13 +267,13 @@ PetscErrorCode CheckKeyedOptions(MPI_Comm comm, const StructureInputs &in) {
   SETERRQ(comm, PETSC_ERR_ARG_WRONG,
           "-%s: no such group, support or option. -bc_<group>_* takes a node group of the mesh (%s), -film_<group>_* "
           "a surface group (%s), -rigid_<name>_* a name listed in -structure_rigid (%s), -region_<name>_box one in "
-          "-structure_regions (%s); -help lists each one's options",
+          "-structure_regions (%s), -chamber_<name>_* one in -structure_chambers; -help lists each one's options",
           bad.c_str(), join(in.node_groups).c_str(), join(in.element_groups).c_str(), join(rigid).c_str(),
           join(region).c_str());
 }
 
 PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *in, std::vector<std::string> *rigid,
-                             std::vector<std::string> *regions) {
+                             std::vector<std::string> *regions, std::vector<std::string> *chambers) {
   const char *references[] = {"mesh", "pattern"};
   char history[PETSC_MAX_PATH_LEN] = "";
   std::vector<double> md = {1, 0, 0};
@@ -261,6 +302,10 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_rigid", "Rigid supports by name (-rigid_<name>_*)", rigid));
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_regions", "Report regions by name (-region_<name>_box)",
                             regions));
+  PetscCall(OptionsNameList(PetscOptionsObject, "-structure_chambers", "Gas chambers by name (-chamber_<name>_*)",
+                            chambers));
+  PetscCall(PetscOptionsReal("-structure_atmosphere", "Atmospheric pressure [kPa, absolute] for the chambers' gas laws",
+                             "", in->atmosphere, &in->atmosphere, nullptr));
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_report",
                             "Surface groups and regions reported and written to the history (default: all)",
                             &in->report));
@@ -290,13 +335,13 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
 } // namespace
 
 PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool form_finding, StructureInputs *in) {
-  std::vector<std::string> rigid, regions;
+  std::vector<std::string> rigid, regions, chambers;
   PetscFunctionBeginUser;
   for (const auto &kv : mesh.node_sets) in->node_groups.push_back(kv.first);
   for (const auto &kv : mesh.element_sets) in->element_groups.push_back(kv.first);
   PetscCall(BroadcastNames(comm, &in->node_groups));
   PetscCall(BroadcastNames(comm, &in->element_groups));
-  PetscCall(ReadSceneWide(comm, form_finding, in, &rigid, &regions));
+  PetscCall(ReadSceneWide(comm, form_finding, in, &rigid, &regions, &chambers));
   for (const std::string &g : in->node_groups) {
     BcInput bc;
     PetscCall(ReadBc(comm, g, &bc));
@@ -325,6 +370,16 @@ PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool fo
     in->regions.push_back(r);
   }
   const std::set<std::string> surfaces(in->element_groups.begin(), in->element_groups.end());
+  for (const std::string &name : chambers) {
+    ChamberInput c;
+    PetscCall(ReadChamber(comm, name, &c));
+    for (const std::string &g : c.groups)
+      PetscCheck(surfaces.count(g), comm, PETSC_ERR_ARG_WRONG, "-chamber_%s_groups: the mesh has no surface group %s",
+                 name.c_str(), g.c_str());
+    in->chambers.push_back(c);
+  }
+  PetscCheck(in->atmosphere > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-structure_atmosphere %g kPa must be positive",
+             in->atmosphere);
   for (const std::string &g : in->pattern_strips)
     PetscCheck(surfaces.count(g), comm, PETSC_ERR_ARG_WRONG,
                "-structure_pattern_strips: the mesh has no surface group %s", g.c_str());

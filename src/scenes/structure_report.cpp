@@ -10,6 +10,7 @@
 #include <string>
 
 #include "etfe/assembly.h"
+#include "etfe/chamber.h"
 #include "etfe/contact.h"
 #include "etfe/csv_history.h"
 #include "structure_inputs.h"
@@ -37,6 +38,7 @@ struct Figures {
   std::vector<double> probe_e;  // smin, emin per probe element
   std::vector<double> probe_n;  // uX, uY, uZ, slide X, slide Y per probe node
   std::vector<double> reaction; // 3 per support group
+  std::vector<double> chamber;  // gauge pressure [kPa] and volume [m^3] per gas chamber
   PetscInt pairs[3] = {0, 0, 0};
 };
 
@@ -123,10 +125,16 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
   v->probe_e.assign(sums.begin() + 6 * ni, sums.begin() + 6 * ni + 2 * npe);
   v->probe_n.assign(probe_n, probe_n + 5 * npn);
   v->reaction.assign(probe_n + 5 * npn, probe_n + 5 * npn + 3 * c->supports.size());
+  v->chamber.clear();
+  if (P->chambers) {
+    PetscCall(ChamberUpdate(P, P->U));
+    for (size_t k = 0; k < P->chambers->volume.size(); ++k)
+      v->chamber.push_back(1e3 * P->chambers->gauge[k]), v->chamber.push_back(1e-9 * P->chambers->volume[k]);
+  }
   PetscFunctionReturn(0);
 }
 
-std::string Header(const StructureContext *c, bool contact) {
+std::string Header(const Problem *P, const StructureContext *c, bool contact) {
   std::string h = "step,time";
   for (const std::string &g : c->items)
     for (const char *k : {"_Exx", "_Eyy", "_Exy", "_mises", "_mises_max", "_ep_max", "_wrinkled"}) h += "," + g + k;
@@ -138,6 +146,7 @@ std::string Header(const StructureContext *c, bool contact) {
     if (contact) h += n + "_slide_X" + n + "_slide_Y";
   }
   for (const std::string &g : c->supports) h += "," + g + "_RX," + g + "_RY," + g + "_RZ";
+  for (const ChamberSpec &s : P->scene.chambers) h += "," + s.name + "_p_kPa," + s.name + "_V_m3";
   if (contact) h += ",pairs_open,pairs_stick,pairs_slip";
   return h + ",work,shift_work";
 }
@@ -155,7 +164,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   PetscCall(Measure(P, c, f, &v));
   if (P->rank != 0) PetscFunctionReturn(0);
   const bool contact = P->contact != nullptr;
-  FILE *out = CsvHistoryOpen(path, step, Header(c, contact).c_str());
+  FILE *out = CsvHistoryOpen(path, step, Header(P, c, contact).c_str());
   PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s (-structure_history)", path.c_str());
   std::fprintf(out, "%lld,%.10g", (long long)step, t);
   for (size_t k = 0; k < c->items.size(); ++k) {
@@ -166,6 +175,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   for (size_t k = 0; k < c->probe_nodes.size(); ++k)
     for (int i = 0; i < (contact ? 5 : 3); ++i) std::fprintf(out, ",%.8e", v.probe_n[5 * k + i]);
   for (double x : v.reaction) std::fprintf(out, ",%.8e", x);
+  for (double x : v.chamber) std::fprintf(out, ",%.8e", x);
   if (contact) std::fprintf(out, ",%lld,%lld,%lld", (long long)v.pairs[0], (long long)v.pairs[1], (long long)v.pairs[2]);
   std::fprintf(out, ",%.8e,%.8e\n", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
   std::fclose(out);
@@ -194,6 +204,10 @@ PetscErrorCode Report(Problem *P, void *vctx) {
   for (size_t k = 0; k < c->supports.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N\n", c->supports[k].c_str(),
                           v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2]));
+  for (size_t k = 0; k < P->scene.chambers.size(); ++k)
+    PetscCall(PetscPrintf(P->comm, "structure: chamber %s: gauge pressure %.6f kPa, volume %.6f m^3 (%s)\n",
+                          P->scene.chambers[k].name.c_str(), v.chamber[2 * k], v.chamber[2 * k + 1],
+                          P->chambers->sealed[k] ? "sealed" : "supplied"));
   if (P->contact) {
     double slide = 0.0;
     for (const ContactPair &pr : P->contact->pairs) {

@@ -82,6 +82,7 @@ PetscErrorCode StructureStageCount(MPI_Comm comm, const StructureInputs &in, int
   }
   for (const FilmInput &f : in.films) see(f.pressure, f.pressure.values.size()), see(f.snow, f.snow.values.size());
   see(in.wind, in.wind.values.size());
+  for (const ChamberInput &c : in.chambers) see(c.pressure, c.pressure.values.size());
   see(in.self_weight, in.self_weight.values.size());
   PetscCheck(in.stages <= 0 || (size_t)in.stages >= longest, comm, PETSC_ERR_ARG_SIZ,
              "-structure_stages %d: %s gives %zu stages; raise -structure_stages or shorten the option",

@@ -20,6 +20,7 @@
 #include <cstring>
 #include <string>
 
+#include "etfe/chamber.h"
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
 #include "etfe/kernels/status.h"
@@ -387,6 +388,7 @@ PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt co
   PetscCall(VecCopy(P->U, s->U_committed));
   s->dt_last = inc.t_new - inc.t;
   s->t = inc.t_new;
+  if (P->chambers) PetscCall(ChamberCommit(P, s->t));
   ++s->converged_states;
   ++s->step;
   if (inc.stabilized) {

@@ -18,8 +18,8 @@ import math
 import os
 import re
 
-from etfe_testlib import (Checker, dd1511_case, etfe_path, form_found_saddle, largest_history_difference, read_history,
-                          run, scratch_dir, REPO)
+from etfe_testlib import (Checker, dd1511_case, etfe_path, form_found_saddle, largest_family_difference,
+                          largest_history_difference, read_history, run, scratch_dir, REPO)
 import h5compare
 
 etfe = etfe_path()
@@ -129,19 +129,7 @@ with scratch_dir() as tmp:
     chk.check(snow < rz < snow + 3 * weight, "canopy: the frame carries the snow and the film's weight (%.1f N; "
                                              "snow on the plan %.1f N, weight above %.1f N)" % (rz, snow, weight))
     out2, h2 = structure(canopy, tmp, "canopy2", np=2)
-    # Each column against the scale of its quantity (a displacement against the displacements: a
-    # probe on a symmetry line has a near-zero component).
-    families = {"u": ("_uX", "_uY", "_uZ"), "strain": ("_Exx", "_Eyy", "_Exy", "_emin"),
-                "stress": ("_mises", "_mises_max", "_smin"), "ep": ("_ep_max",), "reaction": ("_RX", "_RY", "_RZ")}
-    worst, where = 0.0, None
-    for fam, ends in families.items():
-        cols = [c for c in h1[0] if c.endswith(ends)]
-        scale = max(abs(float(r[c])) for r in h1 for c in cols) or 1.0
-        for r1, r2 in zip(h1, h2):
-            for c in cols:
-                d = abs(float(r1[c]) - float(r2[c])) / scale
-                if d > worst:
-                    worst, where = d, (r1["step"], c)
+    worst, where = largest_family_difference(h1, h2)
     chk.less(worst, 1e-8, "canopy: 2 ranks against 1, largest history difference relative to the largest value of "
                           "its quantity (displacements, strains, stresses, reactions; at %s)" % (where,))
     ck = os.path.join(tmp, "canopy_ck.h5")

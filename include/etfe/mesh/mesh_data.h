@@ -21,6 +21,9 @@ struct MeshData {
   // What was changed on reading or repairing (split quadrangles, flipped triangles), one
   // sentence each, for the log: nothing is changed silently.
   std::vector<std::string> notes;
+  // Edges of three or more triangles are welds of layers (a three-layer cushion's rim), not an
+  // error (-mesh_welds).
+  bool welds = false;
 
   int NumNodes() const { return (int)(coords.size() / 3); }
   int NumElements() const { return (int)(triangles.size() / 3); }

@@ -1,0 +1,60 @@
+"""An octant of a sphere as a Gmsh 2.2 mesh for the sealed-balloon check (test_cushion_chambers):
+the spherical triangle x, y, z >= 0 cut into n^2 triangles (a barycentric grid projected onto the
+sphere), normals out, surface group "skin", point groups "sym_x", "sym_y", "sym_z" on the three
+symmetry planes. write() returns the faceted octant's volume (mm^3) at its nodes' radius."""
+import math
+
+
+def write(path, n, R):
+    pts, idx = [], {}
+    for i in range(n + 1):
+        for j in range(n + 1 - i):
+            v = (i / n, j / n, (n - i - j) / n)
+            l = math.sqrt(sum(c * c for c in v))
+            idx[(i, j)] = len(pts)
+            pts.append(tuple(R * c / l for c in v))
+    tris = []
+    for i in range(n):
+        for j in range(n - i):
+            tris.append((idx[(i, j)], idx[(i + 1, j)], idx[(i, j + 1)]))
+            if j + 1 <= n - i - 1:
+                tris.append((idx[(i + 1, j)], idx[(i + 1, j + 1)], idx[(i, j + 1)]))
+
+    def signed(t):
+        a, b, c = (pts[x] for x in t)
+        return (a[0] * (b[1] * c[2] - b[2] * c[1]) + a[1] * (b[2] * c[0] - b[0] * c[2]) +
+                a[2] * (b[0] * c[1] - b[1] * c[0])) / 6
+    tris = [t if signed(t) > 0 else (t[0], t[2], t[1]) for t in tris]
+    groups = [("sym_%s" % "xyz"[d], [m for m, p in enumerate(pts) if abs(p[d]) < 1e-9 * R]) for d in range(3)]
+    with open(path, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n2 1 \"skin\"\n")
+        for k, (g, _) in enumerate(groups):
+            f.write('0 %d "%s"\n' % (k + 2, g))
+        f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(pts))
+        for m, p in enumerate(pts):
+            f.write("%d %.17g %.17g %.17g\n" % (m + 1, p[0], p[1], p[2]))
+        els = [(2, 1, t) for t in tris] + [(15, k + 2, (m,)) for k, (_, ms) in enumerate(groups) for m in ms]
+        f.write("$EndNodes\n$Elements\n%d\n" % len(els))
+        for e, (ty, tag, nodes) in enumerate(els):
+            f.write("%d %d 2 %d %d %s\n" % (e + 1, ty, tag, tag, " ".join(str(x + 1) for x in nodes)))
+        f.write("$EndElements\n")
+    return sum(signed(t) for t in tris)
+
+
+def closed_form(E, nu, h, R, p1, q, patm, kappa):
+    """A sealed spherical balloon of a St. Venant-Kirchhoff membrane (equibiaxial stretch lam:
+    membrane force S h0 = E h0 (lam^2 - 1) / (2 (1 - nu)), equilibrium S h0 = p r / 2 with
+    r = lam R): inflated to the gauge pressure p1, sealed (p_abs V^kappa = C), then loaded by an
+    external pressure q. Returns (lam1, lam2, gauge pressure at the end), pressures in MPa."""
+    def bisect(f, lo, hi):
+        for _ in range(200):
+            m = 0.5 * (lo + hi)
+            lo, hi = (m, hi) if f(m) > 0 else (lo, m)
+        return lo
+    membrane = lambda lam: E * h * (lam * lam - 1) / ((1 - nu) * lam * R)
+    lam1 = bisect(lambda lam: p1 - membrane(lam), 1.0, 1.5)
+    V = lambda lam: 4.0 / 3.0 * math.pi * (lam * R) ** 3
+    C = (p1 + patm) * V(lam1) ** kappa
+    gauge = lambda lam: C / V(lam) ** kappa - patm
+    lam2 = bisect(lambda lam: gauge(lam) - q - membrane(lam), 1.0, 1.5)
+    return lam1, lam2, gauge(lam2)

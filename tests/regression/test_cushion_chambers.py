@@ -1,0 +1,124 @@
+"""Gas chambers (-structure_chambers, src/assembly/chamber.cpp) and the cushion cases.
+
+* A sealed spherical balloon (an octant, 16 x 16 cells, E h = 200 N/mm, R = 1 m), inflated to 2
+  kPa, sealed, then under 1 kPa outside: the gauge pressure and the radius (from the chamber's
+  volume against the faceted start) match the closed form to 1e-3, for kappa = 1 and 1.4.
+* The rank-one term makes Newton quadratic on a sealed cushion: with it the sealed snow stage of
+  options/cushion/hexagon_2layer.opts takes at most 3 iterations an increment; without it
+  (-chamber_rank_one 0, the pressure updated between iterations only) far more, or no
+  convergence.
+* A sealed chamber with a huge reservoir (-chamber_air_extra_volume) gives the supplied answer.
+* The three-layer cushion (two chambers, -mesh_welds): 2 ranks agree with 1; a restart inside
+  the sealed stage is bit for bit; a restart with another kappa is refused.
+* Bad input: a chamber group that does not exist, signs of the wrong count, a gauge pressure below
+  minus the atmosphere, a chamber sealed from the start that encloses nothing.
+"""
+import os
+import re
+
+from etfe_testlib import Checker, etfe_path, increments, largest_family_difference, read_history, run, scratch_dir, REPO
+import balloon_mesh
+import h5compare
+
+etfe = etfe_path()
+chk = Checker("cushion_chambers")
+C2 = os.path.join(REPO, "options", "cushion", "hexagon_2layer.opts")
+C3 = os.path.join(REPO, "options", "cushion", "hexagon_3layer.opts")
+
+
+def case(args, tmp, name, np=1, expect_fail=False):
+    hist = os.path.join(tmp, name + ".csv")
+    rc, out = run(etfe, list(args) + ["-output_file", os.path.join(tmp, name + ".h5"), "-structure_history", hist,
+                                      "-load_monitor", 1], np=np, expect_fail=expect_fail)
+    return rc, out, (read_history(hist) if rc == 0 else [])
+
+
+with scratch_dir() as tmp:
+    # --- the sealed balloon
+    msh = os.path.join(tmp, "octant.msh")
+    V0 = balloon_mesh.write(msh, 16, 1000.0)
+    for kappa in (1.0, 1.4):
+        base = ["-scene", "structure", "-mesh_file", msh, "-material_type", "elastic", "-material_young", 800,
+                "-material_poisson", 0.3, "-membrane_thickness", 0.25, "-bc_sym_x_fix", "x", "-bc_sym_y_fix", "y",
+                "-bc_sym_z_fix", "z", "-structure_chambers", "gas", "-chamber_gas_groups", "skin",
+                "-chamber_gas_pressure", "2,2", "-chamber_gas_sealed_from_stage", 2, "-chamber_gas_kappa", kappa,
+                "-film_skin_pressure", "0,-1", "-load_increments", 10, "-output", 0]
+        rc, out, h = case(base, tmp, "balloon%g" % kappa)
+        lam1, lam2, gauge = balloon_mesh.closed_form(800.0, 0.3, 0.25, 1000.0, 2e-3, 1e-3, 0.101325, kappa)
+        p = float(h[-1]["gas_p_kPa"]) * 1e-3
+        lam = (float(h[-1]["gas_V_m3"]) * 1e9 / V0) ** (1.0 / 3.0)
+        lam_sealed = (float(h[4]["gas_V_m3"]) * 1e9 / V0) ** (1.0 / 3.0)
+        chk.less(abs(p - gauge) / gauge, 1e-3, "balloon kappa %g: gauge pressure %.6f kPa against the closed form "
+                                               "%.6f kPa, relative error" % (kappa, 1e3 * p, 1e3 * gauge))
+        chk.less(abs(lam - lam2), 1e-3, "balloon kappa %g: radius %.7f R against %.7f R (from the volume), error / R"
+                 % (kappa, lam, lam2))
+        chk.less(abs(lam_sealed - lam1), 1e-3, "balloon kappa %g: radius when sealed %.7f R against %.7f R"
+                 % (kappa, lam_sealed, lam1))
+        chk.check(abs((lam2 - 1) - (lam - 1)) < 0.01 * (lam2 - 1),
+                  "balloon kappa %g: the radial displacement %.4f mm within 1 %% of %.4f mm"
+                  % (kappa, 1000 * (lam - 1), 1000 * (lam2 - 1)))
+
+    # --- Newton on the sealed cushion, with and without the rank-one term
+    rc, out, h2 = case(["-options_file", C2, "-output", 0], tmp, "c2")
+    sealed = [i for i in increments(out) if i["t"] > 2.0 + 1e-9]
+    worst = max(i["newton"] for i in sealed)
+    chk.check(len(sealed) == 20 and worst <= 3, "2-layer cushion, sealed snow stage: %d increments, at most %d Newton "
+                                                "iterations each (quadratic)" % (len(sealed), worst))
+    rc1, out1, _ = case(["-options_file", C2, "-output", 0, "-chamber_rank_one", 0, "-load_max_cutbacks", 2], tmp,
+                        "c2_no_rank_one", expect_fail=None)
+    sealed1 = [i for i in increments(out1) if i["t"] > 2.0 + 1e-9]
+    more = sum(i["newton"] for i in sealed1) > 3 * sum(i["newton"] for i in sealed[:len(sealed1)]) if sealed1 else True
+    chk.check(rc1 != 0 or more, "without the rank-one term the sealed stage needs far more Newton iterations or "
+                                "does not converge (exit %d, %d increments done)" % (rc1, len(sealed1)))
+    gauge_end = float(h2[-1]["air_p_kPa"])
+    chk.check(gauge_end > 0.45, "sealed cushion under 0.25 kPa of snow: the gauge pressure rose from 0.3 to %.4f kPa"
+                                % gauge_end)
+    # A huge reservoir keeps the pressure: the supplied answer.
+    _, _, hs = case(["-options_file", C2, "-output", 0, "-chamber_air_sealed_from_stage", 0], tmp, "c2_supplied")
+    # (The snow squashes the cushion by ~0.2 m^3 against a net 0.05 kPa: a reservoir of V_r moves the
+    # pressure by ~p_abs 0.2 / V_r, so the difference falls as 1 / V_r.)
+    diffs = []
+    for vr in (1e5, 1e6):
+        _, _, hr = case(["-options_file", C2, "-output", 0, "-chamber_air_extra_volume", vr], tmp, "c2_res%g" % vr)
+        diffs.append(abs(float(hr[-1]["node1_uZ"]) - float(hs[-1]["node1_uZ"])) / abs(float(hs[-1]["node1_uZ"])))
+    chk.check(diffs[1] < 1e-3 and 8 < diffs[0] / diffs[1] < 12,
+              "sealed with a reservoir tends to the supplied answer as 1 / V_r: centre deflection differs by %.2e "
+              "(1e5 m^3) and %.2e (1e6 m^3)" % tuple(diffs))
+
+    # --- 1 vs 2 ranks (each column against the scale of its quantity)
+    parallel_difference = largest_family_difference
+    _, _, g1 = case(["-options_file", C2, "-load_increments", 30, "-output", 0], tmp, "c2_np1")
+    _, _, g2 = case(["-options_file", C2, "-load_increments", 30, "-output", 0], tmp, "c2_np2", np=2)
+    worst, where = parallel_difference(g1, g2)
+    chk.less(worst, 1e-9, "2-layer cushion: 2 ranks against 1 (at %s)" % (where,))
+    # The three-layer cushion's middle foil lies between two chambers of nearly one pressure (0.6053
+    # and 0.5999 kPa under snow): it is soft, and where Newton stops within its force tolerance
+    # moves its stress by ~1e-6 of the foils' stresses.
+    common = ["-options_file", C3, "-load_increments", 30, "-output_every", 1]
+    _, out_a, h1 = case(common, tmp, "c3_np1")
+    _, _, h2r = case(common, tmp, "c3_np2", np=2)
+    worst, where = parallel_difference(h1, h2r)
+    chk.less(worst, 1e-5, "3-layer cushion: 2 ranks against 1 (at %s)" % (where,))
+    chk.check(len(re.findall(r"chamber (upper|lower): sealed", out_a)) == 2, "3-layer cushion: both chambers sealed")
+    full, part, ck = (os.path.join(tmp, n) for n in ("c3_np1.h5", "c3_part.h5", "c3_ck.h5"))
+    stop = ["-output_file", part, "-structure_history", os.path.join(tmp, "c3_part.csv"), "-load_monitor", 0]
+    run(etfe, common + stop + ["-load_stop_after", 25, "-checkpoint_file", ck])
+    run(etfe, common + stop + ["-restart", ck])
+    fails = h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
+    chk.check(not fails, "3-layer cushion: stopped inside the sealed stage and restarted, bit for bit%s"
+              % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
+    _, out = run(etfe, common + stop + ["-chamber_upper_kappa", 1.4, "-restart", ck], expect_fail=True)
+    chk.check("kappa" in out or "physics" in out or "differ" in out,
+              "3-layer cushion: a restart with another kappa is refused")
+
+    # --- refusals
+    bad = [(["-chamber_air_groups", "roof"], r"-chamber_air_groups: the mesh has no surface group roof"),
+           (["-chamber_air_signs", "1"], r"-chamber_air_signs: one sign per group"),
+           (["-chamber_air_pressure", "-200,0.3,0.3"], r"below minus the atmosphere"),
+           (["-chamber_air_groups", "top", "-chamber_air_sealed_from_stage", 1, "-chamber_air_signs", -1],
+            r"chamber air is sealed from stage 1 but encloses")]
+    for args, pattern in bad:
+        _, out = run(etfe, ["-options_file", C2, "-output", 0] + args, expect_fail=True)
+        chk.check(re.search(pattern, out), "refused: %s (%s)" % (" ".join(map(str, args)), pattern))
+
+chk.finish()
