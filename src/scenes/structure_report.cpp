@@ -135,7 +135,7 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
 }
 
 std::string Header(const Problem *P, const StructureContext *c, bool contact) {
-  std::string h = "step,time";
+  std::string h = P->clock.Active() ? "step,time,seconds" : "step,time";  // seconds: -load_stage_duration, holds
   for (const std::string &g : c->items)
     for (const char *k : {"_Exx", "_Eyy", "_Exy", "_mises", "_mises_max", "_ep_max", "_wrinkled"}) h += "," + g + k;
   for (size_t k = 1; k <= c->probe_elements.size(); ++k)
@@ -167,6 +167,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   FILE *out = CsvHistoryOpen(path, step, Header(P, c, contact).c_str());
   PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s (-structure_history)", path.c_str());
   std::fprintf(out, "%lld,%.10g", (long long)step, t);
+  if (P->clock.Active()) std::fprintf(out, ",%.10g", P->clock.Seconds(t));
   for (size_t k = 0; k < c->items.size(); ++k) {
     for (int i = 0; i < 4; ++i) std::fprintf(out, ",%.8e", v.mean[4 * k + i]);
     std::fprintf(out, ",%.8e,%.8e,%.0f", v.peak[2 * k], v.peak[2 * k + 1], v.count[2 * k + 1]);
