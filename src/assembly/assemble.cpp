@@ -15,6 +15,7 @@
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
 #include "etfe/kernels/wrinkling.h"
+#include "etfe/log_events.h"
 
 namespace etfe {
 
@@ -178,6 +179,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscInt bad = -1;
   double ext2 = 0.0;  // sum of squares of external nodal loads (an estimate of their norm)
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().residual, 0, 0, 0, 0));
   PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
   AddMembraneForces(P, u, f, &status, &bad);
   if (P->has_pressure) {
@@ -197,6 +199,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
     ext2 += v * v;
   }
   if (P->contact) {
+    PetscCall(PetscLogEventBegin(LogEvents().contact, 0, 0, 0, 0));
     for (ContactPair &pr : P->contact->pairs) {
       const PetscInt l = pr.local_node;
       double fg[3];
@@ -206,6 +209,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
       }
       for (int i = 0; i < 3; ++i) f[3 * l + i] += fg[i];
     }
+    PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
   }
   PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
   if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationForce(P, U, Fout));
@@ -233,6 +237,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscCall(ReduceStatus(P, status, bad));
   if (P->diagnostics.bad_status != KERNEL_OK && snes && !P->diagnostics.in_linesearch)
     PetscCall(SNESSetFunctionDomainError(snes));
+  PetscCall(PetscLogEventEnd(LogEvents().residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -259,6 +264,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   int status = KERNEL_OK;
   PetscInt bad = -1;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().jacobian, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(Pmat));
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   const double p = P->has_pressure ? P->pressure_value.At(P->scene.schedules, P->time) : 0.0;
@@ -297,6 +303,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     PetscCall(MatSetValuesBlocked(Pmat, 3, &P->element_global[3 * e], 3, &P->element_global[3 * e], K, ADD_VALUES));
   }
   if (P->contact) {
+    PetscCall(PetscLogEventBegin(LogEvents().contact, 0, 0, 0, 0));
     for (ContactPair &pr : P->contact->pairs) {
       const PetscInt l = pr.local_node;
       double fg[3], K[9];
@@ -306,6 +313,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
           for (int j = 0; j < 3; ++j) K[3 * i + j] = K[3 * j + i] = 0.0;
       PetscCall(MatSetValuesBlockedLocal(Pmat, 1, &l, 1, &l, K, ADD_VALUES));
     }
+    PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
   }
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   for (PetscInt d : P->con_owned_dof) {
@@ -320,6 +328,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   }
   PetscCall(ReduceStatus(P, status, bad));
+  PetscCall(PetscLogEventEnd(LogEvents().jacobian, 0, 0, 0, 0));
   PetscCheck(P->diagnostics.bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
              "Jacobian: element %" PetscInt_FMT ": %s (the residual at the same state passed)",
              P->diagnostics.bad_element, KernelStatusName(P->diagnostics.bad_status));

@@ -24,6 +24,7 @@
 #include "etfe/contact.h"
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
+#include "etfe/log_events.h"
 #include "etfe/tangent_shift.h"
 #include "load_stepper_internal.h"
 
@@ -224,6 +225,7 @@ PetscErrorCode PredictIncrement(LoadStepper *s, const Increment &inc) {
   Problem *P = s->P;
   const LoadStepperOptions &o = s->o;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().predictor, 0, 0, 0, 0));
   PetscCall(VecCopy(s->U_committed, P->U));
   // Extrapolate only within a stage: at a stage end the load path turns (loading -> unloading).
   // (increments never cross a stage end, so away from one the last increment is in this stage)
@@ -235,6 +237,7 @@ PetscErrorCode PredictIncrement(LoadStepper *s, const Increment &inc) {
     PetscCall(VecAXPBYPCZ(P->U, ratio, -ratio, 1.0, s->U_committed, s->U_previous));
   } else if (o.tangent_predictor && s->converged_states >= 1)
     PetscCall(TangentPredictor(P, s->snes, s->U_committed, inc.t, inc.t_new, o.tangent_predictor_shift, P->U));
+  PetscCall(PetscLogEventEnd(LogEvents().predictor, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -306,6 +309,7 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   Problem *P = s->P;
   const LoadStepperOptions &o = s->o;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().increment, 0, 0, 0, 0));
   PetscCall(PetscTime(&inc->start));
   PetscCall(PredictIncrement(s, *inc));
   PetscCall(ProblemSetLoadTime(P, inc->t_new, P->U));
@@ -315,6 +319,7 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   const bool always = o.stabilize_when == 2;
   if (!always) PetscCall(NewtonSolve(s, inc));
   if (always || (!inc->Converged() && o.stabilize_when == 1)) PetscCall(StabilizedSolve(s, inc, !always));
+  PetscCall(PetscLogEventEnd(LogEvents().increment, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
