@@ -5,6 +5,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/linesearch.h"
+#include "etfe/pc_shift.h"
 #include "etfe/tangent_shift.h"
 
 namespace etfe {
@@ -69,6 +70,7 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
   PetscCall(SNESSetFromOptions(*snes));
+  PetscCall(PcShiftSetUp(P, *snes));
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchEtfeSetProblem(ls, P));
   PetscFunctionReturn(0);
