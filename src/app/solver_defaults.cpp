@@ -5,6 +5,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/linesearch.h"
+#include "etfe/pc_refresh.h"
 #include "etfe/pc_shift.h"
 #include "etfe/tangent_shift.h"
 
@@ -71,6 +72,7 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHETFE));
   PetscCall(SNESSetFromOptions(*snes));
   PetscCall(PcShiftSetUp(P, *snes));
+  PetscCall(PcRefreshSetUp(P, *snes));
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchEtfeSetProblem(ls, P));
   PetscFunctionReturn(0);

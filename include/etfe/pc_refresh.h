@@ -1,0 +1,19 @@
+// A preconditioner kept while it works (-etfe_pc_refresh_its n): a factorization (MUMPS, with
+// block low-rank compression or not) or an AMG hierarchy is built once and reused by the Krylov
+// solves of later Newton iterations and increments, and rebuilt at the next Newton iteration once
+// a solve needed more than n iterations or failed (Code_Aster's lagged preconditioner). A failed
+// solve still fails its Newton iteration (the increment is cut back); the retry starts with a
+// fresh preconditioner.
+#pragma once
+#include <petscsnes.h>
+
+#include "etfe/problem.h"
+
+namespace etfe {
+
+// When -etfe_pc_refresh_its > 0: sets snes's preconditioner lag to "never", and a post-solve
+// hook on its KSP that asks for one rebuild when a solve struggled. Without the option nothing
+// changes.
+PetscErrorCode PcRefreshSetUp(Problem *problem, SNES snes);
+
+} // namespace etfe

@@ -1,0 +1,66 @@
+// The preconditioner refreshed when the Krylov solve struggles (pc_refresh.h).
+#include "etfe/pc_refresh.h"
+
+namespace etfe {
+
+namespace {
+
+struct PcRefresh {
+  SNES snes;  // not referenced: the hook lives on the SNES's own KSP
+  PetscInt max_its;
+  PetscInt refreshes = 0;
+};
+
+PetscErrorCode PcRefreshDestroy(void *ctx) {
+  PetscFunctionBeginUser;
+  delete (PcRefresh *)ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode AfterKrylovSolve(KSP ksp, Vec, Vec, void *ctx) {
+  auto *c = (PcRefresh *)ctx;
+  KSPConvergedReason reason;
+  PetscInt its;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCall(KSPGetIterationNumber(ksp, &its));
+  if (reason < 0 || its > c->max_its) {
+    // -2: rebuilt at the next Jacobian evaluation, then "never" again until the next struggle.
+    PetscCall(SNESSetLagPreconditioner(c->snes, -2));
+    ++c->refreshes;
+    PetscCall(PetscInfo(ksp, "Krylov solve took %" PetscInt_FMT " iterations (%s): preconditioner rebuilt next (%" PetscInt_FMT " so far)\n",
+                        its, KSPConvergedReasons[reason], c->refreshes));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode PcRefreshSetUp(Problem *P, SNES snes) {
+  PetscInt n = 0;
+  KSP ksp;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(P->comm, nullptr, "Preconditioner reuse (Krylov paths)", "PC");
+  PetscCall(PetscOptionsInt("-etfe_pc_refresh_its",
+                            "Keep the preconditioner over Newton iterations and increments; rebuild it once a Krylov "
+                            "solve needs more than this many iterations or fails. 0: as -snes_lag_preconditioner says",
+                            "", n, &n, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(n >= 0, P->comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-etfe_pc_refresh_its %" PetscInt_FMT ": an iteration count, >= 0 (0: off)", n);
+  if (n == 0) PetscFunctionReturn(0);
+  auto *c = new PcRefresh{snes, n};
+  PetscContainer holder;
+  PetscCall(PetscContainerCreate(P->comm, &holder));
+  PetscCall(PetscContainerSetPointer(holder, c));
+  PetscCall(PetscContainerSetUserDestroy(holder, PcRefreshDestroy));
+  PetscCall(PetscObjectCompose((PetscObject)snes, "etfe_pc_refresh", (PetscObject)holder));
+  PetscCall(PetscContainerDestroy(&holder));
+  PetscCall(SNESSetLagPreconditioner(snes, -2));  // built at the first Jacobian, then kept
+  PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPSetPostSolve(ksp, AfterKrylovSolve, c));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
