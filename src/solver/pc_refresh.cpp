@@ -1,6 +1,8 @@
 // The preconditioner refreshed when the Krylov solve struggles (pc_refresh.h).
 #include "etfe/pc_refresh.h"
 
+#include "etfe/owned_context.h"
+
 namespace etfe {
 
 namespace {
@@ -10,12 +12,6 @@ struct PcRefresh {
   PetscInt max_its;
   PetscInt refreshes = 0;
 };
-
-PetscErrorCode PcRefreshDestroy(void *ctx) {
-  PetscFunctionBeginUser;
-  delete (PcRefresh *)ctx;
-  PetscFunctionReturn(0);
-}
 
 PetscErrorCode AfterKrylovSolve(KSP ksp, Vec, Vec, void *ctx) {
   auto *c = (PcRefresh *)ctx;
@@ -50,12 +46,7 @@ PetscErrorCode PcRefreshSetUp(Problem *P, SNES snes) {
              "-etfe_pc_refresh_its %" PetscInt_FMT ": an iteration count, >= 0 (0: off)", n);
   if (n == 0) PetscFunctionReturn(0);
   auto *c = new PcRefresh{snes, n};
-  PetscContainer holder;
-  PetscCall(PetscContainerCreate(P->comm, &holder));
-  PetscCall(PetscContainerSetPointer(holder, c));
-  PetscCall(PetscContainerSetUserDestroy(holder, PcRefreshDestroy));
-  PetscCall(PetscObjectCompose((PetscObject)snes, "etfe_pc_refresh", (PetscObject)holder));
-  PetscCall(PetscContainerDestroy(&holder));
+  PetscCall(ComposeOwnedContext((PetscObject)snes, "etfe_pc_refresh", c));
   PetscCall(SNESSetLagPreconditioner(snes, -2));  // built at the first Jacobian, then kept
   PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
   PetscCall(SNESGetKSP(snes, &ksp));

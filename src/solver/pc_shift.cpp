@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "etfe/log_events.h"
+#include "etfe/owned_context.h"
 #include "etfe/tangent_shift.h"
 
 namespace etfe {
@@ -11,6 +12,10 @@ namespace etfe {
 namespace {
 
 struct PcShift {
+  ~PcShift() {
+    VecDestroy(&mass);
+    VecDestroy(&work);
+  }
   Problem *problem = nullptr;
   Vec mass = nullptr;  // lumped reference area per DOF [mm^2], 0 at constrained DOFs
   Vec work = nullptr;
@@ -19,15 +24,6 @@ struct PcShift {
   PetscReal fnorm0 = 0.0;
   PetscObjectState nz_state = -1;  // J's nonzero state when P last took J's pattern
 };
-
-PetscErrorCode PcShiftDestroy(void *ctx) {
-  auto *c = (PcShift *)ctx;
-  PetscFunctionBeginUser;
-  PetscCall(VecDestroy(&c->mass));
-  PetscCall(VecDestroy(&c->work));
-  delete c;
-  PetscFunctionReturn(0);
-}
 
 // The lumped area matrix's diagonal: a third of each element's reference area to each of its
 // nodes' 3 DOFs (summed over the ranks through the ghosts), and the film's total area.
@@ -115,16 +111,11 @@ PetscErrorCode PcShiftSetUp(Problem *P, SNES snes) {
              "-etfe_pc_shift %g: the foundation is relative to E h and must be >= 0", (double)s);
   if (s == 0) PetscFunctionReturn(0);
   auto *c = new PcShift;
-  PetscContainer holder;
   Mat Pmat;
   double area;
   c->problem = P;
   c->adaptive = adaptive;
-  PetscCall(PetscContainerCreate(P->comm, &holder));
-  PetscCall(PetscContainerSetPointer(holder, c));
-  PetscCall(PetscContainerSetUserDestroy(holder, PcShiftDestroy));
-  PetscCall(PetscObjectCompose((PetscObject)snes, "etfe_pc_shift", (PetscObject)holder));
-  PetscCall(PetscContainerDestroy(&holder));
+  PetscCall(ComposeOwnedContext((PetscObject)snes, "etfe_pc_shift", c));
   PetscCall(VecDuplicate(P->U, &c->mass));
   PetscCall(VecDuplicate(P->U, &c->work));
   PetscCall(LumpedArea(P, c->mass, &area));
