@@ -120,7 +120,19 @@ PetscErrorCode PcShiftSetUp(Problem *P, SNES snes) {
   PetscCall(VecDuplicate(P->U, &c->work));
   PetscCall(LumpedArea(P, c->mass, &area));
   c->k = s * P->AxialStiffness() / area;
-  PetscCall(MatDuplicate(P->J, MAT_DO_NOT_COPY_VALUES, &Pmat));
+  {
+    // A placeholder of J's sizes and type (an unassembled BAIJ matrix cannot be duplicated): the
+    // first Jacobian evaluation puts a copy of J in its place (CopyTangent).
+    PetscInt m, n, M, N;
+    MatType type;
+    PetscCall(MatGetLocalSize(P->J, &m, &n));
+    PetscCall(MatGetSize(P->J, &M, &N));
+    PetscCall(MatGetType(P->J, &type));
+    PetscCall(MatCreate(P->comm, &Pmat));
+    PetscCall(MatSetSizes(Pmat, m, n, M, N));
+    PetscCall(MatSetBlockSize(Pmat, 3));
+    PetscCall(MatSetType(Pmat, type));
+  }
   PetscCall(SNESSetJacobian(snes, P->J, Pmat, FormPcShiftedJacobian, c));
   PetscCall(MatDestroy(&Pmat));
   PetscFunctionReturn(0);
