@@ -16,4 +16,9 @@ namespace etfe {
 // changes.
 PetscErrorCode PcRefreshSetUp(Problem *problem, SNES snes);
 
+// Whether snes's last solve failed because its Krylov method ran out of iterations or diverged
+// (not a direct solver's failure, not a nonlinear one): such an increment is cut back rather than
+// solved again stabilized, whose answer differs from Newton's by the stabilization's tolerance.
+PetscErrorCode KrylovSolveFailed(SNES snes, PetscBool *failed);
+
 } // namespace etfe

@@ -25,6 +25,7 @@
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
 #include "etfe/log_events.h"
+#include "etfe/pc_refresh.h"
 #include "etfe/tangent_shift.h"
 #include "load_stepper_internal.h"
 
@@ -317,8 +318,11 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, inc->max_it, s->snes_max_f));
   inc->its = 0;
   const bool always = o.stabilize_when == 2;
+  PetscBool krylov_failed = PETSC_FALSE;
   if (!always) PetscCall(NewtonSolve(s, inc));
-  if (always || (!inc->Converged() && o.stabilize_when == 1)) PetscCall(StabilizedSolve(s, inc, !always));
+  if (!always && !inc->Converged()) PetscCall(KrylovSolveFailed(s->snes, &krylov_failed));
+  if (always || (!inc->Converged() && o.stabilize_when == 1 && !krylov_failed))
+    PetscCall(StabilizedSolve(s, inc, !always));
   PetscCall(PetscLogEventEnd(LogEvents().increment, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }

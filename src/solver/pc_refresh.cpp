@@ -32,6 +32,21 @@ PetscErrorCode AfterKrylovSolve(KSP ksp, Vec, Vec, void *ctx) {
 
 } // namespace
 
+PetscErrorCode KrylovSolveFailed(SNES snes, PetscBool *failed) {
+  SNESConvergedReason reason;
+  KSPConvergedReason kreason;
+  KSP ksp;
+  PetscBool preonly;
+  PetscFunctionBeginUser;
+  PetscCall(SNESGetConvergedReason(snes, &reason));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &preonly));
+  PetscCall(KSPGetConvergedReason(ksp, &kreason));
+  *failed = reason == SNES_DIVERGED_LINEAR_SOLVE && !preonly && kreason != KSP_DIVERGED_PC_FAILED ? PETSC_TRUE
+                                                                                                    : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PcRefreshSetUp(Problem *P, SNES snes) {
   PetscInt n = 0;
   KSP ksp;
