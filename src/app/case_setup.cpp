@@ -6,6 +6,7 @@
 #include "etfe/checkpoint.h"
 #include "etfe/contact.h"
 #include "etfe/material.h"
+#include "linear_path.h"
 #include "solver_defaults.h"
 
 namespace etfe {
@@ -20,6 +21,12 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
     material = MaterialCreatePrescribedStress(c->ffo.ratio * c->ffo.stress, c->ffo.stress);
   } else {
     PetscCall(MaterialCreateFromOptions(comm, &material));
+  }
+  {
+    // The linear path first: it may name the matrix type and the near-null space the problem reads.
+    PetscInt nodes = (PetscInt)scene.mesh.coords.size() / 3;
+    PetscCallMPI(MPI_Bcast(&nodes, 1, MPIU_INT, 0, comm));  // rank 0 alone holds the mesh
+    PetscCall(ChooseLinearPath(comm, nodes));
   }
   auto *P = new Problem();
   c->P = P;

@@ -8,9 +8,11 @@
 
 namespace etfe {
 
-// Reads -etfe_solver auto|direct|scalable and, where the scalable path is chosen, puts its
-// settings into the options database (before the solver reads it) and prints why. auto keeps
-// whatever the options say below the thresholds, and a Krylov method the options name above them.
-PetscErrorCode ChooseLinearPath(Problem *P);
+// Reads -etfe_solver auto|direct|scalable and, where the scalable path is chosen for a system of
+// num_nodes nodes (3 DOF each) on comm's ranks, puts its settings into the options database and
+// prints why. Called before the problem reads its options (the path names the matrix type and the
+// near-null space). auto keeps whatever the options say below the thresholds, and a Krylov
+// method the options name above them.
+PetscErrorCode ChooseLinearPath(MPI_Comm comm, PetscInt num_nodes);
 
 } // namespace etfe

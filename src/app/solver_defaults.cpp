@@ -8,7 +8,6 @@
 #include "etfe/pc_refresh.h"
 #include "etfe/pc_shift.h"
 #include "etfe/tangent_shift.h"
-#include "linear_path.h"
 
 namespace etfe {
 
@@ -57,7 +56,6 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   SNESLineSearch ls;
   Vec F;
   PetscFunctionBeginUser;
-  PetscCall(ChooseLinearPath(P));
   PetscCall(SNESCreate(P->comm, snes));
   PetscCall(VecDuplicate(P->U, &F));
   PetscCall(SNESSetFunction(*snes, F, FormResidual, P));

@@ -1,7 +1,8 @@
 """The linear-solver paths give Newton's answer, not their own: DD1511 at the thesis density, 40
 increments, with the direct default (PETSc's LU), the scalable path (-etfe_solver scalable: GMRES
-+ lagged MUMPS BLR), the automatic choice pushed over its threshold (-etfe_scalable_min_dof) and
-GMRES + GAMG on the shifted preconditioning matrix (options/solvers/gmres_gamg_shifted.opts):
++ GAMG), the automatic choice pushed over its threshold (-etfe_scalable_min_dof), FGMRES +
+GAMG on the shifted preconditioning matrix (options/solvers/gmres_gamg_shifted.opts) and GMRES
+with a lagged MUMPS BLR factorization (options/solvers/gmres_mumps_blr_lagged.opts):
 part A/B Mises and the five slides of every increment agree to 1e-8 of each quantity's largest
 value. Below the thresholds the automatic choice keeps the direct solver and says nothing. A
 Krylov solve that fails names its method and reason, and the increment is cut back."""
@@ -29,12 +30,16 @@ def test(etfe, chk):
         chk.check(CHOSEN not in out0 and "KSP preonly" in out0,
                   "below the thresholds the automatic choice keeps the direct solver and prints nothing")
         chk.check(len(h0) == 40, "direct: %d history rows of 40" % len(h0))
+        out, _, _ = case("auto", ["-etfe_scalable_min_dof", 1000, "-load_stop_after", 1])
+        chk.check(CHOSEN in out and "chosen automatically" in out and "KSP fgmres, PC gamg" in out,
+                  "auto: over -etfe_scalable_min_dof the scalable path is chosen and printed with why")
         for name, extra, says in (("scalable", ["-etfe_solver", "scalable"], "as -etfe_solver asks"),
-                                  ("auto", ["-etfe_scalable_min_dof", 1000], "chosen automatically"),
-                                  ("gamg", ["-options_file", "options/solvers/gmres_gamg_shifted.opts"], None)):
+                                  ("gamg", ["-options_file", "options/solvers/gmres_gamg_shifted.opts"], None),
+                                  ("blr_lagged", ["-options_file", "options/solvers/gmres_mumps_blr_lagged.opts",
+                                                  "-etfe_lu_native_max_dof", 0], None)):
             out, its, h = case(name, extra)
             if says:
-                chk.check(CHOSEN in out and says in out and "KSP gmres" in out,
+                chk.check(CHOSEN in out and says in out and "KSP fgmres" in out,
                           "%s: the scalable path is printed with why (%s)" % (name, says))
             chk.check(len(h) == len(h0), "%s: %d history rows" % (name, len(h)))
             # Krylov solves to 1e-4 make an inexact Newton method: a few more iterations (GAMG: 18 %)
