@@ -1,9 +1,10 @@
 // A preconditioner kept while it works (-etfe_pc_refresh_its n): a factorization (MUMPS, with
 // block low-rank compression or not) or an AMG hierarchy is built once and reused by the Krylov
 // solves of later Newton iterations and increments, and rebuilt at the next Newton iteration once
-// a solve needed more than n iterations or failed (Code_Aster's lagged preconditioner). A failed
-// solve still fails its Newton iteration (the increment is cut back); the retry starts with a
-// fresh preconditioner.
+// a solve needed more than n iterations or failed (Code_Aster's lagged preconditioner). A solve
+// that ran out of iterations does not fail the Newton iteration: its direction goes to the etfe
+// line search, which refuses it when |J y - F|/|F| > 1e-2, and the next iteration has a fresh
+// preconditioner.
 #pragma once
 #include <petscsnes.h>
 

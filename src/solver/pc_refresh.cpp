@@ -64,6 +64,10 @@ PetscErrorCode PcRefreshSetUp(Problem *P, SNES snes) {
   PetscCall(ComposeOwnedContext((PetscObject)snes, "etfe_pc_refresh", c));
   PetscCall(SNESSetLagPreconditioner(snes, -2));  // built at the first Jacobian, then kept
   PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
+  // A solve that runs out of iterations with stale factors still gives a direction: the Newton
+  // iteration goes on with it (the etfe line search refuses it when |J y - F|/|F| > 1e-2) and the
+  // next one has fresh factors, instead of the whole increment being cut back.
+  PetscCall(SNESSetMaxLinearSolveFailures(snes, PETSC_MAX_INT));
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPSetPostSolve(ksp, AfterKrylovSolve, c));
   PetscFunctionReturn(0);
