@@ -6,7 +6,7 @@
 // the foundation over the whole film is s times its axial stiffness whatever the mesh. A slack
 // film's tangent has almost no out-of-plane stiffness at the coarse scales AMG builds; the
 // foundation gives them some. With -etfe_pc_shift_adaptive (default) k is scaled by
-// min(1, |F_k|/|F_0|) of the Newton solve: it fades as the film tensions and the solve converges.
+// min(1, |F_k|/|F_0|) of the Newton solve: it fades as the solve converges.
 #pragma once
 #include <petscsnes.h>
 

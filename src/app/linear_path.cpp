@@ -51,13 +51,13 @@ PetscErrorCode NamesKrylov(PetscBool *krylov) {
 
 PetscErrorCode ChooseLinearPath(MPI_Comm comm, PetscInt num_nodes) {
   PetscInt choice = kAuto, min_dof = 3000000, min_ranks = 16;
-  PetscBool krylov;
+  PetscBool krylov = PETSC_FALSE;
   PetscMPIInt size;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscOptionsBegin(comm, nullptr, "Linear solver path", "KSP");
   PetscCall(PetscOptionsEList("-etfe_solver",
-                              "auto: the options' (direct) solver below the thresholds, the scalable path (GMRES + "
+                              "auto: the options' (direct) solver below the thresholds, the scalable path (FGMRES + "
                               "GAMG) above; direct: the options as given; scalable: always the scalable path",
                               "", kChoiceNames, 3, kChoiceNames[choice], &choice, nullptr));
   PetscCall(PetscOptionsInt("-etfe_scalable_min_dof", "auto: the scalable path from this many DOF", "", min_dof,

@@ -104,7 +104,7 @@ PetscErrorCode PcShiftSetUp(Problem *P, SNES snes) {
                              "the Krylov solve keeps J, so Newton's answer does not move. 0: from J",
                              "", s, &s, nullptr));
   PetscCall(PetscOptionsBool("-etfe_pc_shift_adaptive",
-                             "Scale k by min(1, |F_k|/|F_0|) of the Newton solve (it fades as the film tensions)", "",
+                             "Scale k by min(1, |F_k|/|F_0|) of the Newton solve (it fades as the solve converges)", "",
                              adaptive, &adaptive, nullptr));
   PetscOptionsEnd();
   PetscCheck(s >= 0, P->comm, PETSC_ERR_ARG_OUTOFRANGE,
