@@ -8,6 +8,7 @@
 #include "etfe/contact.h"
 #include "etfe/input_plausibility.h"
 #include "etfe/material.h"
+#include "linear_path.h"
 #include "solver_defaults.h"
 
 namespace etfe {
@@ -23,6 +24,12 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
   } else {
     PetscCall(MaterialCreateFromOptions(comm, &material));
     PetscCall(MaterialCheckPlausible(comm, *material));
+  }
+  {
+    // The linear path first: it may name the matrix type and the near-null space the problem reads.
+    PetscInt nodes = (PetscInt)scene.mesh.coords.size() / 3;
+    PetscCallMPI(MPI_Bcast(&nodes, 1, MPIU_INT, 0, comm));  // rank 0 alone holds the mesh
+    PetscCall(ChooseLinearPath(comm, nodes));
   }
   auto *P = new Problem();
   c->P = P;

@@ -6,6 +6,8 @@
 #include "etfe/assembly.h"
 #include "etfe/chamber.h"
 #include "etfe/linesearch.h"
+#include "etfe/pc_refresh.h"
+#include "etfe/pc_shift.h"
 #include "etfe/tangent_shift.h"
 
 namespace etfe {
@@ -86,6 +88,8 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
       PetscCall(PetscInfo(ksp, "sealed gas chambers: KSP preonly replaced by GMRES on the rank-one-updated tangent\n"));
     }
   }
+  PetscCall(PcShiftSetUp(P, *snes));
+  PetscCall(PcRefreshSetUp(P, *snes));
   PetscCall(SNESGetLineSearch(*snes, &ls));
   PetscCall(SNESLineSearchEtfeSetProblem(ls, P));
   PetscFunctionReturn(0);

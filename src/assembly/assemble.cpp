@@ -16,6 +16,7 @@
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
 #include "etfe/kernels/wrinkling.h"
+#include "etfe/log_events.h"
 
 namespace etfe {
 
@@ -179,6 +180,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscInt bad = -1;
   double ext2 = 0.0;  // sum of squares of external nodal loads (an estimate of their norm)
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().residual, 0, 0, 0, 0));
   PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
   AddMembraneForces(P, u, f, &status, &bad);
   if (P->chambers) {
@@ -204,6 +206,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
     ext2 += v * v;
   }
   if (P->contact) {
+    PetscCall(PetscLogEventBegin(LogEvents().contact, 0, 0, 0, 0));
     for (ContactPair &pr : P->contact->pairs) {
       const PetscInt l = pr.local_node;
       double fg[3];
@@ -213,6 +216,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
       }
       for (int i = 0; i < 3; ++i) f[3 * l + i] += fg[i];
     }
+    PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
   }
   PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
   if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationForce(P, U, Fout));
@@ -240,6 +244,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscCall(ReduceStatus(P, status, bad));
   if (P->diagnostics.bad_status != KERNEL_OK && snes && !P->diagnostics.in_linesearch)
     PetscCall(SNESSetFunctionDomainError(snes));
+  PetscCall(PetscLogEventEnd(LogEvents().residual, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -266,6 +271,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   int status = KERNEL_OK;
   PetscInt bad = -1;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().jacobian, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(Pmat));
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   // Per element the pressure of every load on it (the load stiffness is linear in p).
@@ -308,6 +314,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     PetscCall(MatSetValuesBlocked(Pmat, 3, &P->element_global[3 * e], 3, &P->element_global[3 * e], K, ADD_VALUES));
   }
   if (P->contact) {
+    PetscCall(PetscLogEventBegin(LogEvents().contact, 0, 0, 0, 0));
     for (ContactPair &pr : P->contact->pairs) {
       const PetscInt l = pr.local_node;
       double fg[3], K[9];
@@ -317,6 +324,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
           for (int j = 0; j < 3; ++j) K[3 * i + j] = K[3 * j + i] = 0.0;
       PetscCall(MatSetValuesBlockedLocal(Pmat, 1, &l, 1, &l, K, ADD_VALUES));
     }
+    PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
   }
   if (P->chambers) PetscCall(ChamberTangent(P, u));
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
@@ -332,6 +340,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   }
   PetscCall(ReduceStatus(P, status, bad));
+  PetscCall(PetscLogEventEnd(LogEvents().jacobian, 0, 0, 0, 0));
   PetscCheck(P->diagnostics.bad_status == KERNEL_OK, P->comm, PETSC_ERR_NOT_CONVERGED,
              "Jacobian: element %" PetscInt_FMT ": %s (the residual at the same state passed)",
              P->diagnostics.bad_element, KernelStatusName(P->diagnostics.bad_status));

@@ -13,6 +13,7 @@
 #include "etfe/chamber.h"
 #include "etfe/contact.h"
 #include "etfe/h5io.h"
+#include "etfe/log_events.h"
 #include "etfe/rank0.h"
 
 namespace etfe {
@@ -264,6 +265,7 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
                                const std::string &run_id) {
   const std::string tmp = path + ".tmp";
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().checkpoint, 0, 0, 0, 0));
   if (P->rank == 0) {
     std::error_code ec;
     auto dir = std::filesystem::path(path).parent_path();
@@ -293,6 +295,7 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
   PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, P->comm));
   PetscCheck(ok, P->comm, PETSC_ERR_FILE_WRITE, "cannot sync and rename %s to %s (the previous checkpoint is kept)",
              tmp.c_str(), path.c_str());
+  PetscCall(PetscLogEventEnd(LogEvents().checkpoint, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -9,6 +9,7 @@
 //                -load_force_roundoff (the round-off floor of the force test)
 //                -membrane_tangent_* (shift, adaptive shift, tension only: the Newton path only)
 //                -membrane_near_null_space (what AMG is told about the tangent)
+//                -etfe_pc_*, -etfe_solver, -etfe_scalable_* (the linear solver)
 //   output       -output* -checkpoint_* -restart -contact_probe_nodes -saddle_history
 //                -load_monitor -load_stop_after -formfind_monitor
 //   diagnostics  PETSc's own (-log*, -info, -malloc*, -options_*, -help, ...), -etfe_traceback
@@ -36,7 +37,7 @@ const char *const kMayChange[] = {
     "snes_", "ksp_", "pc_", "mat_", "sub_", "mg_", "redundant_", "fieldsplit_",
     "load_force_rtol", "load_max_cutbacks", "load_max_it", "load_grow_after", "load_easy_iterations", "load_extrapolate",
     "load_tangent_predictor", "membrane_tangent_", "formfind_monitor", "load_force_roundoff",
-    "membrane_near_null_space", "etfe_lu_native_max_dof",
+    "membrane_near_null_space", "etfe_lu_native_max_dof", "etfe_pc_", "etfe_solver", "etfe_scalable_",
     "output", "checkpoint_", "restart", "contact_probe_nodes", "saddle_history", "load_monitor", "load_stop_after",
     "log", "info", "malloc", "memory_", "options_", "help", "etfe_traceback", "fp_trap", "on_error", "history",
     "viewer", "objects_", "check_pointer", "checkstack", "no_signal_handler", "debugger", "start_in_debugger",

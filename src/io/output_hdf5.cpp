@@ -18,6 +18,7 @@
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
 #include "etfe/h5io.h"
+#include "etfe/log_events.h"
 #include "etfe/output.h"
 #include "etfe/output_fields.h"
 #include "xdmf.h"
@@ -478,6 +479,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
   if (!out->steps.empty() && out->steps.back().first == step) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(LogEvents().output, 0, 0, 0, 0));
   PetscCall(ComputeCellFields(P, U_fields ? U_fields : U, &v.cells));
   if (P->contact) ContactValues(*P->contact, &v);
   char name[64];
@@ -508,6 +510,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
     PetscCheck(all, P->comm, PETSC_ERR_FILE_WRITE, "HDF5: flush of %s failed (disk full?)", out->path.c_str());
   }
   PetscCall(WriteXdmfEverywhere(out));
+  PetscCall(PetscLogEventEnd(LogEvents().output, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

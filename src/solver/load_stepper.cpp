@@ -25,6 +25,8 @@
 #include "etfe/contact.h"
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
+#include "etfe/log_events.h"
+#include "etfe/pc_refresh.h"
 #include "etfe/tangent_shift.h"
 #include "load_stepper_internal.h"
 
@@ -229,6 +231,7 @@ PetscErrorCode PredictIncrement(LoadStepper *s, const Increment &inc) {
   Problem *P = s->P;
   const LoadStepperOptions &o = s->o;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().predictor, 0, 0, 0, 0));
   PetscCall(VecCopy(s->U_committed, P->U));
   // Extrapolate only within a stage: at a stage end the load path turns (loading -> unloading).
   // (increments never cross a stage end, so away from one the last increment is in this stage)
@@ -240,6 +243,7 @@ PetscErrorCode PredictIncrement(LoadStepper *s, const Increment &inc) {
     PetscCall(VecAXPBYPCZ(P->U, ratio, -ratio, 1.0, s->U_committed, s->U_previous));
   } else if (o.tangent_predictor && s->converged_states >= 1)
     PetscCall(TangentPredictor(P, s->snes, s->U_committed, inc.t, inc.t_new, o.tangent_predictor_shift, P->U));
+  PetscCall(PetscLogEventEnd(LogEvents().predictor, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -311,6 +315,7 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   Problem *P = s->P;
   const LoadStepperOptions &o = s->o;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(LogEvents().increment, 0, 0, 0, 0));
   PetscCall(PetscTime(&inc->start));
   PetscCall(PredictIncrement(s, *inc));
   P->material->SetIncrementSeconds(P->clock.Seconds(inc->t_new) - P->clock.Seconds(inc->t));
@@ -319,8 +324,12 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, inc->max_it, s->snes_max_f));
   inc->its = 0;
   const bool always = o.stabilize_when == 2;
+  PetscBool krylov_failed = PETSC_FALSE;
   if (!always) PetscCall(NewtonSolve(s, inc));
-  if (always || (!inc->Converged() && o.stabilize_when == 1)) PetscCall(StabilizedSolve(s, inc, !always));
+  if (!always && !inc->Converged()) PetscCall(KrylovSolveFailed(s->snes, &krylov_failed));
+  if (always || (!inc->Converged() && o.stabilize_when == 1 && !krylov_failed))
+    PetscCall(StabilizedSolve(s, inc, !always));
+  PetscCall(PetscLogEventEnd(LogEvents().increment, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -86,6 +86,9 @@ struct IncrementFailure {
   int bad_status;
   bool stiff_penalty;  // contact penalties far stiffer than the film
   bool load_max_it;    // the attempt's iteration limit was -load_max_it, not -snes_max_it
+  std::string linear;  // the linear solver ("gmres + gamg"; "preonly + lu" for a direct one)
+  KSPConvergedReason ksp_reason = KSP_CONVERGED_ITERATING;  // its last solve
+  PetscInt ksp_its = 0;
 
   std::string Message() const {
     char why[512];
@@ -99,6 +102,13 @@ struct IncrementFailure {
     else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
       std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual %.3e at node %lld)",
                     name, (long long)bad_element, KernelStatusName(bad_status), worst, (long long)worst_node);
+    else if (reason == SNES_DIVERGED_LINEAR_SOLVE && linear.rfind("preonly", 0) != 0)
+      std::snprintf(why, sizeof why,
+                    "%s (the Krylov solve %s stopped with %s after %lld iterations: the preconditioner does not "
+                    "carry this tangent; raise -ksp_max_it, try -etfe_pc_shift, or a direct solver: "
+                    "-options_file options/solvers/mumps_lu.opts; largest residual %.3e at node %lld)",
+                    name, linear.c_str(), KSPConvergedReasons[ksp_reason], (long long)ksp_its, worst,
+                    (long long)worst_node);
     else if (reason == SNES_DIVERGED_LINEAR_SOLVE)
       std::snprintf(why, sizeof why,
                     "%s (the linear solver failed: a singular tangent, e.g. an unsupported rigid motion, or MUMPS out "

@@ -121,6 +121,19 @@ PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, Incre
   f->bad_status = P->diagnostics.bad_status;
   f->stiff_penalty = P->contact && P->contact->params.kn > 1e5 * P->AxialStiffness();
   f->load_max_it = inc.max_it < s.snes_max_it;
+  {
+    KSP ksp;
+    PC pc;
+    KSPType kt;
+    PCType pt;
+    PetscCall(SNESGetKSP(s.snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(KSPGetType(ksp, &kt));
+    PetscCall(PCGetType(pc, &pt));
+    f->linear = std::string(kt ? kt : "?") + " + " + (pt ? pt : "?");
+    PetscCall(KSPGetConvergedReason(ksp, &f->ksp_reason));
+    PetscCall(KSPGetIterationNumber(ksp, &f->ksp_its));
+  }
   PetscFunctionReturn(0);
 }
 
