@@ -1,9 +1,9 @@
 // The regularized preconditioning matrix P = J + k M (pc_shift.h).
-#include "etfe/chamber.h"
 #include "etfe/pc_shift.h"
 
 #include <algorithm>
 
+#include "etfe/chamber.h"
 #include "etfe/log_events.h"
 #include "etfe/owned_context.h"
 #include "etfe/tangent_shift.h"
