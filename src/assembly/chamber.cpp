@@ -160,6 +160,13 @@ PetscErrorCode ChamberCommit(Problem *P, double t) {
   ChamberSet &c = *P->chambers;
   PetscFunctionBeginUser;
   PetscCall(ChamberUpdate(P, P->U));
+  for (size_t k = 0; k < c.volume.size(); ++k)
+    PetscCheck(c.volume[k] > 0, P->comm,
+               PETSC_ERR_NOT_CONVERGED,
+               "chamber %s turned inside out at load time %g (volume %g m^3): its foils passed through each other "
+               "(a load heavier than the inflation pressure); contact between the layers is not modelled, so the "
+               "state cannot be trusted from here. Lower the load or raise the pressure, or seal the chamber",
+               P->scene.chambers[k].name.c_str(), t, 1e-9 * c.volume[k]);
   for (size_t k = 0; k < c.volume.size(); ++k) {
     const ChamberSpec &s = P->scene.chambers[k];
     if (c.sealed[k] || s.sealed_from_stage <= 1 || std::fabs(t - (s.sealed_from_stage - 1)) > 1e-9) continue;

@@ -211,8 +211,54 @@ PetscErrorCode FitRigidCurve(MPI_Comm comm, const MeshData &m, const RigidInput 
 
 } // namespace
 
+// Rank 0: a chamber's volume is exact only if it is closed: every edge of its boundary surface that
+// only one of its triangles has must stay on a plane through the origin (a clamped rim, a symmetry
+// plane). Returns "" or a message naming the first edge that can move off it.
+std::string ChamberOpenEdge(const MeshData &m, const ChamberInput &c, const std::vector<int> &held_mask) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const std::string &g : c.groups)
+    for (int e : m.element_sets.at(g))
+      for (int k = 0; k < 3; ++k) {
+        const int a = m.triangles[3 * e + k], b = m.triangles[3 * e + (k + 1) % 3];
+        uses[{std::min(a, b), std::max(a, b)}]++;
+      }
+  for (const auto &kv : uses) {
+    if (kv.second != 1) continue;
+    const double *a = &m.coords[3 * kv.first.first], *b = &m.coords[3 * kv.first.second];
+    double u[3], v[3], n[3];
+    for (int i = 0; i < 3; ++i) u[i] = a[i] - c.origin[i], v[i] = b[i] - c.origin[i];
+    n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
+    const double len = std::hypot(n[0], n[1], n[2]);
+    if (len == 0) continue;  // the edge runs through the origin
+    for (int node : {kv.first.first, kv.first.second}) {
+      double off = 0.0;  // the part of the plane's normal the node may move along
+      for (int i = 0; i < 3; ++i)
+        if (!(held_mask[node] & (1 << i))) off += n[i] * n[i];
+      if (std::sqrt(off) > 1e-6 * len) {
+        const long long tag = m.node_tags.empty() ? node : m.node_tags[node];
+        return "chamber " + c.name + " is not closed: node " + std::to_string(tag) + " at (" + std::to_string(a[0]) +
+               ", " + std::to_string(a[1]) + ", " + std::to_string(a[2]) +
+               ") lies on an edge of its surfaces that no other of its triangles shares, and it may move off the "
+               "plane through -chamber_" + c.name + "_origin that closes it: add the surface that closes it to "
+               "-chamber_" + c.name + "_groups, clamp that edge (-bc_<group>_fix xyz), or put the origin on the "
+               "symmetry planes that close it";
+      }
+    }
+  }
+  return "";
+}
+
 PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
+  std::vector<int> held_mask;  // rank 0: per node, bit i set where component i is prescribed
+  std::string err;
   PetscFunctionBeginUser;
+  if (SceneHoldsMesh(comm) && !in.chambers.empty()) {
+    held_mask.assign(scene->mesh.NumNodes(), 0);
+    for (const DofConstraint &d : scene->constraints) held_mask[d.node] |= 1 << d.comp;
+    for (const ChamberInput &c : in.chambers)
+      if (err.empty()) err = ChamberOpenEdge(scene->mesh, c, held_mask);
+  }
+  PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
   scene->atmosphere = kPaToMPa * in.atmosphere;
   for (size_t k = 0; k < in.chambers.size(); ++k) {
     const ChamberInput &c = in.chambers[k];

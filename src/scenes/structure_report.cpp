@@ -33,7 +33,7 @@ struct StructureContext {
 // Per item: sums of Exx, Eyy, Exy, Mises, count; maxima of Mises, ep; wrinkled count.
 struct Figures {
   std::vector<double> mean;     // 4 per item
-  std::vector<double> peak;     // 2 per item (PK2 Mises, plastic strain)
+  std::vector<double> peak;     // 3 per item (PK2 Mises, plastic strain, largest displacement)
   std::vector<double> count;    // 2 per item (elements, wrinkled)
   std::vector<double> probe_e;  // smin, emin per probe element
   std::vector<double> probe_n;  // uX, uY, uZ, slide X, slide Y per probe node
@@ -73,7 +73,14 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
   const LocalMesh &m = P->mesh;
   const size_t ni = c->items.size(), npe = c->probe_elements.size(), npn = c->probe_nodes.size();
   PetscFunctionBeginUser;
-  std::vector<double> sums(6 * ni + 2 * npe + 5 * npn + 3 * c->supports.size(), 0.0), peaks(2 * ni, 0.0);
+  std::vector<double> sums(6 * ni + 2 * npe + 5 * npn + 3 * c->supports.size(), 0.0), peaks(3 * ni, 0.0);
+  // Displacements of the elements' nodes (ghosts included): each group's largest.
+  Vec Ul;
+  const PetscScalar *ul;
+  PetscCall(VecGhostUpdateBegin(P->U, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(P->U, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(P->U, &Ul));
+  PetscCall(VecGetArrayRead(Ul, &ul));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     for (size_t k = 0; k < ni; ++k) {
       if (!c->in_item[k][e]) continue;
@@ -82,12 +89,18 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
       acc[3] += f.mises[e], acc[4] += 1.0;
       // Wrinkled: the tension field's state where it is on, else a compressive principal stress.
       sums[5 * ni + k] += f.wrinkle_state.empty() ? f.smin[e] <= 0 : f.wrinkle_state[e] != 0;
-      peaks[2 * k] = std::max(peaks[2 * k], f.mises[e]);
-      if (!f.ep_bar.empty()) peaks[2 * k + 1] = std::max(peaks[2 * k + 1], f.ep_bar[e]);
+      peaks[3 * k] = std::max(peaks[3 * k], f.mises[e]);
+      if (!f.ep_bar.empty()) peaks[3 * k + 1] = std::max(peaks[3 * k + 1], f.ep_bar[e]);
+      for (int a = 0; a < 3; ++a) {
+        const PetscScalar *d = &ul[3 * m.tri[3 * e + a]];
+        peaks[3 * k + 2] = std::max(peaks[3 * k + 2], (double)std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+      }
     }
     for (size_t k = 0; k < npe; ++k)
       if (m.element_natural[e] == c->probe_elements[k]) sums[6 * ni + 2 * k] = f.smin[e], sums[6 * ni + 2 * k + 1] = f.emin[e];
   }
+  PetscCall(VecRestoreArrayRead(Ul, &ul));
+  PetscCall(VecGhostRestoreLocalForm(P->U, &Ul));
   double *probe_n = &sums[6 * ni + 2 * npe];
   const PetscScalar *u, *r;
   PetscCall(VecGetArrayRead(P->U, &u));
@@ -137,7 +150,7 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
 std::string Header(const Problem *P, const StructureContext *c, bool contact) {
   std::string h = P->clock.Active() ? "step,time,seconds" : "step,time";  // seconds: -load_stage_duration, holds
   for (const std::string &g : c->items)
-    for (const char *k : {"_Exx", "_Eyy", "_Exy", "_mises", "_mises_max", "_ep_max", "_wrinkled"}) h += "," + g + k;
+    for (const char *k : {"_Exx", "_Eyy", "_Exy", "_mises", "_mises_max", "_ep_max", "_u_max", "_wrinkled"}) h += "," + g + k;
   for (size_t k = 1; k <= c->probe_elements.size(); ++k)
     h += ",element" + std::to_string(k) + "_smin,element" + std::to_string(k) + "_emin";
   for (size_t k = 1; k <= c->probe_nodes.size(); ++k) {
@@ -170,7 +183,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   if (P->clock.Active()) std::fprintf(out, ",%.10g", P->clock.Seconds(t));
   for (size_t k = 0; k < c->items.size(); ++k) {
     for (int i = 0; i < 4; ++i) std::fprintf(out, ",%.8e", v.mean[4 * k + i]);
-    std::fprintf(out, ",%.8e,%.8e,%.0f", v.peak[2 * k], v.peak[2 * k + 1], v.count[2 * k + 1]);
+    std::fprintf(out, ",%.8e,%.8e,%.8e,%.0f", v.peak[3 * k], v.peak[3 * k + 1], v.peak[3 * k + 2], v.count[2 * k + 1]);
   }
   for (double x : v.probe_e) std::fprintf(out, ",%.8e", x);
   for (size_t k = 0; k < c->probe_nodes.size(); ++k)
@@ -199,9 +212,10 @@ PetscErrorCode Report(Problem *P, void *vctx) {
   for (size_t k = 0; k < c->items.size(); ++k)
     PetscCall(PetscPrintf(P->comm,
                           "structure: %s (%.0f elements): mean mises = %.4f MPa (PK2; Exx %.5f, Eyy %.5f, Exy %.5f), "
-                          "mises_max = %.4f MPa, plastic_strain_max = %.5f, wrinkled = %.0f elements\n",
+                          "mises_max = %.4f MPa, plastic_strain_max = %.5f, largest displacement %.4f mm, wrinkled = "
+                          "%.0f elements\n",
                           c->items[k].c_str(), v.count[2 * k], v.mean[4 * k + 3], v.mean[4 * k], v.mean[4 * k + 1],
-                          v.mean[4 * k + 2], v.peak[2 * k], v.peak[2 * k + 1], v.count[2 * k + 1]));
+                          v.mean[4 * k + 2], v.peak[3 * k], v.peak[3 * k + 1], v.peak[3 * k + 2], v.count[2 * k + 1]));
   for (size_t k = 0; k < c->supports.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N\n", c->supports[k].c_str(),
                           v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2]));

@@ -11,7 +11,9 @@
 * The three-layer cushion (two chambers, -mesh_welds): 2 ranks agree with 1; a restart inside
   the sealed stage is bit for bit; a restart with another kappa is refused.
 * Bad input: a chamber group that does not exist, signs of the wrong count, a gauge pressure below
-  minus the atmosphere, a chamber sealed from the start that encloses nothing.
+  minus the atmosphere, a chamber sealed from the start that encloses nothing, a chamber whose
+  open edge may leave its closing plane (the node named); snow heavier than the supplied pressure
+  turns the top foil through the bottom one: stopped, naming the load time.
 """
 import os
 import re
@@ -116,7 +118,10 @@ with scratch_dir() as tmp:
            (["-chamber_air_signs", "1"], r"-chamber_air_signs: one sign per group"),
            (["-chamber_air_pressure", "-200,0.3,0.3"], r"below minus the atmosphere"),
            (["-chamber_air_groups", "top", "-chamber_air_sealed_from_stage", 1, "-chamber_air_signs", -1],
-            r"chamber air is sealed from stage 1 but encloses")]
+            r"chamber air is sealed from stage 1 but encloses"),
+           (["-chamber_air_groups", "top", "-bc_rim_fix", "xy"], r"chamber air is not closed: node \d+"),
+           (["-chamber_air_sealed_from_stage", 0, "-film_top_snow", "0,0,2"],
+            r"chamber air turned inside out at load time 2\.\d+")]
     for args, pattern in bad:
         _, out = run(etfe, ["-options_file", C2, "-output", 0] + args, expect_fail=True)
         chk.check(re.search(pattern, out), "refused: %s (%s)" % (" ".join(map(str, args)), pattern))
