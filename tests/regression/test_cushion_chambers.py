@@ -2,7 +2,8 @@
 
 * A sealed spherical balloon (an octant, 16 x 16 cells, E h = 200 N/mm, R = 1 m), inflated to 2
   kPa, sealed, then under 1 kPa outside: the gauge pressure and the radius (from the chamber's
-  volume against the faceted start) match the closed form to 1e-3, for kappa = 1 and 1.4.
+  volume against the faceted start) match the closed form to 1e-3, for kappa = 1 and 1.4; the
+  gas's work along the sealed stage equals the change of its stored energy.
 * The rank-one term makes Newton quadratic on a sealed cushion: with it the sealed snow stage of
   options/cushion/hexagon_2layer.opts takes at most 3 iterations an increment; without it
   (-chamber_rank_one 0, the pressure updated between iterations only) far more, or no
@@ -15,6 +16,7 @@
   open edge may leave its closing plane (the node named); snow heavier than the supplied pressure
   turns the top foil through the bottom one: stopped, naming the load time.
 """
+import math
 import os
 import re
 
@@ -56,6 +58,18 @@ with scratch_dir() as tmp:
                  % (kappa, lam, lam2))
         chk.less(abs(lam_sealed - lam1), 1e-3, "balloon kappa %g: radius when sealed %.7f R against %.7f R"
                  % (kappa, lam_sealed, lam1))
+        # The gas's work along the sealed stage, the trapezoid of p_abs dV over the increments,
+        # against the change of its stored energy: C ln(V2/V1) (kappa 1), C (V2^(1-k) - V1^(1-k)) / (1-k).
+        patm = 0.101325
+        sealed = [r for r in h if float(r["time"]) >= 1.0 - 1e-9]
+        V = [1e9 * float(r["gas_V_m3"]) for r in sealed]
+        pa = [1e-3 * float(r["gas_p_kPa"]) + patm for r in sealed]
+        work = sum(0.5 * (pa[i] + pa[i + 1]) * (V[i + 1] - V[i]) for i in range(len(V) - 1))
+        C = pa[0] * V[0] ** kappa
+        energy = C * math.log(V[-1] / V[0]) if kappa == 1.0 else C * (V[-1] ** (1 - kappa) - V[0] ** (1 - kappa)) / (1 - kappa)
+        chk.less(abs(work - energy) / abs(energy), 1e-4, "balloon kappa %g: the gas's work along the sealed stage "
+                                                         "%.6g N mm against its stored energy's change %.6g N mm"
+                 % (kappa, work, energy))
         chk.check(abs((lam2 - 1) - (lam - 1)) < 0.01 * (lam2 - 1),
                   "balloon kappa %g: the radial displacement %.4f mm within 1 %% of %.4f mm"
                   % (kappa, 1000 * (lam - 1), 1000 * (lam2 - 1)))
