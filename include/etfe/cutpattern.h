@@ -35,6 +35,9 @@ struct CutPatternOptions {
   bool element_stress = false;
   std::vector<double> element_prestress;
   double md_axis[3] = {1.0, 0.0, 0.0};
+  // The drawings (DXF, SVG): a weld/seam allowance outline and the MD (roll) direction mark.
+  double seam_allowance = 0.0;  // mm
+  PetscBool md_mark = PETSC_FALSE;
 };
 
 PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions *o);

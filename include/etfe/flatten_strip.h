@@ -114,14 +114,41 @@ bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenRes
 // (or closed) POLYLINE per named line piece on a layer named after its set (upper case; cut_* in
 // red, weld_* in blue, others green) and, when labels is set, TEXT with each line's name and 2D
 // length on layer LABELS.
-bool WritePatternDxf(const std::string &path, const FlattenResult &r,
-                     const std::string &strip_name, bool labels, std::string *err);
+// What a drawing adds to the outline and the lines: labels; a second outline seam_allowance mm
+// outside it (the weld or seam allowance the fabricator cuts along; layer SEAM, group "seam"); an
+// arrow along the pattern's long axis marked MD (the roll direction; layer MD, group "md").
+struct PatternDrawing {
+  bool labels = true;
+  double seam_allowance = 0.0;
+  bool md_mark = false;
+};
+bool WritePatternDxf(const std::string &path, const FlattenResult &r, const std::string &strip_name,
+                     const PatternDrawing &drawing, std::string *err);
+inline bool WritePatternDxf(const std::string &path, const FlattenResult &r, const std::string &strip_name, bool labels,
+                            std::string *err) {
+  PatternDrawing d;
+  d.labels = labels;
+  return WritePatternDxf(path, r, strip_name, d, err);
+}
 
 // SVG 1.1 in mm (width/height in mm, viewBox in mm, y upwards as in the DXF): one closed <path>
 // per outline loop in group "outline", one <polyline> per named line piece in group "lines"
 // (cut_* red, weld_* blue, others green) and, when labels is set, <text> labels.
-bool WritePatternSvg(const std::string &path, const FlattenResult &r,
-                     const std::string &strip_name, bool labels, std::string *err);
+bool WritePatternSvg(const std::string &path, const FlattenResult &r, const std::string &strip_name,
+                     const PatternDrawing &drawing, std::string *err);
+inline bool WritePatternSvg(const std::string &path, const FlattenResult &r, const std::string &strip_name, bool labels,
+                            std::string *err) {
+  PatternDrawing d;
+  d.labels = labels;
+  return WritePatternSvg(path, r, strip_name, d, err);
+}
+
+// The outline loop offset outward by d (mm; the interior lies on its left): each vertex moved along
+// its corner's bisector to stay d from both edges (at most 4 d at a sharp corner). 2 per point.
+std::vector<double> OffsetOutline(const FlattenResult &r, const std::vector<int> &loop, double d);
+// The pattern's long axis through its centroid: centre (2) and unit direction (2), and the
+// extent along it (mm).
+void PatternLongAxis(const FlattenResult &r, double centre[2], double dir[2], double *extent);
 
 // CSV table of the named line lengths of several strips, one row per line plus one row
 // "(outline)" per strip: strip,line,on_boundary,pieces,segments,length3d_mm,length2d_mm,

@@ -47,6 +47,12 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
                              "", o->comp_md, &o->comp_md, nullptr));
   PetscCall(PetscOptionsReal("-cutpattern_compensation_td", "Uniform compensation across the pattern (TD), as _md",
                              "", o->comp_td, &o->comp_td, nullptr));
+  PetscCall(PetscOptionsReal("-cutpattern_seam_allowance",
+                             "Weld/seam allowance [mm]: a second outline this far outside each pattern, what the "
+                             "fabricator cuts (0: none)",
+                             "", o->seam_allowance, &o->seam_allowance, nullptr));
+  PetscCall(PetscOptionsBool("-cutpattern_md_mark", "Mark the MD (roll) direction, the pattern's long axis, on each drawing",
+                             "", o->md_mark, &o->md_mark, nullptr));
   PetscCall(PetscOptionsRealArray("-cutpattern_prestress",
                                   "Design prestress S_MD,S_TD[,S_MD-TD] (PK2, MPa) for -cutpattern_compensation "
                                   "stress, MD along the pattern's long axis",
@@ -55,6 +61,9 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
   PetscCheck(!ps_set || nps >= 2, comm, PETSC_ERR_ARG_SIZ,
              "-cutpattern_prestress needs S_MD,S_TD (and optionally S_MD-TD) in MPa");
   if (ps_set && nps == 2) o->prestress[2] = 0.0;
+  PetscCheck(o->seam_allowance >= 0 && std::isfinite(o->seam_allowance), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-cutpattern_seam_allowance %g: the allowance is a distance outside the pattern, >= 0 mm",
+             o->seam_allowance);
   PetscCheck(o->comp_md > -1 && o->comp_td > -1 && std::isfinite(o->comp_md) && std::isfinite(o->comp_td), comm,
              PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_compensation_md %g / _td %g: compensation strains must be finite and > -1", o->comp_md,
@@ -231,11 +240,11 @@ bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const Cut
 
 // The pattern's files <base>.dxf, <base>.svg and <base>.msh (the plane layout as a mesh).
 bool WriteStripFiles(const std::string &base, const std::string &name, const MeshData &strip, const FlattenResult &r,
-                     std::string *err) {
+                     const PatternDrawing &drawing, std::string *err) {
   MeshData flat = strip;
   for (int n = 0; n < flat.NumNodes(); ++n)
     flat.coords[3 * n] = r.xy[2 * n], flat.coords[3 * n + 1] = r.xy[2 * n + 1], flat.coords[3 * n + 2] = 0.0;
-  return WritePatternDxf(base + ".dxf", r, name, true, err) && WritePatternSvg(base + ".svg", r, name, true, err) &&
+  return WritePatternDxf(base + ".dxf", r, name, drawing, err) && WritePatternSvg(base + ".svg", r, name, drawing, err) &&
          WriteGmshFile(base + ".msh", flat, err);
 }
 
@@ -295,11 +304,13 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
     std::vector<FlattenResult> results(names.size()), design(names.size());
     std::vector<PatternTableEntry> table;
     const bool compensated = o.compensation != Compensation::None;
+    PatternDrawing drawing;
+    drawing.seam_allowance = o.seam_allowance, drawing.md_mark = o.md_mark;
     for (size_t k = 0; k < names.size() && ok; ++k) {
       MeshData strip;
       const std::string base = dir + "/" + stem + "_" + names[k];
       if (!FlattenNamedStrip(shape, names[k], o, &strip, &results[k], &design[k], &err) ||
-          !WriteStripFiles(base, names[k], strip, results[k], &err)) {
+          !WriteStripFiles(base, names[k], strip, results[k], drawing, &err)) {
         ok = 0;
         break;
       }

@@ -183,12 +183,8 @@ void DxfLayer(std::string *s, const std::string &name, int color) {
 
 // A polyline from node ids; closed when the path repeats its first node at the end (the repeat
 // is dropped: the flag closes it).
-void DxfPolyline(std::string *s, const std::string &layer, const FlattenResult &r,
-                 std::vector<int> ids, bool closed) {
-  if (ids.size() > 1 && ids.front() == ids.back()) {
-    ids.pop_back();
-    closed = true;
-  }
+// A POLYLINE through points (2 per point).
+void DxfPolylinePoints(std::string *s, const std::string &layer, const std::vector<double> &pts, bool closed) {
   Pair(s, 0, "POLYLINE");
   Pair(s, 8, layer);
   Pair(s, 66, 1);  // vertices follow
@@ -196,15 +192,39 @@ void DxfPolyline(std::string *s, const std::string &layer, const FlattenResult &
   Pair(s, 20, 0.0);
   Pair(s, 30, 0.0);
   Pair(s, 70, closed ? 1 : 0);
-  for (int v : ids) {
+  for (size_t k = 0; k + 1 < pts.size(); k += 2) {
     Pair(s, 0, "VERTEX");
     Pair(s, 8, layer);
-    Pair(s, 10, r.xy[2 * (size_t)v]);
-    Pair(s, 20, r.xy[2 * (size_t)v + 1]);
+    Pair(s, 10, pts[k]);
+    Pair(s, 20, pts[k + 1]);
     Pair(s, 30, 0.0);
   }
   Pair(s, 0, "SEQEND");
   Pair(s, 8, layer);
+}
+
+void DxfPolyline(std::string *s, const std::string &layer, const FlattenResult &r,
+                 std::vector<int> ids, bool closed) {
+  if (ids.size() > 1 && ids.front() == ids.back()) {
+    ids.pop_back();
+    closed = true;
+  }
+  std::vector<double> pts;
+  for (int v : ids) pts.push_back(r.xy[2 * (size_t)v]), pts.push_back(r.xy[2 * (size_t)v + 1]);
+  DxfPolylinePoints(s, layer, pts, closed);
+}
+
+// The MD arrow: a shaft along the long axis over half the extent and a head at its end (2 per
+// point, as two polylines: shaft, head).
+void MdArrow(const FlattenResult &r, std::vector<double> *shaft, std::vector<double> *head, double *x, double *y) {
+  double c[2], d[2], extent;
+  PatternLongAxis(r, c, d, &extent);
+  const double half = 0.25 * extent, h = 0.04 * extent;
+  const double tip[2] = {c[0] + half * d[0], c[1] + half * d[1]};
+  *shaft = {c[0] - half * d[0], c[1] - half * d[1], tip[0], tip[1]};
+  *head = {tip[0] - h * d[0] - 0.5 * h * d[1], tip[1] - h * d[1] + 0.5 * h * d[0], tip[0], tip[1],
+           tip[0] - h * d[0] + 0.5 * h * d[1], tip[1] - h * d[1] - 0.5 * h * d[0]};
+  *x = c[0] - 0.5 * h * d[1], *y = c[1] + 0.5 * h * d[0];
 }
 
 // TEXT; centred (72 = 1) texts need the alignment point 11/21/31 as well.
@@ -248,8 +268,11 @@ void DxfHeader(std::string *s, const Box &b, double label_room) {
 }
 
 // Layers (name, colour): 0 (always present), OUTLINE, one per named line, LABELS.
-std::vector<std::pair<std::string, int>> DxfLayers(const FlattenResult &r, bool labels) {
+std::vector<std::pair<std::string, int>> DxfLayers(const FlattenResult &r, const PatternDrawing &d) {
+  const bool labels = d.labels;
   std::vector<std::pair<std::string, int>> layers = {{"0", 7}, {"OUTLINE", 7}};
+  if (d.seam_allowance > 0) layers.push_back({"SEAM", 6});
+  if (d.md_mark) layers.push_back({"MD", 30});
   for (const PatternLine &l : r.lines) {
     const std::string name = LayerName(l.name);
     bool have = false;
@@ -300,21 +323,33 @@ void DxfTables(std::string *s, const std::vector<std::pair<std::string, int>> &l
 
 } // namespace
 
-bool WritePatternDxf(const std::string &path, const FlattenResult &r,
-                     const std::string &strip_name, bool labels, std::string *err) {
+bool WritePatternDxf(const std::string &path, const FlattenResult &r, const std::string &strip_name,
+                     const PatternDrawing &drawing, std::string *err) {
+  const bool labels = drawing.labels;
   if (!CheckResult(r, path, err)) return false;
-  const Box b = Bounds(r);
+  Box b = Bounds(r);
+  for (int k = 0; k < 2; ++k) b.lo[k] -= drawing.seam_allowance, b.hi[k] += drawing.seam_allowance;
   const double h = std::max(2.5, 0.012 * b.Size());  // label height, mm
   std::string s;
   Pair(&s, 999, DxfText("cutting pattern " + strip_name + " (etfe, units mm)"));
   DxfHeader(&s, b, labels ? 2.0 * h : 0.0);
-  DxfTables(&s, DxfLayers(r, labels), h);
+  DxfTables(&s, DxfLayers(r, drawing), h);
 
   Pair(&s, 0, "SECTION");
   Pair(&s, 2, "ENTITIES");
   for (const auto &loop : r.outline) DxfPolyline(&s, "OUTLINE", r, loop, true);
+  if (drawing.seam_allowance > 0)
+    for (const auto &loop : r.outline) DxfPolylinePoints(&s, "SEAM", OffsetOutline(r, loop, drawing.seam_allowance), true);
   for (const PatternLine &l : r.lines)
     for (const auto &p : l.paths) DxfPolyline(&s, LayerName(l.name), r, p, false);
+  if (drawing.md_mark) {
+    std::vector<double> shaft, head;
+    double x, y;
+    MdArrow(r, &shaft, &head, &x, &y);
+    DxfPolylinePoints(&s, "MD", shaft, false);
+    DxfPolylinePoints(&s, "MD", head, false);
+    DxfTextEntity(&s, x, y, h, 0.0, true, "MD");
+  }
   if (labels) {
     DxfTextEntity(&s, b.lo[0], b.hi[1] + h, h, 0.0, false, strip_name);
     for (const PatternLine &l : r.lines) {
@@ -327,10 +362,12 @@ bool WritePatternDxf(const std::string &path, const FlattenResult &r,
   return WriteFile(path, s, err);
 }
 
-bool WritePatternSvg(const std::string &path, const FlattenResult &r,
-                     const std::string &strip_name, bool labels, std::string *err) {
+bool WritePatternSvg(const std::string &path, const FlattenResult &r, const std::string &strip_name,
+                     const PatternDrawing &drawing, std::string *err) {
+  const bool labels = drawing.labels;
   if (!CheckResult(r, path, err)) return false;
-  const Box b = Bounds(r);
+  Box b = Bounds(r);
+  for (int k = 0; k < 2; ++k) b.lo[k] -= drawing.seam_allowance, b.hi[k] += drawing.seam_allowance;
   const double size = b.Size();
   const double margin = std::max(10.0, 0.03 * size);
   const double h = std::max(2.5, 0.012 * size);
@@ -359,6 +396,29 @@ bool WritePatternSvg(const std::string &path, const FlattenResult &r,
     s += "Z\"/>\n";
   }
   s += "</g>\n";
+  auto svg_path = [&](const std::vector<double> &pts, bool closed) {
+    s += "<path d=\"";
+    for (size_t k = 0; k + 1 < pts.size(); k += 2)
+      Append(&s, "%s%.4f,%.4f ", k == 0 ? "M " : (k == 2 ? "L " : ""), X(pts[k]), Y(pts[k + 1]));
+    s += closed ? "Z\"/>\n" : "\"/>\n";
+  };
+  if (drawing.seam_allowance > 0) {
+    Append(&s, "<g id=\"seam\" fill=\"none\" stroke=\"#cc00cc\" stroke-width=\"%.3f\" stroke-dasharray=\"%.3f %.3f\">\n",
+           sw, 6 * sw, 3 * sw);
+    for (const auto &loop : r.outline) svg_path(OffsetOutline(r, loop, drawing.seam_allowance), true);
+    s += "</g>\n";
+  }
+  if (drawing.md_mark) {
+    std::vector<double> shaft, head;
+    double x, y;
+    MdArrow(r, &shaft, &head, &x, &y);
+    Append(&s, "<g id=\"md\" fill=\"none\" stroke=\"#ff8000\" stroke-width=\"%.3f\">\n", 2 * sw);
+    svg_path(shaft, false);
+    svg_path(head, false);
+    Append(&s, "<text x=\"%.4f\" y=\"%.4f\" fill=\"#ff8000\" stroke=\"none\" font-family=\"sans-serif\" "
+               "font-size=\"%.3f\" text-anchor=\"middle\">MD</text>\n", X(x), Y(y), h);
+    s += "</g>\n";
+  }
   Append(&s, "<g id=\"lines\" fill=\"none\" stroke-width=\"%.3f\" stroke-linecap=\"round\">\n",
          2 * sw);
   for (const PatternLine &l : r.lines)
@@ -391,6 +451,51 @@ bool WritePatternSvg(const std::string &path, const FlattenResult &r,
   }
   s += "</svg>\n";
   return WriteFile(path, s, err);
+}
+
+std::vector<double> OffsetOutline(const FlattenResult &r, const std::vector<int> &loop, double d) {
+  std::vector<double> out;
+  const size_t n = loop.size();
+  for (size_t k = 0; k < n; ++k) {
+    const double *p = &r.xy[2 * (size_t)loop[(k + n - 1) % n]], *q = &r.xy[2 * (size_t)loop[k]],
+                 *s = &r.xy[2 * (size_t)loop[(k + 1) % n]];
+    // Right-hand normals of the edges in and out (outward: the interior is on the left).
+    double a[2] = {q[1] - p[1], -(q[0] - p[0])}, b[2] = {s[1] - q[1], -(s[0] - q[0])};
+    const double la = std::hypot(a[0], a[1]), lb = std::hypot(b[0], b[1]);
+    if (la > 0) a[0] /= la, a[1] /= la;
+    if (lb > 0) b[0] /= lb, b[1] /= lb;
+    double m[2] = {a[0] + b[0], a[1] + b[1]};
+    const double lm = std::hypot(m[0], m[1]);
+    if (lm < 1e-12) {  // the outline turns back on itself: move along one edge's normal
+      m[0] = a[0], m[1] = a[1];
+    } else {
+      m[0] /= lm, m[1] /= lm;
+    }
+    const double c = m[0] * a[0] + m[1] * a[1];           // cos of half the turn
+    const double reach = std::min(4.0 * d, c > 0 ? d / c : 4.0 * d);
+    out.push_back(q[0] + reach * m[0]);
+    out.push_back(q[1] + reach * m[1]);
+  }
+  return out;
+}
+
+void PatternLongAxis(const FlattenResult &r, double centre[2], double dir[2], double *extent) {
+  const size_t n = r.xy.size() / 2;
+  double mx = 0, my = 0, sxx = 0, syy = 0, sxy = 0;
+  for (size_t k = 0; k < n; ++k) mx += r.xy[2 * k] / n, my += r.xy[2 * k + 1] / n;
+  for (size_t k = 0; k < n; ++k) {
+    const double x = r.xy[2 * k] - mx, y = r.xy[2 * k + 1] - my;
+    sxx += x * x, syy += y * y, sxy += x * y;
+  }
+  const double angle = 0.5 * std::atan2(2 * sxy, sxx - syy);  // the covariance's major axis
+  dir[0] = std::cos(angle), dir[1] = std::sin(angle);
+  centre[0] = mx, centre[1] = my;
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (size_t k = 0; k < n; ++k) {
+    const double t = (r.xy[2 * k] - mx) * dir[0] + (r.xy[2 * k + 1] - my) * dir[1];
+    lo = std::min(lo, t), hi = std::max(hi, t);
+  }
+  *extent = hi - lo;
 }
 
 bool WritePatternLineTable(const std::string &path, const std::vector<PatternTableEntry> &strips,

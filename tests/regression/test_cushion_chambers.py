@@ -127,6 +127,33 @@ with scratch_dir() as tmp:
     chk.check("kappa" in out or "physics" in out or "differ" in out,
               "3-layer cushion: a restart with another kappa is refused")
 
+    # --- the foils' patterns with a 20 mm weld allowance and the MD mark: the allowance outline lies
+    # 20 mm outside the pattern along every edge (the SVG's 4 decimals), further only at corners
+    run(etfe, ["-analysis", "cutpattern", "-mesh_file", os.path.join(REPO, "meshes", "cushion_hexagon_2layer.msh"),
+               "-cutpattern_strips", "top,bottom", "-cutpattern_seam_allowance", 20, "-cutpattern_md_mark",
+               "-output_file", os.path.join(tmp, "foils.h5")])
+    svg = open(os.path.join(tmp, "foils_top.svg")).read()
+
+    def group_points(name):
+        body = re.search(r'<g id="%s"[^>]*>(.*?)</g>' % name, svg, re.S).group(1)
+        d = re.search(r'd="([^"]*)"', body).group(1)
+        return [tuple(map(float, p.split(","))) for p in re.findall(r"[-\d.]+,[-\d.]+", d)]
+
+    def distance(p, poly):
+        best = math.inf
+        for a, b in zip(poly, poly[1:] + poly[:1]):
+            dx, dy = b[0] - a[0], b[1] - a[1]
+            t = max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)))
+            best = min(best, math.hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy))
+        return best
+    outline, seam = group_points("outline"), group_points("seam")
+    mids = [((a[0] + b[0]) / 2, (a[1] + b[1]) / 2) for a, b in zip(seam, seam[1:] + seam[:1])]
+    dm = [distance(m, outline) for m in mids]
+    chk.check(len(seam) == len(outline) and max(abs(x - 20.0) for x in dm) < 1e-3,
+              "cushion foil pattern: the weld allowance runs 20 mm outside every edge (%.5f-%.5f mm)" % (min(dm), max(dm)))
+    chk.check('<g id="md"' in svg and ">MD</text>" in svg and "MD" in open(os.path.join(tmp, "foils_top.dxf")).read(),
+              "cushion foil pattern: the MD (roll) direction is marked in the SVG and the DXF")
+
     # --- refusals
     bad = [(["-chamber_air_groups", "roof"], r"-chamber_air_groups: the mesh has no surface group roof"),
            (["-chamber_air_signs", "1"], r"-chamber_air_signs: one sign per group"),
