@@ -23,15 +23,18 @@ std::string FirstLine(const std::string &path) {
 }
 
 // Field 22 of /proc/<pid>/stat (the start time in clock ticks since boot); 0 when the process
-// does not exist. The fields after the command name, which may hold spaces, follow its last ')'.
+// does not exist or has ended (a zombie, state Z or X, not yet reaped). The fields after the
+// command name, which may hold spaces, follow its last ')'.
 unsigned long long StartTicks(long long pid) {
   const std::string stat = FirstLine("/proc/" + std::to_string(pid) + "/stat");
   const size_t close = stat.rfind(')');
   if (close == std::string::npos) return 0;
   std::istringstream rest(stat.substr(close + 1));
   std::string field;
-  for (int k = 3; k <= 22 && rest >> field; ++k)
+  for (int k = 3; k <= 22 && rest >> field; ++k) {
+    if (k == 3 && (field == "Z" || field == "X")) return 0;
     if (k == 22) return std::strtoull(field.c_str(), nullptr, 10);
+  }
   return 0;
 }
 
