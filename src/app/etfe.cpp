@@ -298,7 +298,8 @@ PetscErrorCode Run(int *exit_status) {
   PetscCall(PrintHeader(c.P, c.snes));
 
   // 6. Run the schedule (or find the form), writing results as it goes.
-  // A signal from here on stops the load history at a safe point (etfe/interrupt.h).
+  // A signal from here on stops the load history at a safe point (etfe/interrupt.h); one that
+  // comes after its last increment is too late to matter: the run completes.
   if (!c.formfind && oo.enabled) PetscCall(InterruptCatch(true));
   PetscCall(OpenResults(c, oo, cko, &out));
   PetscCall(RunAnalysis(c, out, cko, &res));

@@ -497,7 +497,6 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   LoadStepper s(P, snes, out, o, ck, res);
   PetscFunctionBeginUser;
   PetscCall(LoadStepperBegin(&s));
-  PetscCall(InterruptCatch(out != nullptr));  // a signal stops the run at a safe point
   while (!s.Finished()) {
     Increment inc = NextIncrement(s);
     PetscCall(AttemptIncrement(&s, &inc));
@@ -528,7 +527,6 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     if (checkpoint) PetscCall(WriteCheckpoint(&s));
     if (stop) break;
   }
-  PetscCall(InterruptCatch(false));
   PetscCall(LoadStepperEnd(&s));
   PetscFunctionReturn(0);
 }
