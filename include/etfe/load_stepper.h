@@ -48,6 +48,9 @@ struct LoadStepperOptions {
   // After a caught signal (etfe/interrupt.h), how long Newton may go on to finish the increment
   // under way before it is given up and the run stops at the last converged one (s).
   PetscReal signal_grace = 10.0;
+  // Fault injection for the fault campaign: rank fail_alone[0] raises an error alone after
+  // increment fail_alone[1], while the others go on (-1: never).
+  PetscInt fail_alone[2] = {-1, -1};
 };
 extern const char *const kStabilizeWhen[3];  // never, failure, always
 

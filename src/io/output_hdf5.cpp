@@ -268,9 +268,25 @@ PetscErrorCode WriteWriterIdentity(OutputFile *out) {
   PetscFunctionReturn(0);
 }
 
+// Open MPI's <file>-<job>-<n>.lock files beside the results (and its checkpoints, named after
+// it): its shared-file-pointer component makes one per open file, and a run that does not close
+// its files leaves them. HDF5 never uses shared file pointers.
+void RemoveOpenMpiLocks(const std::string &path) {
+  std::error_code ec;
+  const std::filesystem::path p(path);
+  const std::string stem = p.stem().string();
+  const auto dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+  for (const auto &e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(stem, 0) == 0 && name.size() > 5 && name.compare(name.size() - 5, 5, ".lock") == 0 &&
+        name.find(".h5") != std::string::npos)
+      std::filesystem::remove(e.path(), ec);
+  }
+}
+
 // Before a run writes `path` (afresh or continued): a run that is still writing it is never
 // disturbed; what dead runs left beside it goes (the status note of a rank that failed alone, and
-// Open MPI's <file>-<job>-<n>.lock files of its shared file pointers, which a killed run leaves).
+// Open MPI's lock files).
 PetscErrorCode ClaimResultsFile(MPI_Comm comm, const std::string &path) {
   PetscMPIInt rank;
   char seen[1024] = "";
@@ -286,17 +302,8 @@ PetscErrorCode ClaimResultsFile(MPI_Comm comm, const std::string &path) {
              "stop that run first, or give another -output_file",
              path.c_str(), path.c_str());
   if (rank == 0) {
-    std::error_code ec;
     StatusNoteRemove(path);
-    const std::filesystem::path p(path);
-    const std::string stem = p.stem().string();
-    const auto dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
-    for (const auto &e : std::filesystem::directory_iterator(dir, ec)) {
-      const std::string name = e.path().filename().string();
-      if (name.rfind(stem, 0) == 0 && name.size() > 5 && name.compare(name.size() - 5, 5, ".lock") == 0 &&
-          name.find(".h5") != std::string::npos)
-        std::filesystem::remove(e.path(), ec);
-    }
+    RemoveOpenMpiLocks(path);
   }
   PetscFunctionReturn(0);
 }
@@ -655,7 +662,9 @@ PetscErrorCode OutputAbandon(const std::string &why) {
 bool OutputIsOpen() { return g_open_output != nullptr; }
 
 std::string OutputNoteFailure(const std::string &why) {
-  if (!g_open_output || !StatusNoteWrite(g_open_output->path, g_open_output->run_id, "failed: " + why)) return "";
+  if (!g_open_output) return "";
+  RemoveOpenMpiLocks(g_open_output->path);  // the job is about to be aborted: nobody closes the file
+  if (!StatusNoteWrite(g_open_output->path, g_open_output->run_id, "failed: " + why)) return "";
   return g_open_output->path + ".status";
 }
 

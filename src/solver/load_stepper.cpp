@@ -97,6 +97,10 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                              "under way; then the run stops at the last converged increment (checkpoint, results "
                              "\"interrupted\", exit status 75)",
                              "", o->signal_grace, &o->signal_grace, nullptr));
+  PetscInt n = 2;
+  PetscCall(PetscOptionsIntArray("-etfe_test_fail_alone",
+                                 "Testing: rank r raises an error alone after increment k (r,k), the others go on",
+                                 "", o->fail_alone, &n, nullptr));
   PetscOptionsEnd();
   PetscCheck(o->signal_grace >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-etfe_signal_grace %g: use seconds >= 0 (0: stop within the first Newton iteration after the signal)",

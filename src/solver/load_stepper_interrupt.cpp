@@ -104,6 +104,10 @@ PetscErrorCode SafePoint(LoadStepper *s, bool *checkpoint, bool *stop) {
   PetscMPIInt size;
   PetscLogDouble now;
   PetscFunctionBeginUser;
+  PetscCheck(!(s->P->rank == s->o.fail_alone[0] && s->step == s->o.fail_alone[1]), PETSC_COMM_SELF, PETSC_ERR_USER,
+             "-etfe_test_fail_alone %" PetscInt_FMT ",%" PetscInt_FMT ": rank %d fails alone after increment %" PetscInt_FMT
+             " (a test of one rank failing while the others wait)",
+             s->o.fail_alone[0], s->o.fail_alone[1], s->P->rank, s->step);
   PetscCall(PetscTime(&now));
   // Rank 0's clock decides the wall-clock checkpoints: every rank must write the same one.
   int local[2] = {InterruptNoted(), s->P->rank == 0 && s->ck.every_s > 0 && now - s->checkpoint_time >= s->ck.every_s},
