@@ -249,7 +249,7 @@ PetscErrorCode Run(int *exit_status) {
   {
     char path[PETSC_MAX_PATH_LEN] = "";
     PetscBool given = PETSC_FALSE;
-    PetscOptionsBegin(comm, nullptr, "etfe", "etfe");
+    PetscOptionsBegin(comm, nullptr, "Results status", "etfe");
     PetscCall(PetscOptionsString("-results_status",
                                  "Print the status of this results file as a reader should believe it (a \"running\" "
                                  "whose writer is gone says so) and exit: 0 complete, 10 running, 75 interrupted or "
