@@ -46,13 +46,21 @@ std::string HostName() {
 
 std::string NotePath(const std::string &results) { return results + ".status"; }
 
-// A string attribute of the file's root ("" when missing or not a string).
+// A string attribute of the file's root, fixed or variable length (as tools such as h5py write
+// it); "" when missing or not a string.
 std::string RootString(hid_t f, const char *name) {
   if (H5Aexists(f, name) <= 0) return "";
   hid_t a = H5Aopen(f, name, H5P_DEFAULT);
   hid_t t = a >= 0 ? H5Aget_type(a) : -1;
   std::string v;
-  if (t >= 0 && H5Tget_class(t) == H5T_STRING && !H5Tis_variable_str(t)) {
+  if (t >= 0 && H5Tget_class(t) == H5T_STRING && H5Tis_variable_str(t) > 0) {
+    char *p = nullptr;
+    hid_t mt = H5Tcopy(H5T_C_S1);
+    H5Tset_size(mt, H5T_VARIABLE);
+    if (H5Aread(a, mt, &p) >= 0 && p) v = p;
+    if (p) H5free_memory(p);
+    H5Tclose(mt);
+  } else if (t >= 0 && H5Tget_class(t) == H5T_STRING) {
     std::vector<char> buf(H5Tget_size(t) + 1, 0);
     if (H5Aread(a, t, buf.data()) >= 0) v = buf.data();
   }

@@ -116,8 +116,11 @@ PetscErrorCode SafePoint(LoadStepper *s, bool *checkpoint, bool *stop) {
   if (!g_catching.on && s->ck.every_s <= 0) agreed[0] = agreed[1] = 0;  // nothing to agree on
   else if (size == 1) agreed[0] = local[0], agreed[1] = local[1];
   else PetscCallMPI(MPI_Allreduce(local, agreed, 2, MPI_INT, MPI_MAX, s->P->comm));
-  // By default a checkpoint at every stage end (the results file must exist to continue).
-  const bool stage_end = s->ck.stage_end && s->out && s->AtStageEnd() && !s->Finished();
+  // By default a checkpoint at every stage end (the results file must exist to continue). After
+  // the last increment there is nothing left to continue: no checkpoint, and a signal lets the
+  // run complete.
+  if (s->Finished()) PetscFunctionReturn(0);
+  const bool stage_end = s->ck.stage_end && s->out && s->AtStageEnd();
   *checkpoint = s->checkpoint_step != s->step && (agreed[0] || agreed[1] || stage_end);
   if (agreed[0]) {
     s->res->interrupted = agreed[0];
