@@ -29,6 +29,8 @@ struct StepperState {
 
 struct CheckpointOptions {
   PetscInt every = 0;  // increments between checkpoints (0: none, except at -load_stop_after)
+  PetscReal every_s = 0.0;           // wall-clock seconds between checkpoints (0: none)
+  PetscBool stage_end = PETSC_TRUE;  // a checkpoint at each stage end (with a results file)
   char file[PETSC_MAX_PATH_LEN] = "";
   char restart[PETSC_MAX_PATH_LEN] = "";
 };

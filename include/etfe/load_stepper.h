@@ -45,6 +45,12 @@ struct LoadStepperOptions {
   PetscInt stabilize_when = 1;  // index into kStabilizeWhen
   PetscReal stabilize_rtol = 0.0;
   PetscInt stabilize_passes = 20;
+  // After a caught signal (etfe/interrupt.h), how long Newton may go on to finish the increment
+  // under way before it is given up and the run stops at the last converged one (s).
+  PetscReal signal_grace = 10.0;
+  // Fault injection for the fault campaign: rank fail_alone[0] raises an error alone after
+  // increment fail_alone[1], while the others go on (-1: never).
+  PetscInt fail_alone[2] = {-1, -1};
 };
 extern const char *const kStabilizeWhen[3];  // never, failure, always
 
@@ -54,6 +60,7 @@ struct LoadStepperResult {
   double time = 0.0, wall = 0.0;
   PetscBool completed = PETSC_FALSE;
   PetscBool stopped = PETSC_FALSE;  // ended cleanly by -load_stop_after before the schedule's end
+  int interrupted = 0;  // the signal that stopped it at a safe point (then also stopped; 0: none)
   std::string failure;  // why it stopped, when it did not complete
 };
 

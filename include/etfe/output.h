@@ -36,6 +36,10 @@ PetscErrorCode NewRunId(MPI_Comm comm, std::string *id);
 PetscErrorCode OutputAbandon(const std::string &why);
 // Whether a results file is open (an error exit then has one to mark).
 bool OutputIsOpen();
+// An error exit of a rank whose partners are elsewhere (no collective write possible): "failed:
+// why" in the status note beside the open results file (etfe/writer_identity.h), unless a note
+// is there already. No MPI. Returns the note's path, or "" when none was written.
+std::string OutputNoteFailure(const std::string &why);
 // U is the displacement from the scene's mesh; fields (stress, strain, ...) are evaluated at
 // U_fields on the problem's current reference (nullptr: U itself — they differ only in form
 // finding, where the reference moves).

@@ -49,7 +49,7 @@ def datasets(group):
 
 
 def status(path):
-    """Root attribute status of a results file ("" when missing)."""
+    """Status of a results file as a reader should believe it (etfepy.status; "" when missing)."""
     import h5compare
     return h5compare.file_status(path)
 
@@ -64,6 +64,9 @@ class Results:
         self.name = os.path.splitext(os.path.basename(path))[0]
         self.scene = text(f.attrs.get("scene", b""))
         self.status = text(f.attrs.get("status", b""))
+        if self.status == "running":  # is its writer alive? (etfepy.status)
+            from . import status as writer
+            self.status = writer.seen_from_attrs(path, f.attrs)
         self.X = f["mesh/coordinates"][()]
         self.tri = f["mesh/triangles"][()].astype(np.int64)
         keys = sorted(f["steps"].keys(), key=int) if "steps" in f else []

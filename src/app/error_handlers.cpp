@@ -154,8 +154,15 @@ int ErrorExit(MPI_Comm agree, PetscErrorCode ierr) {
       (*PetscErrorPrintf)("etfe: the failure could not be recorded in the results status\n");
     PetscPopErrorHandler();
   } else if (OutputIsOpen()) {
-    (*PetscErrorPrintf)(
-        "etfe: the other ranks did not stop with this error; the results status is not updated\n");
+    // The others wait in a collective call that will never complete: this rank records the
+    // failure beside the results (readers take it for the file's "running"), then all end.
+    PetscMPIInt rank = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    const std::string note = OutputNoteFailure(g_errors.first.message + " (rank " + std::to_string(rank) + ")");
+    (*PetscErrorPrintf)("etfe: the other ranks did not stop with this error (they wait elsewhere): %s; every rank "
+                        "is ended now\n",
+                        note.empty() ? "the failure of another rank is recorded"
+                                     : ("the failure is recorded in " + note).c_str());
   }
   if (size > 1) MPI_Abort(PETSC_COMM_WORLD, (int)ierr);
   PetscFinalize();

@@ -19,10 +19,12 @@ static const char help[] =
 #include "error_handlers.h"
 #include "etfe/checkpoint.h"
 #include "etfe/cutpattern.h"
+#include "etfe/interrupt.h"
 #include "etfe/linesearch.h"
 #include "etfe/material.h"
 #include "etfe/output.h"
 #include "etfe/scene_registry.h"
+#include "etfe/writer_identity.h"
 #include "heap_policy.h"
 #include "help_listing.h"
 #include "options_check.h"
@@ -78,6 +80,20 @@ PetscErrorCode ProgramOptions(MPI_Comm comm) {
   PetscFunctionReturn(0);
 }
 
+// -results_status FILE: the status of a results file as a reader should believe it (a "running"
+// whose writer is gone is "interrupted (writer gone ...)"; writer_identity.h). Exit status: 0
+// complete, 10 running, 75 interrupted or stopped (continue with -restart), 1 otherwise.
+PetscErrorCode PrintResultsStatus(MPI_Comm comm, const char *path, int *exit_status) {
+  PetscFunctionBeginUser;
+  const std::string st = ResultsStatusSeen(path);
+  PetscCall(PetscPrintf(comm, "%s: %s\n", path, st.c_str()));
+  *exit_status = st == "complete"                                              ? 0
+                 : st.rfind("running", 0) == 0                                 ? 10
+                 : st.rfind("interrupted", 0) == 0 || st.rfind("stopped", 0) == 0 ? kExitInterrupted
+                                                                               : 1;
+  PetscFunctionReturn(0);
+}
+
 // -analysis cutpattern: the strips of a surface mesh; no scene, problem or solver.
 PetscErrorCode RunCutPattern(MPI_Comm comm, PetscBool help_only) {
   CutPatternSurfaceOptions cso;
@@ -98,7 +114,7 @@ PetscErrorCode ResultsOptionsFromCommandLine(const Case &c, OutputOptions *oo,
   PetscCall(OutputOptionsFromCommandLine(comm, c.P->scene.name.c_str(), oo));
   PetscCall(CheckpointOptionsFromCommandLine(
       comm, std::filesystem::path(oo->path).replace_extension("").string(), cko));
-  PetscCheck(!(c.formfind && (cko->restart[0] || cko->every > 0)), comm, PETSC_ERR_SUP,
+  PetscCheck(!(c.formfind && (cko->restart[0] || cko->every > 0 || cko->every_s > 0)), comm, PETSC_ERR_SUP,
              "checkpoint/restart is for load histories (-analysis stretch); form finding restarts "
              "from its "
              "Gmsh output instead");
@@ -143,6 +159,39 @@ PetscErrorCode RunAnalysis(Case &c, OutputFile *out, const CheckpointOptions &ck
   PetscFunctionReturn(0);
 }
 
+// This run's command line as given (options files not expanded), set in main.
+std::vector<std::string> g_command;
+
+// The command that continues this run from `checkpoint`: the same one with -restart (under
+// mpirun with as many ranks, which a bit-for-bit continuation needs).
+std::string RestartCommand(MPI_Comm comm, const char *checkpoint) {
+  PetscMPIInt size = 1;
+  MPI_Comm_size(comm, &size);
+  std::string cmd = size > 1 ? "mpirun -n " + std::to_string(size) + " " : "";
+  auto quoted = [](const std::string &a) {
+    if (!a.empty() && a.find_first_of(" \t'\"$;&|<>()*?`\\") == std::string::npos) return a;
+    std::string q = "'";
+    for (char ch : a) q += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    return q + "'";
+  };
+  for (size_t k = 0; k < g_command.size(); ++k) {
+    if (k > 0 && g_command[k] == "-restart") {  // the checkpoint given before is replaced
+      ++k;
+      continue;
+    }
+    cmd += (k ? " " : "") + quoted(g_command[k]);
+  }
+  return cmd + " -restart " + quoted(checkpoint);
+}
+
+// A run stopped by a signal: what it says on stdout and in the results status.
+std::string InterruptedStatus(MPI_Comm comm, const CheckpointOptions &cko, const LoadStepperResult &res) {
+  char head[128];
+  std::snprintf(head, sizeof head, "interrupted by %s at increment %lld (load time %.6g); checkpoint ",
+                InterruptSignalName(res.interrupted), (long long)res.steps, res.time);
+  return head + std::string(cko.file) + "; continue with: " + RestartCommand(comm, cko.file);
+}
+
 // The scene's own quantities of interest (after a complete run), then the results file closed
 // with its status.
 PetscErrorCode ReportAndCloseResults(const Case &c, const OutputOptions &oo,
@@ -152,11 +201,14 @@ PetscErrorCode ReportAndCloseResults(const Case &c, const OutputOptions &oo,
   PetscFunctionBeginUser;
   if (c.P->observer.report && res.completed && !res.stopped)
     PetscCall(c.P->observer.report(c.P, c.P->observer.ctx));
-  if (res.stopped)
+  if (res.interrupted)
+    PetscCall(PetscPrintf(comm, "etfe: %s\n", InterruptedStatus(comm, cko, res).c_str()));
+  else if (res.stopped)
     PetscCall(
         PetscPrintf(comm, "etfe: checkpoint %s; continue with -restart %s\n", cko.file, cko.file));
   if (!*out) PetscFunctionReturn(0);
-  const std::string status = res.stopped
+  const std::string status = res.interrupted ? InterruptedStatus(comm, cko, res)
+                             : res.stopped
                                  ? "stopped at increment " + std::to_string((long long)res.steps) +
                                        " (checkpoint " + cko.file + ")"
                              : res.completed ? std::string("complete")
@@ -179,7 +231,8 @@ PetscErrorCode CheckCompleted(MPI_Comm comm, bool formfind, const LoadStepperRes
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode Run() {
+// exit_status: 0, or kExitInterrupted when a signal stopped the run at a safe point.
+PetscErrorCode Run(int *exit_status) {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscBool help_only = PETSC_FALSE, list = PETSC_FALSE;
   Analysis analysis;
@@ -193,6 +246,21 @@ PetscErrorCode Run() {
   PetscFunctionBeginUser;
   // 1. The program's own switches; -help and -scene_list run the steps below only to list.
   PetscCall(ProgramOptions(comm));
+  {
+    char path[PETSC_MAX_PATH_LEN] = "";
+    PetscBool given = PETSC_FALSE;
+    PetscOptionsBegin(comm, nullptr, "Results status", "etfe");
+    PetscCall(PetscOptionsString("-results_status",
+                                 "Print the status of this results file as a reader should believe it (a \"running\" "
+                                 "whose writer is gone says so) and exit: 0 complete, 10 running, 75 interrupted or "
+                                 "stopped, 1 otherwise",
+                                 "", path, path, sizeof path, &given));
+    PetscOptionsEnd();
+    if (given) {
+      PetscCall(PrintResultsStatus(comm, path, exit_status));
+      PetscFunctionReturn(0);
+    }
+  }
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-help", &help_only));
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-scene_list", &list));
 
@@ -230,6 +298,9 @@ PetscErrorCode Run() {
   PetscCall(PrintHeader(c.P, c.snes));
 
   // 6. Run the schedule (or find the form), writing results as it goes.
+  // A signal from here on stops the load history at a safe point (etfe/interrupt.h); one that
+  // comes after its last increment is too late to matter: the run completes.
+  if (!c.formfind && oo.enabled) PetscCall(InterruptCatch(true));
   PetscCall(OpenResults(c, oo, cko, &out));
   PetscCall(RunAnalysis(c, out, cko, &res));
   PetscCall(PrintRunSummary(comm, res));
@@ -239,6 +310,7 @@ PetscErrorCode Run() {
   PetscCall(CaseDestroy(&c));
   PetscCall(CheckCompleted(comm, analysis == Analysis::formfind, res));
   PetscCall(CheckUnusedOptions(comm, PETSC_FALSE));
+  *exit_status = res.interrupted ? kExitInterrupted : 0;
   PetscFunctionReturn(0);
 }
 
@@ -253,6 +325,7 @@ int main(int argc, char **argv) {
   setenv("OMPI_MCA_sharedfp", "^sm", 0);
   // Options files are expanded here, before PETSc reads the command line (options_files.h).
   std::vector<std::string> args(argv + 1, argv + argc), expanded;
+  g_command.assign(argv, argv + argc);
   std::vector<OptionsFileRequirement> requirements;
   std::string error;
   if (!ExpandOptionsFiles(args, &expanded, &error, &requirements)) {
@@ -272,9 +345,10 @@ int main(int argc, char **argv) {
   PetscCall(ErrorHandlersPush(requirements));
   MPI_Comm agree; // where the ranks meet on an error exit (error_handlers.h)
   PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &agree));
-  const PetscErrorCode ierr = Run();
+  int exit_status = 0;
+  const PetscErrorCode ierr = Run(&exit_status);
   if (ierr) return ErrorExit(agree, ierr);
   PetscCallMPI(MPI_Comm_free(&agree));
   PetscCall(PetscFinalize());
-  return 0;
+  return exit_status;
 }

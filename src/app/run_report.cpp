@@ -128,7 +128,8 @@ PetscErrorCode PrintRunSummary(MPI_Comm comm, const LoadStepperResult &res) {
                         "etfe: %s after %" PetscInt_FMT
                         " increments (load time %.6g), %" PetscInt_FMT
                         " Newton iterations, %" PetscInt_FMT " cut-backs, %.3f s\n",
-                        res.stopped     ? "stopped as asked"
+                        res.interrupted ? "stopped by a signal"
+                        : res.stopped   ? "stopped as asked"
                         : res.completed ? "completed"
                                         : "STOPPED",
                         res.steps, res.time, res.newton_iterations, res.cutbacks, res.wall));

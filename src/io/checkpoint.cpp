@@ -247,8 +247,16 @@ PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const std::string
   // (and overwrite) one checkpoint.
   std::snprintf(o->file, sizeof o->file, "%s.checkpoint.h5", results_stem.c_str());
   PetscOptionsBegin(comm, nullptr, "Checkpoint and restart", "Checkpoint");
-  PetscCall(PetscOptionsInt("-checkpoint_every", "Write a checkpoint every n increments (0: only at -load_stop_after)",
+  PetscCall(PetscOptionsInt("-checkpoint_every", "Write a checkpoint every n increments (0: only at -load_stop_after, stage ends, -checkpoint_every_s and "
+                            "signals)",
                             "", o->every, &o->every, nullptr));
+  PetscCall(PetscOptionsReal("-checkpoint_every_s",
+                             "Also write a checkpoint when this many seconds of wall time have passed since the last "
+                             "one (0: never)",
+                             "", o->every_s, &o->every_s, nullptr));
+  PetscCall(PetscOptionsBool("-checkpoint_stage_end",
+                             "Write a checkpoint at the end of every stage of the schedule (when results are written)",
+                             "", o->stage_end, &o->stage_end, nullptr));
   PetscCall(PetscOptionsString("-checkpoint_file", "Checkpoint file (HDF5; default <-output_file stem>.checkpoint.h5)",
                                "", o->file, o->file, sizeof o->file, nullptr));
   PetscCall(PetscOptionsString("-restart",
@@ -258,6 +266,8 @@ PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const std::string
   PetscOptionsEnd();
   PetscCheck(o->every >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_every %" PetscInt_FMT " must be >= 0",
              o->every);
+  PetscCheck(o->every_s >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_every_s %g: use seconds >= 0 (0: never)",
+             (double)o->every_s);
   PetscFunctionReturn(0);
 }
 

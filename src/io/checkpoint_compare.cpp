@@ -13,6 +13,7 @@
 //   output       -output* -checkpoint_* -restart -contact_probe_nodes -saddle_history
 //                -load_monitor -load_stop_after -formfind_monitor
 //   diagnostics  PETSc's own (-log*, -info, -malloc*, -options_*, -help, ...), -etfe_traceback
+//   signals      -etfe_signal_grace (when a stop may give up the increment under way)
 //   -mesh_file   may name another path: the mesh itself is compared (MeshFingerprint)
 // Everything else (-scene, -analysis, -mesh_*, -material_*, -membrane_thickness and
 // _min_area_ratio, -contact_* incl. the friction law, mu and the penalties, -load_increments,
@@ -39,7 +40,7 @@ const char *const kMayChange[] = {
     "load_tangent_predictor", "membrane_tangent_", "formfind_monitor", "load_force_roundoff",
     "membrane_near_null_space", "etfe_lu_native_max_dof", "etfe_pc_", "etfe_solver", "etfe_scalable_",
     "output", "checkpoint_", "restart", "contact_probe_nodes", "saddle_history", "load_monitor", "load_stop_after",
-    "log", "info", "malloc", "memory_", "options_", "help", "etfe_traceback", "fp_trap", "on_error", "history",
+    "log", "info", "malloc", "memory_", "options_", "help", "etfe_traceback", "etfe_signal_grace", "fp_trap", "on_error", "history",
     "viewer", "objects_", "check_pointer", "checkstack", "no_signal_handler", "debugger", "start_in_debugger",
     "stop_for_debugger", "display", "citations", "use_gpu_aware_mpi", "vecscatter_", "sf_", "skip_petscrc",
     "scene_list", "mesh_file"};

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <sstream>
 #include <map>
 #include <memory>
 #include <utility>
@@ -21,6 +22,7 @@
 #include "etfe/log_events.h"
 #include "etfe/output.h"
 #include "etfe/output_fields.h"
+#include "etfe/writer_identity.h"
 #include "xdmf.h"
 
 namespace etfe {
@@ -239,6 +241,74 @@ PetscErrorCode WriteXdmfEverywhere(OutputFile *out) {
   PetscFunctionReturn(0);
 }
 
+// The writer of this run (rank 0's process: writer_identity.h), in the root attributes every
+// rank writes alike, so that a reader can tell whether the run still lives.
+PetscErrorCode WriteWriterIdentity(OutputFile *out) {
+  Problem *P = out->problem;
+  std::string text;
+  PetscFunctionBeginUser;
+  WriterIdentity w = ThisProcess();
+  if (P->rank == 0)
+    text = w.host + "\n" + w.boot_id + "\n" + w.started + "\n" + std::to_string(w.pid) + "\n" + std::to_string(w.start_ticks);
+  unsigned long long n = text.size();
+  PetscCallMPI(MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, P->comm));
+  text.resize(n);
+  PetscCallMPI(MPI_Bcast(text.data(), (int)n, MPI_CHAR, 0, P->comm));
+  std::istringstream in(text);
+  std::getline(in, w.host), std::getline(in, w.boot_id), std::getline(in, w.started);
+  in >> w.pid >> w.start_ticks;
+  PetscMPIInt size;
+  PetscCallMPI(MPI_Comm_size(P->comm, &size));
+  const long long ranks = size;
+  PetscCall(H5WriteString(out->path, out->file, "writer_host", w.host));
+  PetscCall(H5WriteString(out->path, out->file, "writer_boot_id", w.boot_id));
+  PetscCall(H5WriteString(out->path, out->file, "writer_started", w.started));
+  PetscCall(H5WriteAttribute(out->path, out->file, "writer_pid", H5T_NATIVE_LLONG, &w.pid));
+  PetscCall(H5WriteAttribute(out->path, out->file, "writer_start_ticks", H5T_NATIVE_ULLONG, &w.start_ticks));
+  PetscCall(H5WriteAttribute(out->path, out->file, "writer_ranks", H5T_NATIVE_LLONG, &ranks));
+  PetscFunctionReturn(0);
+}
+
+// Open MPI's <file>-<job>-<n>.lock files beside the results (and its checkpoints, named after
+// it): its shared-file-pointer component makes one per open file, and a run that does not close
+// its files leaves them. HDF5 never uses shared file pointers.
+void RemoveOpenMpiLocks(const std::string &path) {
+  std::error_code ec;
+  const std::filesystem::path p(path);
+  const std::string stem = p.stem().string();
+  const auto dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+  for (const auto &e : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(stem, 0) == 0 && name.size() > 5 && name.compare(name.size() - 5, 5, ".lock") == 0 &&
+        name.find(".h5") != std::string::npos)
+      std::filesystem::remove(e.path(), ec);
+  }
+}
+
+// Before a run writes `path` (afresh or continued): a run that is still writing it is never
+// disturbed; what dead runs left beside it goes (the status note of a rank that failed alone, and
+// Open MPI's lock files).
+PetscErrorCode ClaimResultsFile(MPI_Comm comm, const std::string &path) {
+  PetscMPIInt rank;
+  char seen[1024] = "";
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0 && std::filesystem::exists(path)) {
+    const std::string st = ResultsStatusSeen(path);
+    if (st == "running") std::snprintf(seen, sizeof seen, "%s", st.c_str());
+  }
+  PetscCallMPI(MPI_Bcast(seen, sizeof seen, MPI_CHAR, 0, comm));
+  PetscCheck(!seen[0], comm, PETSC_ERR_FILE_OPEN,
+             "-output_file %s is being written by a run that is still alive (etfe -results_status %s names it): "
+             "stop that run first, or give another -output_file",
+             path.c_str(), path.c_str());
+  if (rank == 0) {
+    StatusNoteRemove(path);
+    RemoveOpenMpiLocks(path);
+  }
+  PetscFunctionReturn(0);
+}
+
 // base, or base.1, base.2, ...: the first name not taken (a kept file is never overwritten).
 std::string FreeName(const std::string &base) {
   std::error_code ec;
@@ -393,6 +463,7 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   for (const StepInfo &s : steps)
     if (s.step >= 0 && s.step <= restart_step) out->steps.push_back({(PetscInt)s.step, s.time});
   PetscCall(WriteStatus(out->path, out->file, "running"));
+  PetscCall(WriteWriterIdentity(out));
   PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
@@ -414,6 +485,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   out->order = std::make_unique<NaturalOrder>(P);
   out->step_fields = FieldsWritten(P, false);
   out->xdmf = XdmfIndexOf(out);
+  PetscCall(ClaimResultsFile(P->comm, out->path));
   if (restart_step >= 0) {
     bool ok = false;
     PetscCall(ReopenForRestart(out, restart_step, &ok));
@@ -453,6 +525,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
     PetscCall(H5WriteString(out->path, out->file, "version", ETFE_VERSION));
   }
   PetscCall(WriteStatus(out->path, out->file, "running"));
+  PetscCall(WriteWriterIdentity(out));
   PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
   for (const auto &[name, values] : P->scene.result_attributes)
     if (!values.empty()) PetscCall(H5WriteArrayAttribute(out->path, out->file, name.c_str(), values));
@@ -590,6 +663,13 @@ PetscErrorCode OutputAbandon(const std::string &why) {
 }
 
 bool OutputIsOpen() { return g_open_output != nullptr; }
+
+std::string OutputNoteFailure(const std::string &why) {
+  if (!g_open_output) return "";
+  RemoveOpenMpiLocks(g_open_output->path);  // the job is about to be aborted: nobody closes the file
+  if (!StatusNoteWrite(g_open_output->path, g_open_output->run_id, "failed: " + why)) return "";
+  return g_open_output->path + ".status";
+}
 
 PetscInt OutputLastStep(const OutputFile *out) {
   return (!out || out->steps.empty()) ? -1 : out->steps.back().first;

@@ -23,6 +23,7 @@
 #include "etfe/chamber.h"
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
+#include "etfe/interrupt.h"
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
 #include "etfe/log_events.h"
@@ -94,7 +95,19 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                              "", o->stabilize_rtol, &o->stabilize_rtol, nullptr));
   PetscCall(PetscOptionsInt("-load_stabilize_passes", "Most proximal passes per increment", "", o->stabilize_passes,
                             &o->stabilize_passes, nullptr));
+  PetscCall(PetscOptionsReal("-etfe_signal_grace",
+                             "After SIGTERM, SIGINT, SIGUSR1 or SIGXCPU: seconds Newton may go on to finish the increment "
+                             "under way; then the run stops at the last converged increment (checkpoint, results "
+                             "\"interrupted\", exit status 75)",
+                             "", o->signal_grace, &o->signal_grace, nullptr));
+  PetscInt n = 2;
+  PetscCall(PetscOptionsIntArray("-etfe_test_fail_alone",
+                                 "Testing: rank r raises an error alone after increment k (r,k), the others go on",
+                                 "", o->fail_alone, &n, nullptr));
   PetscOptionsEnd();
+  PetscCheck(o->signal_grace >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-etfe_signal_grace %g: use seconds >= 0 (0: stop within the first Newton iteration after the signal)",
+             (double)o->signal_grace);
   PetscCheck(o->stabilize > 0 && o->stabilize_rtol >= 0 && o->stabilize_passes >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-load_stabilize %g, -load_stabilize_rtol %g, -load_stabilize_passes %" PetscInt_FMT
              ": use a positive stabilization, a tolerance >= 0 and passes >= 0", (double)o->stabilize,
@@ -162,12 +175,15 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
 
 
 
-PetscErrorCode WriteCheckpoint(const LoadStepper &s) {
+PetscErrorCode WriteCheckpoint(LoadStepper *ps) {
+  const LoadStepper &s = *ps;
   StepperState st;
   PetscFunctionBeginUser;
   st.t = s.t, st.dt = s.dt, st.dt_last = s.dt_last, st.step = s.step, st.converged_states = s.converged_states;
   st.easy = s.easy, st.cutbacks = s.res->cutbacks, st.newton = s.res->newton_iterations;
   PetscCall(CheckpointWrite(s.P, s.ck.file, st, s.U_committed, s.U_previous, OutputRunId(s.out)));
+  ps->checkpoint_step = s.step;
+  PetscCall(PetscTime(&ps->checkpoint_time));
   PetscFunctionReturn(0);
 }
 
@@ -193,6 +209,7 @@ PetscErrorCode LoadStepperBegin(LoadStepper *s) {
   Problem *P = s->P;
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&s->t0));
+  s->checkpoint_time = s->t0;
   PetscCall(SNESGetTolerances(s->snes, &s->snes_atol, &s->snes_rtol, &s->snes_stol, &s->snes_max_it, &s->snes_max_f));
   PetscCall(VecDuplicate(P->U, &s->U_committed));
   PetscCall(VecDuplicate(P->U, &s->U_previous));
@@ -327,7 +344,8 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   PetscBool krylov_failed = PETSC_FALSE;
   if (!always) PetscCall(NewtonSolve(s, inc));
   if (!always && !inc->Converged()) PetscCall(KrylovSolveFailed(s->snes, &krylov_failed));
-  if (always || (!inc->Converged() && o.stabilize_when == 1 && !krylov_failed))
+  // Neither a failed Krylov solve (cut back) nor an interrupted one (the run stops) is stabilized.
+  if (always || (!inc->Converged() && o.stabilize_when == 1 && !krylov_failed && !InterruptGaveUp()))
     PetscCall(StabilizedSolve(s, inc, !always));
   PetscCall(PetscLogEventEnd(LogEvents().increment, 0, 0, 0, 0));
   PetscFunctionReturn(0);
@@ -437,7 +455,7 @@ PetscErrorCode WriteIncrementResults(LoadStepper *s, bool *stop) {
   const bool stop_here = s->o.stop_after >= 0 && s->step >= s->o.stop_after;
   if (s->out && (last || stop_here || s->step % OutputEvery(s->out) == 0))
     PetscCall(OutputWriteStep(s->out, s->P, s->P->U, s->step, s->t));
-  if ((s->ck.every > 0 && s->step % s->ck.every == 0) || (stop_here && !last)) PetscCall(WriteCheckpoint(*s));
+  if ((s->ck.every > 0 && s->step % s->ck.every == 0) || (stop_here && !last)) PetscCall(WriteCheckpoint(s));
   *stop = stop_here && !last;
   PetscFunctionReturn(0);
 }
@@ -451,7 +469,8 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
   PetscCall(VecCopy(s->U_committed, P->U));
   PetscCall(ProblemSetLoadTime(P, s->t, P->U));
   PetscCall(ProblemUpdateReactions(P, P->U));
-  if (OutputLastStep(s->out) != s->step) PetscCall(OutputWriteStep(s->out, P, P->U, s->step, s->t));
+  // (a signal's stop leaves it to the checkpoint: the continued results then list the same steps)
+  if (OutputLastStep(s->out) != s->step && !res->interrupted) PetscCall(OutputWriteStep(s->out, P, P->U, s->step, s->t));
   res->completed = res->failure.empty() ? PETSC_TRUE : PETSC_FALSE;
   res->steps = s->step;
   res->time = s->t;
@@ -502,6 +521,12 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
   while (!s.Finished()) {
     Increment inc = NextIncrement(s);
     PetscCall(AttemptIncrement(&s, &inc));
+    bool stop = false, checkpoint = false;
+    PetscCall(StopWithinIncrement(&s, inc, &stop));
+    if (stop) {  // the last converged state is the committed one
+      if (s.checkpoint_step != s.step) PetscCall(WriteCheckpoint(&s));
+      break;
+    }
     if (!inc.Converged()) {
       // The committed state back (history and contact were never touched), the increment halved.
       IncrementFailure failure;
@@ -517,12 +542,11 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     PetscCall(CommitIncrement(&s, inc, contact_counts));
     GrowIncrement(&s, inc);
     PetscCall(ReportIncrement(&s, inc, contact_counts));
-    bool stop = false;
     PetscCall(WriteIncrementResults(&s, &stop));
-    if (stop) {
-      res->stopped = PETSC_TRUE;
-      break;
-    }
+    if (stop) res->stopped = PETSC_TRUE;
+    PetscCall(SafePoint(&s, &checkpoint, &stop));
+    if (checkpoint) PetscCall(WriteCheckpoint(&s));
+    if (stop) break;
   }
   PetscCall(LoadStepperEnd(&s));
   PetscFunctionReturn(0);

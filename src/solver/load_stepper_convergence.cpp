@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "etfe/contact.h"
+#include "etfe/interrupt.h"
 #include "etfe/load_stepper.h"
 #include "etfe/tangent_shift.h"
 
@@ -18,6 +19,7 @@ struct ForceTest {
   PetscReal rtol;
   PetscReal roundoff;        // factor of the membrane round-off floor (0: off)
   PetscReal floor = -1.0;    // N, computed at the first test
+  PetscReal signal_grace;    // s (-etfe_signal_grace)
 };
 
 // eps |x|max E h0 sqrt(n): a force from element edges x_a - x_b of coordinates of size |x|
@@ -36,7 +38,15 @@ PetscErrorCode MembraneRoundoffFloor(Problem *P, PetscReal *floor) {
 PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, PetscReal ynorm,
                                      PetscReal fnorm, SNESConvergedReason *reason, void *ctx) {
   auto *t = (ForceTest *)ctx;
+  bool interrupted;
   PetscFunctionBeginUser;
+  // A signal's grace has run out: the increment is given up (the load stepper stops at the last
+  // converged one).
+  PetscCall(InterruptGraceSpent(t->problem->comm, t->signal_grace, &interrupted));
+  if (interrupted) {
+    *reason = SNES_DIVERGED_FUNCTION_COUNT;  // InterruptGaveUp() tells it from a real one
+    PetscFunctionReturn(0);
+  }
   PetscCall(SNESConvergedDefault(snes, it, xnorm, ynorm, fnorm, reason, nullptr));
   const bool step_small = *reason == SNES_CONVERGED_SNORM_RELATIVE;
   if ((*reason != SNES_CONVERGED_ITERATING && !step_small) || it == 0) PetscFunctionReturn(0);
@@ -82,7 +92,7 @@ PetscErrorCode DestroyForceTest(void *ctx) {
 
 PetscErrorCode LoadStepperSetConvergenceTest(Problem *P, SNES snes, const LoadStepperOptions &o) {
   PetscFunctionBeginUser;
-  PetscCall(SNESSetConvergenceTest(snes, ConvergedForceBalance, new ForceTest{P, o.force_rtol, o.force_roundoff},
+  PetscCall(SNESSetConvergenceTest(snes, ConvergedForceBalance, new ForceTest{P, o.force_rtol, o.force_roundoff, -1.0, o.signal_grace},
                                    DestroyForceTest));
   PetscCall(TangentShiftWorkMonitorSet(P, snes));
   PetscFunctionReturn(0);

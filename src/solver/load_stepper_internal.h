@@ -47,6 +47,9 @@ struct LoadStepper {
   // Progress lines: cut-backs shown so far, pair lift-offs since the last line.
   PetscInt cutbacks_printed = 0, lifted_since_print = 0;
   PetscLogDouble t0 = 0.0;
+  // The increment of the last checkpoint written and when (wall clock, -checkpoint_every_s).
+  PetscInt checkpoint_step = -1;
+  PetscLogDouble checkpoint_time = 0.0;
   // SNES's own tolerances, restored at the end (-load_max_it lowers max_it per increment).
   PetscReal snes_atol = 0.0, snes_rtol = 0.0, snes_stol = 0.0;
   PetscInt snes_max_it = 0, snes_max_f = 0;
@@ -134,6 +137,13 @@ PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt co
 // cut-backs are spent.
 PetscErrorCode ReportFailedIncrement(LoadStepper *s, const Increment &inc, const IncrementFailure &failure,
                                      bool exhausted);
+// Collective, after a converged increment and its results (load_stepper_interrupt.cpp): whether
+// a checkpoint of it is due (-checkpoint_every_s on rank 0's clock, -checkpoint_stage_end, a
+// signal; none when one was just written) and whether a signal stops the run here.
+PetscErrorCode SafePoint(LoadStepper *s, bool *checkpoint, bool *stop);
+// After an attempt that Newton gave up because a signal's -etfe_signal_grace ran out: stop (the
+// committed state is the last converged one), with the signal every rank agrees on.
+PetscErrorCode StopWithinIncrement(LoadStepper *s, const Increment &inc, bool *stop);
 
 } // namespace load_stepping
 } // namespace etfe
