@@ -70,6 +70,12 @@ struct CellFields {
 // with_true_stress: also the Cauchy fields (output and reports; per-increment probes skip them).
 PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields, bool with_true_stress = true);
 
+// U with its ghost values as one local array (owned nodes, then ghosts), read-only, through the
+// ghosted vector `ghosted` (U itself, or a ghosted copy of its layout); every element loop starts
+// with it. Collective (the ghost update). Pair with RestoreLocalArray.
+PetscErrorCode GetLocalArray(Vec U, Vec ghosted, Vec *local, const PetscScalar **a);
+PetscErrorCode RestoreLocalArray(Vec ghosted, Vec *local, const PetscScalar **a);
+
 // Largest nodal (3-vector) norm of a block-3 vector (collective).
 PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max);
 // Collective look-ups by scene (natural) id, for scene reports and probes: current position

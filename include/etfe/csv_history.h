@@ -13,4 +13,8 @@ namespace etfe {
 // newline). Returns nullptr when the file cannot be written.
 FILE *CsvHistoryOpen(const std::string &path, long long step, const char *header);
 
+// Where a scene's history goes: the path its option gave, else <results stem><suffix> beside the
+// results; "" without either (a run without results writes none: it would overwrite another run's).
+std::string CsvHistoryPath(const std::string &given, const std::string &results_stem, const char *suffix);
+
 } // namespace etfe

@@ -114,6 +114,9 @@ struct SceneSpec {
   // builder chose, e.g. the saddle's part boxes and number of drawing stages): written as root
   // attributes of the results file, one double array each (docs/results.md).
   StageValues result_attributes;
+  // The builder has checked each of its load options' scale itself, naming the option (the
+  // general scene): the registry's scene-wide pressure check is then skipped.
+  bool loads_checked = false;
 
   int NumStages() const { return schedules.empty() ? 1 : schedules[0].NumStages(); }
   int AddSchedule(const Schedule &s) {

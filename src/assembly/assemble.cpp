@@ -79,23 +79,6 @@ PetscErrorCode ScatterToLocal(Vec global, Vec ghosted) {
   PetscFunctionReturn(0);
 }
 
-// U with its ghost values as one local array (owned nodes, then ghosts), read-only; every
-// element loop starts with it. Pair with RestoreLocalArray.
-PetscErrorCode GetLocalArray(Vec U, Vec ghosted, Vec *local, const PetscScalar **a) {
-  PetscFunctionBeginUser;
-  PetscCall(ScatterToLocal(U, ghosted));
-  PetscCall(VecGhostGetLocalForm(ghosted, local));
-  PetscCall(VecGetArrayRead(*local, a));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode RestoreLocalArray(Vec ghosted, Vec *local, const PetscScalar **a) {
-  PetscFunctionBeginUser;
-  PetscCall(VecRestoreArrayRead(*local, a));
-  PetscCall(VecGhostRestoreLocalForm(ghosted, local));
-  PetscFunctionReturn(0);
-}
-
 // Agrees on the worst element status over all ranks and remembers which element it was.
 PetscErrorCode ReduceStatus(Problem *P, int status, PetscInt element) {
   int local[2] = {status, (int)element}, global[2];
@@ -113,6 +96,23 @@ PetscErrorCode ReduceStatus(Problem *P, int status, PetscInt element) {
 }
 
 } // namespace
+
+// U with its ghost values as one local array (owned nodes, then ghosts), read-only; every
+// element loop starts with it. Pair with RestoreLocalArray.
+PetscErrorCode GetLocalArray(Vec U, Vec ghosted, Vec *local, const PetscScalar **a) {
+  PetscFunctionBeginUser;
+  PetscCall(ScatterToLocal(U, ghosted));
+  PetscCall(VecGhostGetLocalForm(ghosted, local));
+  PetscCall(VecGetArrayRead(*local, a));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode RestoreLocalArray(Vec ghosted, Vec *local, const PetscScalar **a) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(*local, a));
+  PetscCall(VecGhostRestoreLocalForm(ghosted, local));
+  PetscFunctionReturn(0);
+}
 
 PetscErrorCode VecMaxNodalNorm(Vec v, PetscReal *max) {
   const PetscScalar *a;
@@ -274,7 +274,9 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   PetscCall(PetscLogEventBegin(LogEvents().jacobian, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(Pmat));
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
-  // Per element the pressure of every load on it (the load stiffness is linear in p).
+  // Per element the pressure of every load on it (the load stiffness is linear in p). The
+  // chambers are evaluated here again: the tangent predictor asks for J at a load time the last
+  // residual was not evaluated at.
   if (P->chambers) PetscCall(ChamberEvaluate(P, u));
   std::vector<double> pressure;
   for (const Problem::PressureLoad &load : P->pressures) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "etfe/assembly.h"
 #include "etfe/kernels/chamber.h"
 #include "etfe/kernels/pressure.h"
 #include "etfe/problem.h"
@@ -36,13 +37,9 @@ PetscErrorCode ChamberUpdate(Problem *P, Vec U) {
   const PetscScalar *u;
   Vec Ul;
   PetscFunctionBeginUser;
-  PetscCall(VecGhostUpdateBegin(U, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(U, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostGetLocalForm(U, &Ul));
-  PetscCall(VecGetArrayRead(Ul, &u));
+  PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   PetscCall(ChamberEvaluate(P, u));
-  PetscCall(VecRestoreArrayRead(Ul, &u));
-  PetscCall(VecGhostRestoreLocalForm(U, &Ul));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   PetscFunctionReturn(0);
 }
 

@@ -58,4 +58,9 @@ FILE *CsvHistoryOpen(const std::string &path, long long step, const char *header
   return f;
 }
 
+std::string CsvHistoryPath(const std::string &given, const std::string &results_stem, const char *suffix) {
+  if (!given.empty()) return given;
+  return results_stem.empty() ? std::string() : results_stem + suffix;
+}
+
 } // namespace etfe

@@ -81,8 +81,7 @@ PetscErrorCode ReportPressurePlausibility(MPI_Comm comm, const SceneSpec &scene)
   double pmax = 0.0;
   PetscFunctionBeginUser;
   for (const Schedule &sc : scene.schedules) stages = std::max(stages, sc.NumStages());
-  // The general scene checks each of its load options itself, naming it (structure_loads.cpp).
-  if (scene.name == "structure") PetscFunctionReturn(0);
+  if (scene.loads_checked) PetscFunctionReturn(0);
   for (const PressureSpec &p : scene.pressures)
     for (int t = 0; t <= stages; ++t) pmax = std::max(pmax, std::fabs(p.value.At(scene.schedules, t)));
   PetscCall(ReportPlausibility(

@@ -120,11 +120,7 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
   CellFields f;
   ProbeValues v;
   PetscFunctionBeginUser;
-  // -saddle_history, else beside the results; without results there is none (it would
-  // overwrite another run's beside them).
-  const std::string path = !c->history.empty()            ? c->history
-                           : !P->observer.results_stem.empty() ? P->observer.results_stem + "_history.csv"
-                                                               : std::string();
+  const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_history.csv");
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f, false));
   PetscCall(Measure(P, c, f, &v));

@@ -69,9 +69,7 @@ PetscErrorCode StripStep(Problem *P, void *vctx, PetscInt step, double t, PetscI
   if (print_every > 0 && step % print_every == 0)
     PetscCall(PetscPrintf(P->comm, "strip: %s  time %.6g s  strain %.6e  stress %.6e MPa (nominal %.6e)\n",
                           kStripTests[(int)c->test], seconds, e, S, s));
-  const std::string path = !c->history.empty()                 ? c->history
-                           : !P->observer.results_stem.empty() ? P->observer.results_stem + "_strip.csv"
-                                                               : std::string();
+  const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_strip.csv");
   if (path.empty() || P->rank != 0) PetscFunctionReturn(0);
   FILE *out = CsvHistoryOpen(path, step, "step,load_time,seconds,strain_gl,strain,stress_pk2,stress_nominal");
   PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "strip: cannot write %s", path.c_str());

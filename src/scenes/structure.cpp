@@ -63,10 +63,9 @@ std::string InitialBulge(double h, SceneSpec *scene) {
   if (anchors.empty()) return "-structure_initial_bulge: no node is held in all three directions to lift the film from";
   double normal[3] = {0, 0, 0};
   for (int e = 0; e < m.NumElements(); ++e) {
-    const int *t = &m.triangles[3 * e];
-    const double *a = &m.coords[3 * t[0]], *b = &m.coords[3 * t[1]], *c = &m.coords[3 * t[2]];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
-    normal[0] += u[1] * v[2] - u[2] * v[1], normal[1] += u[2] * v[0] - u[0] * v[2], normal[2] += u[0] * v[1] - u[1] * v[0];
+    double n[3];
+    StructureTriangleNormal(m, e, n);
+    for (int i = 0; i < 3; ++i) normal[i] += n[i];
   }
   const double len = std::hypot(normal[0], normal[1], normal[2]);
   if (!(len > 0)) return "-structure_initial_bulge: the film has no mean normal (a closed surface?)";

@@ -94,6 +94,9 @@ struct StructureInputs {
   std::string history;                                    // -structure_history ("": beside the results)
 };
 
+// Rank 0: the area vector times 2 of element e, (x2 - x1) x (x3 - x1).
+void StructureTriangleNormal(const MeshData &m, int e, double n[3]);
+
 PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool form_finding, StructureInputs *in);
 
 // The analysis' stage count (every per-stage array fits it) and the schedule of one array.

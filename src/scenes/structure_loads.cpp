@@ -16,29 +16,30 @@
 
 namespace etfe {
 
-namespace {
-
-const double kPaToMPa = 1e-3;
-
-void TriangleNormal(const MeshData &m, int e, double n[3]) {
+void StructureTriangleNormal(const MeshData &m, int e, double n[3]) {
   const int *t = &m.triangles[3 * e];
   const double *a = &m.coords[3 * t[0]], *b = &m.coords[3 * t[1]], *c = &m.coords[3 * t[2]];
   const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, v[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
   n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
 }
 
+namespace {
+
+const double kPaToMPa = 1e-3;
+
+
 const std::vector<int> *ElementGroup(const MeshData &m, const std::string &g) {
   const auto it = m.element_sets.find(g);
   return it == m.element_sets.end() ? nullptr : &it->second;
 }
 
-// Rank 0: per node of a surface group, its share of the group's plan area (plan = true) or area.
-std::map<int, double> AreaShares(const MeshData &m, const std::vector<int> &elements, bool plan) {
+// Rank 0: per node of a surface group, its share of the group's plan area.
+std::map<int, double> PlanAreaShares(const MeshData &m, const std::vector<int> &elements) {
   std::map<int, double> share;
   for (int e : elements) {
     double n[3];
-    TriangleNormal(m, e, n);
-    const double area = 0.5 * (plan ? std::fabs(n[2]) : std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+    StructureTriangleNormal(m, e, n);
+    const double area = 0.5 * std::fabs(n[2]);
     for (int a = 0; a < 3; ++a) share[m.triangles[3 * e + a]] += area / 3.0;
   }
   return share;
@@ -125,7 +126,7 @@ PetscErrorCode AddFilmLoads(MPI_Comm comm, const StructureInputs &in, int stages
       std::vector<double> s;
       for (double x : f.snow.values) s.push_back(-kPaToMPa * x);  // downward
       const int id = StructureAddSchedule(scene, f.group + ".snow", s, stages, "kPa", -1e3);
-      if (els) AddDeadForces(AreaShares(m, *els, true), 2, id, scene);
+      if (els) AddDeadForces(PlanAreaShares(m, *els), 2, id, scene);
     }
   }
   PetscFunctionReturn(0);
@@ -137,6 +138,7 @@ PetscErrorCode StructureAddLoads(MPI_Comm comm, const StructureInputs &in, int s
   const MeshData &m = scene->mesh;
   const bool mesh = SceneHoldsMesh(comm);
   PetscFunctionBeginUser;
+  scene->loads_checked = true;  // each load option against its scale (CheckLoadScale), by name
   PetscCall(AddFilmLoads(comm, in, stages, scene));
   if (in.self_weight.Given()) {
     // Weight per area rho g h [N/mm^2], with the thickness the membrane will take.
@@ -152,7 +154,10 @@ PetscErrorCode StructureAddLoads(MPI_Comm comm, const StructureInputs &in, int s
       for (int e = 0; e < m.NumElements(); ++e) {
         const double he = scene->element_thickness.empty() || scene->element_thickness[e] == 0 ? h
                                                                                                 : scene->element_thickness[e];
-        for (const auto &kv : AreaShares(m, {e}, false)) share[kv.first] += kv.second * he / h;
+        double n[3];
+        StructureTriangleNormal(m, e, n);
+        const double third = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) / 3.0 * he / h;
+        for (int a = 0; a < 3; ++a) share[m.triangles[3 * e + a]] += third;
       }
       AddDeadForces(share, 2, id, scene);
     }

@@ -77,11 +77,13 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
   // Displacements of the elements' nodes (ghosts included): each group's largest.
   Vec Ul;
   const PetscScalar *ul;
-  PetscCall(VecGhostUpdateBegin(P->U, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(P->U, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostGetLocalForm(P->U, &Ul));
-  PetscCall(VecGetArrayRead(Ul, &ul));
+  PetscCall(GetLocalArray(P->U, P->U_work, &Ul, &ul));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
+    double umax = 0.0;  // the element's largest nodal displacement, once for all its groups
+    for (int a = 0; a < 3; ++a) {
+      const PetscScalar *d = &ul[3 * m.tri[3 * e + a]];
+      umax = std::max(umax, (double)std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    }
     for (size_t k = 0; k < ni; ++k) {
       if (!c->in_item[k][e]) continue;
       double *acc = &sums[5 * k];
@@ -91,16 +93,12 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
       sums[5 * ni + k] += f.wrinkle_state.empty() ? f.smin[e] <= 0 : f.wrinkle_state[e] != 0;
       peaks[3 * k] = std::max(peaks[3 * k], f.mises[e]);
       if (!f.ep_bar.empty()) peaks[3 * k + 1] = std::max(peaks[3 * k + 1], f.ep_bar[e]);
-      for (int a = 0; a < 3; ++a) {
-        const PetscScalar *d = &ul[3 * m.tri[3 * e + a]];
-        peaks[3 * k + 2] = std::max(peaks[3 * k + 2], (double)std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
-      }
+      peaks[3 * k + 2] = std::max(peaks[3 * k + 2], umax);
     }
     for (size_t k = 0; k < npe; ++k)
       if (m.element_natural[e] == c->probe_elements[k]) sums[6 * ni + 2 * k] = f.smin[e], sums[6 * ni + 2 * k + 1] = f.emin[e];
   }
-  PetscCall(VecRestoreArrayRead(Ul, &ul));
-  PetscCall(VecGhostRestoreLocalForm(P->U, &Ul));
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &ul));
   double *probe_n = &sums[6 * ni + 2 * npe];
   const PetscScalar *u, *r;
   PetscCall(VecGetArrayRead(P->U, &u));
@@ -169,9 +167,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   CellFields f;
   Figures v;
   PetscFunctionBeginUser;
-  const std::string path = !c->history.empty()                ? c->history
-                           : !P->observer.results_stem.empty() ? P->observer.results_stem + "_history.csv"
-                                                               : std::string();
+  const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_history.csv");
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f, false));
   PetscCall(Measure(P, c, f, &v));
