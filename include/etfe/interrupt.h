@@ -17,6 +17,11 @@ constexpr int kExitInterrupted = 75;
 // Catches SIGTERM, SIGINT, SIGUSR1 and SIGXCPU (on) or gives them back to the handlers they had
 // before (off). Forgets any signal noted before.
 PetscErrorCode InterruptCatch(bool on);
+// The run is over and its results closed: the caught signals are ignored until the process exits,
+// so one arriving while PETSc and MPI shut down cannot turn a completed run into a killed one.
+// PETSc's own handlers are popped first: PetscFinalize would otherwise put the default actions
+// back before MPI_Finalize.
+PetscErrorCode InterruptHoldUntilExit();
 // The signal noted on this rank (0: none). Not collective: ranks agree on it at safe points.
 int InterruptNoted();
 // "SIGTERM", "SIGUSR1", ...

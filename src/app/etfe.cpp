@@ -349,6 +349,7 @@ int main(int argc, char **argv) {
   const PetscErrorCode ierr = Run(&exit_status);
   if (ierr) return ErrorExit(agree, ierr);
   PetscCallMPI(MPI_Comm_free(&agree));
+  PetscCall(InterruptHoldUntilExit());
   PetscCall(PetscFinalize());
   return exit_status;
 }

@@ -65,6 +65,13 @@ PetscErrorCode InterruptCatch(bool on) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode InterruptHoldUntilExit() {
+  PetscFunctionBeginUser;
+  PetscCall(PetscPopSignalHandler());
+  for (int sig : kCaught) signal(sig, SIG_IGN);
+  PetscFunctionReturn(0);
+}
+
 int InterruptNoted() { return g_noted; }
 
 const char *InterruptSignalName(int sig) {
