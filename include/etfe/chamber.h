@@ -20,6 +20,10 @@ struct ChamberSet {
   std::vector<double> volume, gauge;       // at the last evaluation (mm^3, MPa)
   std::vector<char> sealed;                // committed: the gas amount is fixed
   std::vector<double> amount;              // p_abs V^kappa at sealing
+  // Supply on again after a sealed stage: at release_time (-1: none) the supply takes over from
+  // release_gauge, reaching the supplied pressure at the end of that stage.
+  std::vector<double> release_time, release_gauge;
+  bool per_stage = false;                  // some chamber is sealed per stage (the state keeps the release)
   bool may_seal = false;                   // some chamber is sealed at some stage (and -chamber_rank_one): J is the LRC
   Mat J = nullptr;                         // A + U diag(c) U^T (may_seal)
   Mat U = nullptr;                         // dense, one column per chamber: dV/dx on free DOFs
@@ -40,10 +44,12 @@ double ChamberLoadPressure(const Problem *P, int chamber, double sign);
 // The rank-one part of the tangent at u: the gradients into U, the stiffnesses into c. Collective.
 PetscErrorCode ChamberTangent(Problem *P, const PetscScalar *u);
 // After a converged increment ending at load time t: a chamber whose sealed stage starts at t is
-// sealed with the gas it holds (volume now, supplied pressure at t). Collective.
+// sealed with the gas it holds (volume now, supplied pressure at t); one sealed until t whose
+// next stage is not is supplied again. Collective.
 PetscErrorCode ChamberCommit(Problem *P, double t);
 PetscErrorCode ChamberDestroy(Problem *P);
-// The committed state a checkpoint keeps: per chamber sealed (0/1) and amount.
+// The committed state a checkpoint keeps: per chamber sealed (0/1) and amount (then, with sealing
+// per stage, per chamber the release time and gauge).
 void ChamberStateGet(const Problem *P, std::vector<double> *state);
 void ChamberStateSet(Problem *P, const std::vector<double> &state);
 

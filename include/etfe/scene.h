@@ -34,12 +34,23 @@ struct PressureSpec {
 
 // A gas chamber (kernels/chamber.h, src/assembly/chamber.cpp): the pressure loads with its index
 // bound it. Supplied: the gauge pressure follows `supplied`; from the start of stage
-// `sealed_from_stage` (1-based; 0: never) it is sealed with the gas it holds then.
+// `sealed_from_stage` (1-based; 0: never) it is sealed with the gas it holds then. Or per stage
+// (`sealed_stages`, one flag per stage): sealed where a stage is flagged, the supply on again
+// where the next is not (taking over from the sealed gas's pressure over that stage).
 struct ChamberSpec {
   std::string name;
   double origin[3] = {0, 0, 0};  // on the planes that close it, if any
   ScheduledValue supplied;       // gauge pressure [MPa] while supplied
   int sealed_from_stage = 0;
+  std::vector<char> sealed_stages;  // empty: sealed_from_stage decides
+  bool SealedIn(int stage) const {  // 1-based
+    if (!sealed_stages.empty()) return stage >= 1 && stage <= (int)sealed_stages.size() && sealed_stages[stage - 1];
+    return sealed_from_stage > 0 && stage >= sealed_from_stage;
+  }
+  bool EverSealed() const {
+    for (char s : sealed_stages) if (s) return true;
+    return sealed_from_stage > 0;
+  }
   double kappa = 1.0;            // p V^kappa = const when sealed
   double extra_volume = 0.0;     // mm^3 beyond the membranes (ducts, a reservoir)
 };

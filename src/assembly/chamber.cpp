@@ -20,8 +20,15 @@ void Coordinates(const LocalMesh &m, PetscInt e, const PetscScalar *u, double x[
     }
 }
 
+// The supplied pressure now; in the stage after a release, blended from the sealed gas's
+// pressure at the release to the schedule's value at the stage end.
 double SuppliedGauge(const Problem *P, int k) {
-  return P->scene.chambers[k].supplied.At(P->scene.schedules, P->time);
+  const ScheduledValue &p = P->scene.chambers[k].supplied;
+  const ChamberSet &c = *P->chambers;
+  double g = p.At(P->scene.schedules, P->time);
+  const double t0 = c.release_time[k], s = P->time - t0;
+  if (t0 >= 0 && s < 1.0) g += (c.release_gauge[k] - p.At(P->scene.schedules, t0)) * (1.0 - s);
+  return g;
 }
 
 // The gauge pressure of chamber k at volume V: supplied, or from its sealed amount.
@@ -29,6 +36,47 @@ double Gauge(const Problem *P, int k, double V) {
   const ChamberSet &c = *P->chambers;
   if (!c.sealed[k]) return SuppliedGauge(P, k);
   return SealedGauge(c.amount[k], c.atmosphere, V, P->scene.chambers[k].kappa);
+}
+
+// A chamber that encloses nothing at the start has its foils on each other (flat foils give
+// Newton no out-of-plane stiffness to start from, and sealed they would hold no gas); a negative
+// volume means its surfaces face into it. Both are input errors, stated before any load step (the
+// scale: the volume of a cube on the chamber's surface area).
+PetscErrorCode ChamberCheckStartVolume(Problem *P) {
+  const ChamberSet &c = *P->chambers;
+  const PetscScalar *u;
+  Vec Ul;
+  std::vector<double> area(c.volume.size(), 0.0);
+  PetscFunctionBeginUser;
+  PetscCall(GetLocalArray(P->U, P->U_work, &Ul, &u));
+  for (const Problem::PressureLoad &load : P->pressures) {
+    if (load.chamber < 0) continue;
+    for (PetscInt e : load.elements) {
+      double x[9], f[9];
+      Coordinates(P->mesh, e, u, x);
+      PressureLoad(1.0, x, f, nullptr);  // three times a third of the area vector
+      double a[3] = {0, 0, 0};
+      for (int n = 0; n < 3; ++n)
+        for (int i = 0; i < 3; ++i) a[i] += f[3 * n + i];
+      area[load.chamber] += std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    }
+  }
+  PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, area.data(), (int)area.size(), MPI_DOUBLE, MPI_SUM, P->comm));
+  for (size_t k = 0; k < area.size(); ++k) {
+    const std::string &name = P->scene.chambers[k].name;
+    const double scale = std::pow(area[k], 1.5);
+    PetscCheck(c.volume[k] > -1e-9 * scale, P->comm, PETSC_ERR_ARG_WRONG,
+               "chamber %s encloses a negative volume at the start (%g m^3): its surfaces' normals point into it; "
+               "flip the signs in -chamber_%s_signs (+1 where a group's normals point out of the chamber)",
+               name.c_str(), 1e-9 * c.volume[k], name.c_str());
+    PetscCheck(c.volume[k] > 1e-9 * scale, P->comm, PETSC_ERR_ARG_WRONG,
+               "chamber %s encloses no volume at the start (%g m^3 for %g m^2 of foil): its foils lie on each other or "
+               "flat on the plane that closes it, where a flat foil gives Newton no out-of-plane stiffness to start from; start them apart (scripts/cushion-mesh --lens, "
+               "-structure_initial_bulge)",
+               name.c_str(), 1e-9 * c.volume[k], 1e-6 * area[k]);
+  }
+  PetscFunctionReturn(0);
 }
 
 } // namespace
@@ -51,6 +99,8 @@ PetscErrorCode ChamberCreate(Problem *P) {
   P->chambers = c;
   c->atmosphere = P->scene.atmosphere;
   c->volume.assign(n, 0.0), c->gauge.assign(n, 0.0), c->sealed.assign(n, 0), c->amount.assign(n, 0.0);
+  c->release_time.assign(n, -1.0), c->release_gauge.assign(n, 0.0);
+  for (const ChamberSpec &s : P->scene.chambers) c->per_stage |= !s.sealed_stages.empty();
   PetscBool rank_one = PETSC_TRUE;
   PetscOptionsBegin(P->comm, nullptr, "Gas chambers", "Chamber");
   PetscCall(PetscOptionsBool("-chamber_rank_one",
@@ -58,7 +108,7 @@ PetscErrorCode ChamberCreate(Problem *P) {
                              "pressure is updated between iterations only, and Newton converges linearly)",
                              "", rank_one, &rank_one, nullptr));
   PetscOptionsEnd();
-  for (const ChamberSpec &s : P->scene.chambers) c->may_seal |= s.sealed_from_stage > 0 && rank_one;
+  for (const ChamberSpec &s : P->scene.chambers) c->may_seal |= s.EverSealed() && rank_one;
   if (c->may_seal) {
     PetscInt nlocal, N;
     PetscCall(VecGetLocalSize(P->U, &nlocal));
@@ -74,8 +124,9 @@ PetscErrorCode ChamberCreate(Problem *P) {
   }
   // Sealed from the start: the gas the chamber holds at load time 0.
   PetscCall(ChamberUpdate(P, P->U));
+  PetscCall(ChamberCheckStartVolume(P));
   for (size_t k = 0; k < n; ++k)
-    if (P->scene.chambers[k].sealed_from_stage == 1) {
+    if (P->scene.chambers[k].SealedIn(1)) {
       PetscCheck(c->volume[k] > 0, P->comm, PETSC_ERR_ARG_WRONG,
                  "chamber %s is sealed from stage 1 but encloses %g mm^3 at the start: inflate it in a stage before "
                  "sealing it, or check the orientation of its surfaces (-chamber_%s_signs)",
@@ -164,13 +215,23 @@ PetscErrorCode ChamberCommit(Problem *P, double t) {
                "(a load heavier than the inflation pressure); contact between the layers is not modelled, so the "
                "state cannot be trusted from here. Lower the load or raise the pressure, or seal the chamber",
                P->scene.chambers[k].name.c_str(), t, 1e-9 * c.volume[k]);
+  const double next = std::round(t) + 1;  // the stage that starts at t, if t ends one
+  if (std::fabs(t - std::round(t)) > 1e-9) PetscFunctionReturn(0);
   for (size_t k = 0; k < c.volume.size(); ++k) {
     const ChamberSpec &s = P->scene.chambers[k];
-    if (c.sealed[k] || s.sealed_from_stage <= 1 || std::fabs(t - (s.sealed_from_stage - 1)) > 1e-9) continue;
+    const bool released = !s.sealed_stages.empty() && next <= s.sealed_stages.size() && !s.SealedIn((int)next);
+    if (c.sealed[k] && released) {
+      c.release_time[k] = t, c.release_gauge[k] = c.gauge[k];
+      c.sealed[k] = 0, c.amount[k] = 0.0;
+      PetscCall(PetscPrintf(P->comm, "chamber %s: supplied again at load time %g, from %.6g kPa gauge\n", s.name.c_str(),
+                            t, 1e3 * c.release_gauge[k]));
+      continue;
+    }
+    if (c.sealed[k] || !s.SealedIn((int)next)) continue;
     PetscCheck(c.volume[k] > 0, P->comm, PETSC_ERR_ARG_WRONG,
                "chamber %s is sealed from stage %d but encloses %g mm^3 then: inflate it first, or check the "
                "orientation of its surfaces (-chamber_%s_signs)",
-               s.name.c_str(), s.sealed_from_stage, c.volume[k], s.name.c_str());
+               s.name.c_str(), (int)next, c.volume[k], s.name.c_str());
     c.amount[k] = SealedAmount(SuppliedGauge(P, (int)k), c.atmosphere, c.volume[k], s.kappa);
     c.sealed[k] = 1;
     PetscCall(PetscPrintf(P->comm, "chamber %s: sealed at load time %g with %.6g kPa gauge in %.6g m^3\n", s.name.c_str(),
@@ -194,13 +255,19 @@ PetscErrorCode ChamberDestroy(Problem *P) {
 void ChamberStateGet(const Problem *P, std::vector<double> *state) {
   state->clear();
   if (!P->chambers) return;
-  for (size_t k = 0; k < P->chambers->sealed.size(); ++k) state->push_back(P->chambers->sealed[k]), state->push_back(P->chambers->amount[k]);
+  const ChamberSet &c = *P->chambers;
+  for (size_t k = 0; k < c.sealed.size(); ++k) state->push_back(c.sealed[k]), state->push_back(c.amount[k]);
+  if (c.per_stage)
+    for (size_t k = 0; k < c.sealed.size(); ++k) state->push_back(c.release_time[k]), state->push_back(c.release_gauge[k]);
 }
 
 void ChamberStateSet(Problem *P, const std::vector<double> &state) {
   if (!P->chambers) return;
-  for (size_t k = 0; k < P->chambers->sealed.size() && 2 * k + 1 < state.size(); ++k)
-    P->chambers->sealed[k] = state[2 * k] != 0, P->chambers->amount[k] = state[2 * k + 1];
+  ChamberSet &c = *P->chambers;
+  const size_t n = c.sealed.size();
+  for (size_t k = 0; k < n && 2 * k + 1 < state.size(); ++k) c.sealed[k] = state[2 * k] != 0, c.amount[k] = state[2 * k + 1];
+  for (size_t k = 0; c.per_stage && k < n && 2 * n + 2 * k + 1 < state.size(); ++k)
+    c.release_time[k] = state[2 * n + 2 * k], c.release_gauge[k] = state[2 * n + 2 * k + 1];
 }
 
 } // namespace etfe

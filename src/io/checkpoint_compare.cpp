@@ -141,8 +141,10 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   h.Add(s.pressures.size());
   for (const PressureSpec &p : s.pressures) h.Add(p.elements), value(p.value), h.Add(p.chamber), h.Add(p.sign);
   h.Add(s.chambers.size());
-  for (const ChamberSpec &c : s.chambers)
+  for (const ChamberSpec &c : s.chambers) {
     h.Add(c.name), h.Add(c.origin), value(c.supplied), h.Add(c.sealed_from_stage), h.Add(c.kappa), h.Add(c.extra_volume);
+    if (!c.sealed_stages.empty()) h.Add(c.sealed_stages);
+  }
   if (!s.chambers.empty()) h.Add(s.atmosphere);
   h.Add(s.nodal_forces.size());
   for (const NodalForce &f : s.nodal_forces) h.Add(f.node), h.Add(f.comp), value(f.value);

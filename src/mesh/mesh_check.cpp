@@ -203,7 +203,8 @@ bool CheckCoincidentNodes(const MeshData &mesh, std::string *err) {
                           "of the mean edge length " +
                           Num(mean_edge) +
                           " mm): the mesh has a crack there; merge duplicate nodes in the "
-                          "mesh generator (Gmsh: Geometry.Tolerance, or Coherence Mesh)");
+                          "mesh generator (Gmsh: Geometry.Tolerance, or Coherence Mesh). If two foils lie on each "
+                          "other (a cushion's flat layers), start them apart (scripts/cushion-mesh --lens)");
         }
       }
     }

@@ -98,8 +98,10 @@ PetscErrorCode BuildLoadHistory(MPI_Comm comm, const StructureInputs &in, int st
                          "list the mesh's surface groups cut as strips in -structure_pattern_strips"};
     if (strips.strips.empty()) strips.strips = in.element_groups;
     PetscCall(PatternReference(comm, scene->mesh, strips, &scene->element_reference));
-    // Laid on during the first stage, while the supports draw the film (pattern_reference.cpp).
-    const int sl = scene->AddSchedule({"lay_on", 0.0, std::vector<double>(stages, 1.0), ""});
+    // Laid on during the first stage, while the supports draw the film (pattern_reference.cpp);
+    // or the reference from the start, where the mesh only stretches the patterns (a lens).
+    const double start = in.pattern_lay_on ? 0.0 : 1.0;
+    const int sl = scene->AddSchedule({"lay_on", start, std::vector<double>(stages, 1.0), ""});
     scene->reference_blend = {{1.0, 0.0}, {sl, -1}};
   }
   if (in.initial_bulge != 0.0) {

@@ -65,6 +65,7 @@ struct ChamberInput {
   std::vector<double> signs, origin = {0, 0, 0};
   StageArray pressure;         // supplied gauge pressure [kPa]
   PetscInt sealed_from_stage = 0;
+  std::vector<double> sealed;  // per stage 1 sealed / 0 supplied (-chamber_<name>_sealed)
   double kappa = 1.0, extra_volume = 0.0;  // extra volume in m^3
 };
 
@@ -79,6 +80,7 @@ struct StructureInputs {
   PetscInt stages = 0;                                    // -structure_stages (0: the longest array)
   double md[3] = {1.0, 0.0, 0.0};
   PetscInt reference = 0;                                 // 0 mesh, 1 pattern
+  PetscBool pattern_lay_on = PETSC_TRUE;                  // blend mesh -> pattern over stage 1
   std::vector<std::string> pattern_strips;
   double initial_bulge = 0.0;
   StageArray wind, self_weight;

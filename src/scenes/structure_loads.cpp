@@ -253,6 +253,29 @@ std::string ChamberOpenEdge(const MeshData &m, const ChamberInput &c, const std:
   return "";
 }
 
+// Rank 0: the chamber's triangles, each turned by its group's sign, must all face the same way
+// (outward), or the divergence theorem adds volumes of opposite sign: two of them sharing an edge
+// then run along it in the same direction. Returns "" or a message naming the edge and groups.
+std::string ChamberMisorientedEdge(const MeshData &m, const ChamberInput &c) {
+  std::map<std::pair<int, int>, size_t> first;  // directed edge -> group index of its triangle
+  for (size_t g = 0; g < c.groups.size(); ++g)
+    for (int e : m.element_sets.at(c.groups[g]))
+      for (int k = 0; k < 3; ++k) {
+        int a = m.triangles[3 * e + k], b = m.triangles[3 * e + (k + 1) % 3];
+        if (c.signs[g] < 0) std::swap(a, b);
+        const auto seen = first.emplace(std::make_pair(a, b), g);
+        if (seen.second) continue;
+        auto tag = [&](int n) { return std::to_string(m.node_tags.empty() ? n : m.node_tags[n]); };
+        const std::string &g0 = c.groups[seen.first->second];
+        return "chamber " + c.name + ": its surfaces are not oriented consistently: two of its triangles (groups " +
+               g0 + " and " + c.groups[g] + ") run along the edge from node " + tag(a) + " to node " + tag(b) +
+               " in the same direction, so one faces into the chamber and one out of it. " +
+               (g0 == c.groups[g] ? "Number group " + g0 + "'s triangles all one way round (counter-clockwise seen from one side)"
+                                  : "Flip the sign of one of them in -chamber_" + c.name + "_signs");
+      }
+  return "";
+}
+
 PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
   std::vector<int> held_mask;  // rank 0: per node, bit i set where component i is prescribed
   std::string err;
@@ -262,6 +285,8 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
     for (const DofConstraint &d : scene->constraints) held_mask[d.node] |= 1 << d.comp;
     for (const ChamberInput &c : in.chambers)
       if (err.empty()) err = ChamberOpenEdge(scene->mesh, c, held_mask);
+    for (const ChamberInput &c : in.chambers)
+      if (err.empty()) err = ChamberMisorientedEdge(scene->mesh, c);
   }
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
   scene->atmosphere = kPaToMPa * in.atmosphere;
@@ -283,6 +308,10 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
                "-chamber_%s_sealed_from_stage %d: the analysis has %d stages", c.name.c_str(), (int)c.sealed_from_stage,
                stages);
     spec.sealed_from_stage = (int)c.sealed_from_stage;
+    PetscCheck(c.sealed.empty() || (int)c.sealed.size() == stages, comm, PETSC_ERR_ARG_SIZ,
+               "-chamber_%s_sealed: one flag per stage (%d given, the analysis has %d stages)", c.name.c_str(),
+               (int)c.sealed.size(), stages);
+    for (double f : c.sealed) spec.sealed_stages.push_back(f != 0.0);
     spec.kappa = c.kappa;
     spec.extra_volume = 1e9 * c.extra_volume;  // m^3 -> mm^3
     scene->chambers.push_back(spec);

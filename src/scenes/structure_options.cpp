@@ -208,6 +208,10 @@ PetscErrorCode ReadChamber(MPI_Comm comm, const std::string &name, ChamberInput 
                             "Sealed from the start of this stage on (1: from the start; 0: supplied throughout): "
                             "p V^kappa keeps the value it has then",
                             "", c->sealed_from_stage, &c->sealed_from_stage, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-sealed",
+                             "Per stage 1 sealed, 0 supplied (e.g. 0,1,0: a power cut in stage 2; the supply "
+                             "takes over again from the sealed pressure over stage 3); instead of -sealed_from_stage",
+                             &c->sealed, nullptr));
   PetscCall(PetscOptionsReal("-kappa", "Gas law exponent when sealed (1 isothermal, 1.4 adiabatic air)", "", c->kappa,
                              &c->kappa, nullptr));
   PetscCall(PetscOptionsReal("-extra_volume", "Volume beyond the membranes (ducts, a reservoir) [m^3]", "",
@@ -221,6 +225,12 @@ PetscErrorCode ReadChamber(MPI_Comm comm, const std::string &name, ChamberInput 
              c->groups.size());
   for (double s : c->signs)
     PetscCheck(s == 1.0 || s == -1.0, comm, PETSC_ERR_ARG_WRONG, "-%ssigns: each sign is 1 or -1", prefix.c_str());
+  PetscCheck(c->sealed.empty() || c->sealed_from_stage == 0, comm, PETSC_ERR_ARG_WRONG,
+             "chamber %s: give -%ssealed (per stage) or -%ssealed_from_stage, not both", name.c_str(), prefix.c_str(),
+             prefix.c_str());
+  for (double s : c->sealed)
+    PetscCheck(s == 0.0 || s == 1.0, comm, PETSC_ERR_ARG_WRONG, "-%ssealed: one flag per stage, 1 sealed or 0 supplied",
+               prefix.c_str());
   PetscCheck(c->origin.size() == 3, comm, PETSC_ERR_ARG_SIZ, "-%sorigin: give x,y,z", prefix.c_str());
   PetscCheck(c->kappa > 0 && c->extra_volume >= 0 && c->sealed_from_stage >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "chamber %s: -%skappa must be positive, -%sextra_volume and -%ssealed_from_stage not negative",
@@ -288,6 +298,11 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
                               "", references, 2, references[in->reference], &in->reference, nullptr));
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_pattern_strips",
                             "Surface groups cut as one strip each (-structure_reference pattern)", &in->pattern_strips));
+  PetscCall(PetscOptionsBool("-structure_pattern_lay_on",
+                             "Blend the reference from the mesh to the patterns over the first stage (where the "
+                             "patterns fit the supports only with compression); false: the patterns are the reference "
+                             "from the start and the mesh's shape is the first guess (a cushion's lens, stretched)",
+                             "", in->pattern_lay_on, &in->pattern_lay_on, nullptr));
   PetscCall(PetscOptionsReal("-structure_initial_bulge",
                              "Initial guess: lift the free film by up to this much [mm] along its normal (a flat "
                              "film under pressure has no out-of-plane stiffness to start from)",

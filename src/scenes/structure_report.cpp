@@ -1,5 +1,6 @@
 // What the general scene reports (structure_inputs.h): per surface group and region the mean GL
-// strains and PK2 Mises, the largest Mises and plastic strain and the wrinkled elements; the
+// strains and PK2 Mises, the largest Mises (PK2 and Cauchy) and plastic strain and the wrinkled
+// elements and their (reference) area; the
 // probes' smallest principal stress and strain (elements) and displacement and slide (nodes); the
 // reaction on every supported node group; the rigid supports' pairs and largest slide. One CSV
 // line per increment (the history), the same figures in the report after the last one.
@@ -30,11 +31,11 @@ struct StructureContext {
   std::vector<PetscInt> probe_elements, probe_nodes;
 };
 
-// Per item: sums of Exx, Eyy, Exy, Mises, count; maxima of Mises, ep; wrinkled count.
+// Per item: sums of Exx, Eyy, Exy, Mises, count; maxima of Mises, ep; wrinkled count and area.
 struct Figures {
   std::vector<double> mean;     // 4 per item
-  std::vector<double> peak;     // 3 per item (PK2 Mises, plastic strain, largest displacement)
-  std::vector<double> count;    // 2 per item (elements, wrinkled)
+  std::vector<double> peak;     // 4 per item (PK2 Mises, plastic strain, largest displacement, Cauchy Mises)
+  std::vector<double> count;    // 3 per item (elements, wrinkled, wrinkled area [m^2])
   std::vector<double> probe_e;  // smin, emin per probe element
   std::vector<double> probe_n;  // uX, uY, uZ, slide X, slide Y per probe node
   std::vector<double> reaction; // 3 per support group
@@ -73,7 +74,9 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
   const LocalMesh &m = P->mesh;
   const size_t ni = c->items.size(), npe = c->probe_elements.size(), npn = c->probe_nodes.size();
   PetscFunctionBeginUser;
-  std::vector<double> sums(6 * ni + 2 * npe + 5 * npn + 3 * c->supports.size(), 0.0), peaks(3 * ni, 0.0);
+  // sums: 5 per item, then per item the wrinkled elements and their area, then the probes.
+  const size_t probes = 7 * ni;
+  std::vector<double> sums(probes + 2 * npe + 5 * npn + 3 * c->supports.size(), 0.0), peaks(4 * ni, 0.0);
   // Displacements of the elements' nodes (ghosts included): each group's largest.
   Vec Ul;
   const PetscScalar *ul;
@@ -90,16 +93,18 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
       acc[0] += f.strain[3 * e], acc[1] += f.strain[3 * e + 1], acc[2] += f.strain[3 * e + 2];
       acc[3] += f.mises[e], acc[4] += 1.0;
       // Wrinkled: the tension field's state where it is on, else a compressive principal stress.
-      sums[5 * ni + k] += f.wrinkle_state.empty() ? f.smin[e] <= 0 : f.wrinkle_state[e] != 0;
-      peaks[3 * k] = std::max(peaks[3 * k], f.mises[e]);
-      if (!f.ep_bar.empty()) peaks[3 * k + 1] = std::max(peaks[3 * k + 1], f.ep_bar[e]);
-      peaks[3 * k + 2] = std::max(peaks[3 * k + 2], umax);
+      const bool wrinkled = f.wrinkle_state.empty() ? f.smin[e] <= 0 : f.wrinkle_state[e] != 0;
+      sums[5 * ni + k] += wrinkled, sums[6 * ni + k] += wrinkled ? 1e-6 * m.ref[e].area : 0.0;
+      peaks[4 * k] = std::max(peaks[4 * k], f.mises[e]);
+      if (!f.ep_bar.empty()) peaks[4 * k + 1] = std::max(peaks[4 * k + 1], f.ep_bar[e]);
+      peaks[4 * k + 2] = std::max(peaks[4 * k + 2], umax);
+      peaks[4 * k + 3] = std::max(peaks[4 * k + 3], f.cauchy_mises[e]);
     }
     for (size_t k = 0; k < npe; ++k)
-      if (m.element_natural[e] == c->probe_elements[k]) sums[6 * ni + 2 * k] = f.smin[e], sums[6 * ni + 2 * k + 1] = f.emin[e];
+      if (m.element_natural[e] == c->probe_elements[k]) sums[probes + 2 * k] = f.smin[e], sums[probes + 2 * k + 1] = f.emin[e];
   }
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &ul));
-  double *probe_n = &sums[6 * ni + 2 * npe];
+  double *probe_n = &sums[probes + 2 * npe];
   const PetscScalar *u, *r;
   PetscCall(VecGetArrayRead(P->U, &u));
   PetscCall(VecGetArrayRead(P->reaction, &r));
@@ -126,14 +131,14 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, sums.data(), (int)sums.size(), MPI_DOUBLE, MPI_SUM, P->comm));
   PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, peaks.data(), (int)peaks.size(), MPI_DOUBLE, MPI_MAX, P->comm));
   PetscCallMPI(MPI_Allreduce(pairs, v->pairs, 3, MPIU_INT, MPI_SUM, P->comm));
-  v->mean.assign(4 * ni, 0.0), v->count.assign(2 * ni, 0.0);
+  v->mean.assign(4 * ni, 0.0), v->count.assign(3 * ni, 0.0);
   for (size_t k = 0; k < ni; ++k) {
     const double n = sums[5 * k + 4];
     for (int i = 0; i < 4; ++i) v->mean[4 * k + i] = n > 0 ? sums[5 * k + i] / n : 0.0;
-    v->count[2 * k] = n, v->count[2 * k + 1] = sums[5 * ni + k];
+    v->count[3 * k] = n, v->count[3 * k + 1] = sums[5 * ni + k], v->count[3 * k + 2] = sums[6 * ni + k];
   }
   v->peak = peaks;
-  v->probe_e.assign(sums.begin() + 6 * ni, sums.begin() + 6 * ni + 2 * npe);
+  v->probe_e.assign(sums.begin() + probes, sums.begin() + probes + 2 * npe);
   v->probe_n.assign(probe_n, probe_n + 5 * npn);
   v->reaction.assign(probe_n + 5 * npn, probe_n + 5 * npn + 3 * c->supports.size());
   v->chamber.clear();
@@ -148,7 +153,9 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
 std::string Header(const Problem *P, const StructureContext *c, bool contact) {
   std::string h = P->clock.Active() ? "step,time,seconds" : "step,time";  // seconds: -load_stage_duration, holds
   for (const std::string &g : c->items)
-    for (const char *k : {"_Exx", "_Eyy", "_Exy", "_mises", "_mises_max", "_ep_max", "_u_max", "_wrinkled"}) h += "," + g + k;
+    for (const char *k : {"_Exx", "_Eyy", "_Exy", "_mises", "_mises_max", "_ep_max", "_u_max", "_wrinkled",
+                          "_cauchy_max", "_wrinkled_m2"})
+      h += "," + g + k;
   for (size_t k = 1; k <= c->probe_elements.size(); ++k)
     h += ",element" + std::to_string(k) + "_smin,element" + std::to_string(k) + "_emin";
   for (size_t k = 1; k <= c->probe_nodes.size(); ++k) {
@@ -169,7 +176,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   PetscFunctionBeginUser;
   const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_history.csv");
   if (path.empty()) PetscFunctionReturn(0);
-  PetscCall(ComputeCellFields(P, P->U, &f, false));
+  PetscCall(ComputeCellFields(P, P->U, &f));
   PetscCall(Measure(P, c, f, &v));
   if (P->rank != 0) PetscFunctionReturn(0);
   const bool contact = P->contact != nullptr;
@@ -179,7 +186,8 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   if (P->clock.Active()) std::fprintf(out, ",%.10g", P->clock.Seconds(t));
   for (size_t k = 0; k < c->items.size(); ++k) {
     for (int i = 0; i < 4; ++i) std::fprintf(out, ",%.8e", v.mean[4 * k + i]);
-    std::fprintf(out, ",%.8e,%.8e,%.8e,%.0f", v.peak[3 * k], v.peak[3 * k + 1], v.peak[3 * k + 2], v.count[2 * k + 1]);
+    std::fprintf(out, ",%.8e,%.8e,%.8e,%.0f,%.8e,%.8e", v.peak[4 * k], v.peak[4 * k + 1], v.peak[4 * k + 2],
+                 v.count[3 * k + 1], v.peak[4 * k + 3], v.count[3 * k + 2]);
   }
   for (double x : v.probe_e) std::fprintf(out, ",%.8e", x);
   for (size_t k = 0; k < c->probe_nodes.size(); ++k)
@@ -208,10 +216,11 @@ PetscErrorCode Report(Problem *P, void *vctx) {
   for (size_t k = 0; k < c->items.size(); ++k)
     PetscCall(PetscPrintf(P->comm,
                           "structure: %s (%.0f elements): mean mises = %.4f MPa (PK2; Exx %.5f, Eyy %.5f, Exy %.5f), "
-                          "mises_max = %.4f MPa, plastic_strain_max = %.5f, largest displacement %.4f mm, wrinkled = "
-                          "%.0f elements\n",
-                          c->items[k].c_str(), v.count[2 * k], v.mean[4 * k + 3], v.mean[4 * k], v.mean[4 * k + 1],
-                          v.mean[4 * k + 2], v.peak[3 * k], v.peak[3 * k + 1], v.peak[3 * k + 2], v.count[2 * k + 1]));
+                          "mises_max = %.4f MPa (Cauchy %.4f), plastic_strain_max = %.5f, largest displacement %.4f "
+                          "mm, wrinkled = %.0f elements (%.4f m^2)\n",
+                          c->items[k].c_str(), v.count[3 * k], v.mean[4 * k + 3], v.mean[4 * k], v.mean[4 * k + 1],
+                          v.mean[4 * k + 2], v.peak[4 * k], v.peak[4 * k + 3], v.peak[4 * k + 1], v.peak[4 * k + 2],
+                          v.count[3 * k + 1], v.count[3 * k + 2]));
   for (size_t k = 0; k < c->supports.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N\n", c->supports[k].c_str(),
                           v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2]));
