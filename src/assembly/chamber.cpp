@@ -131,8 +131,16 @@ PetscErrorCode ChamberCreate(Problem *P) {
                  "chamber %s is sealed from stage 1 but encloses %g mm^3 at the start: inflate it in a stage before "
                  "sealing it, or check the orientation of its surfaces (-chamber_%s_signs)",
                  P->scene.chambers[k].name.c_str(), c->volume[k], P->scene.chambers[k].name.c_str());
-      c->amount[k] = SealedAmount(SuppliedGauge(P, (int)k), c->atmosphere, c->volume[k], P->scene.chambers[k].kappa);
+      const double gauge = SuppliedGauge(P, (int)k);
+      c->amount[k] = SealedAmount(gauge, c->atmosphere, c->volume[k], P->scene.chambers[k].kappa);
       c->sealed[k] = 1;
+      // Allowed (a bag of air closed at the atmosphere's pressure) but rarely meant: say so.
+      PetscCall(PetscPrintf(P->comm,
+                            "chamber %s: sealed from the start with %.6g kPa gauge in %.6g m^3%s\n",
+                            P->scene.chambers[k].name.c_str(), 1e3 * gauge, 1e-9 * c->volume[k],
+                            gauge <= 0 ? " (never inflated: to inflate it first, supply it in stage 1 and seal it "
+                                         "from stage 2)"
+                                       : ""));
     }
   PetscFunctionReturn(0);
 }
