@@ -20,6 +20,7 @@ namespace etfe {
 
 struct ContactSet;
 struct ChamberSet;
+struct LayerContactSet;
 struct Problem;
 
 // What the scene that made the problem watches of a run: its report after the last increment,
@@ -121,6 +122,8 @@ struct Problem {
   ContactSet *contact = nullptr;
   // Gas chambers (nullptr when the scene has none).
   ChamberSet *chambers = nullptr;
+  // Contact between film layers (nullptr without -layer_contact).
+  LayerContactSet *layers = nullptr;
 
   // Seconds of physical time at each load time (-load_stage_duration, -load_hold_*; stage_clock.h).
   StageClock clock;

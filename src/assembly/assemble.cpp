@@ -13,6 +13,7 @@
 #include "etfe/contact.h"
 #include "etfe/kernels/pressure.h"
 #include "etfe/chamber.h"
+#include "etfe/layer_contact.h"
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
 #include "etfe/kernels/wrinkling.h"
@@ -220,6 +221,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   }
   PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
   if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationForce(P, U, Fout));
+  if (P->layers) PetscCall(LayerContactResidual(P, U, Fout));
 
   // Constrained DOFs: keep the internal force as the reaction, then R = u - u_prescribed.
   {
@@ -330,6 +332,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   }
   if (P->chambers) PetscCall(ChamberTangent(P, u));
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
+  if (P->layers) PetscCall(LayerContactJacobian(P, U, Pmat));
   for (PetscInt d : P->con_owned_dof) {
     const PetscScalar one = 1.0;
     PetscCall(MatSetValuesLocal(Pmat, 1, &d, 1, &d, &one, ADD_VALUES));

@@ -216,12 +216,13 @@ PetscErrorCode ChamberCommit(Problem *P, double t) {
   ChamberSet &c = *P->chambers;
   PetscFunctionBeginUser;
   PetscCall(ChamberUpdate(P, P->U));
-  for (size_t k = 0; k < c.volume.size(); ++k)
-    PetscCheck(c.volume[k] > 0, P->comm,
+  for (size_t k = 0; k < c.volume.size(); ++k)  // with layer contact a supplied chamber may empty
+    PetscCheck(c.volume[k] > 0 || (P->layers && !c.sealed[k]), P->comm,
                PETSC_ERR_NOT_CONVERGED,
                "chamber %s turned inside out at load time %g (volume %g m^3): its foils passed through each other "
-               "(a load heavier than the inflation pressure); contact between the layers is not modelled, so the "
-               "state cannot be trusted from here. Lower the load or raise the pressure, or seal the chamber",
+               "(a load heavier than the inflation pressure), so the state cannot be trusted from here. Lower the "
+               "load or raise the pressure, seal the chamber, or let the foils rest on each other (-layer_contact "
+               "top:bottom)",
                P->scene.chambers[k].name.c_str(), t, 1e-9 * c.volume[k]);
   const double next = std::round(t) + 1;  // the stage that starts at t, if t ends one
   if (std::fabs(t - std::round(t)) > 1e-9) PetscFunctionReturn(0);

@@ -11,6 +11,7 @@
 
 #include "checkpoint_compare.h"
 #include "etfe/chamber.h"
+#include "etfe/layer_contact.h"
 #include "etfe/contact.h"
 #include "etfe/h5io.h"
 #include "etfe/log_events.h"
@@ -147,6 +148,10 @@ std::string VerifyIntegrity(const std::string &path) {
         good = good && rows(d.name, (hsize_t)shape[d.shape_index], (hsize_t)d.cols, &v);
         if (good) DataChecksum(PETSC_COMM_SELF, d.name, 0, shape[d.shape_index], (int)d.cols, v.data(), &sum);
       }
+      if (good && H5Lexists(f, "layer_pairs", H5P_DEFAULT) > 0) {  // with -layer_contact
+        good = rows("layer_pairs", (hsize_t)shape[0], 1, &v);
+        if (good) DataChecksum(PETSC_COMM_SELF, "layer_pairs", 0, shape[0], 1, v.data(), &sum);
+      }
       for (const char *state : {"scene_state", "chamber_state"}) {
         if (!good || H5Lexists(f, state, H5P_DEFAULT) <= 0) continue;
         hid_t d = H5Dopen2(f, state, H5P_DEFAULT);
@@ -220,6 +225,11 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
     PetscCall(H5WriteRows(tmp, f, "scene_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, P->rank == 0 ? v.size() : 0,
                           v.data()));
     sum += SceneStateChecksum(v);
+  }
+  if (P->layers) {  // the triangle each node keeps (pairing has hysteresis)
+    std::vector<double> v;
+    LayerContactStateGet(P, &v);
+    PetscCall(H5WriteNatural(tmp, order, f, "layer_pairs", Layout::Nodes, 1, v.data(), false, &sum));
   }
   if (P->chambers) {  // which chambers are sealed and the gas they hold (the same on every rank)
     std::vector<double> v;
@@ -407,6 +417,11 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
       c.status = (int)cst[7 * k + 6];
       P->contact->pairs[k].trial = c;
     }
+  }
+  if (P->layers) {
+    std::vector<double> v(P->mesh.num_owned);
+    PetscCall(H5ReadNatural(path, order, f, "layer_pairs", Layout::Nodes, 1, v.data()));
+    LayerContactStateSet(P, v);
   }
   if (P->observer.state_set) {
     std::vector<double> v;

@@ -14,6 +14,7 @@
 #include "etfe/chamber.h"
 #include "etfe/contact.h"
 #include "etfe/csv_history.h"
+#include "etfe/layer_contact.h"
 #include "structure_inputs.h"
 
 namespace etfe {
@@ -224,6 +225,11 @@ PetscErrorCode Report(Problem *P, void *vctx) {
   for (size_t k = 0; k < c->supports.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N\n", c->supports[k].c_str(),
                           v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2]));
+  if (P->layers)
+    PetscCall(PetscPrintf(P->comm,
+                          "structure: layer contact: %" PetscInt_FMT " of %" PetscInt_FMT
+                          " paired nodes touching the layer below, deepest penetration %.4f mm\n",
+                          P->layers->active, P->layers->paired, P->layers->deepest));
   for (size_t k = 0; k < P->scene.chambers.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "structure: chamber %s: gauge pressure %.6f kPa, volume %.6f m^3 (%s)\n",
                           P->scene.chambers[k].name.c_str(), v.chamber[2 * k], v.chamber[2 * k + 1],

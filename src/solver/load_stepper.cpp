@@ -21,6 +21,7 @@
 #include <string>
 
 #include "etfe/chamber.h"
+#include "etfe/layer_contact.h"
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
 #include "etfe/interrupt.h"
@@ -199,6 +200,7 @@ PetscErrorCode RestartFromCheckpoint(LoadStepper *s) {
   // stress-free shape of a laid-on pattern, hence the internal forces of the increment's work)
   // is that of the uninterrupted run.
   PetscCall(ProblemSetLoadTime(s->P, s->t, s->P->U));
+  if (s->P->layers) PetscCall(LayerContactPair(s->P, s->P->U));  // as after the checkpoint's increment
   PetscCall(PetscPrintf(s->P->comm, "restart: from %s at increment %" PetscInt_FMT ", load time %g\n", s->ck.restart,
                         s->step, s->t));
   PetscFunctionReturn(0);
@@ -274,6 +276,16 @@ PetscErrorCode NewtonSolve(LoadStepper *s, Increment *inc) {
   PetscCall(SNESGetFunctionNorm(s->snes, &inc->fnorm));
   inc->its += its;
   s->res->newton_iterations += its;
+  if (inc->reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    // A factorization that failed (a singular tangent at a wild iterate) leaves PETSc 3.18's MUMPS
+    // refusing every later numeric factorization of the same pattern ("called after analysis
+    // phase fails", then INFOG(1) = -3 in the solve): the retry starts from a new analysis.
+    KSP ksp;
+    PC pc;
+    PetscCall(SNESGetKSP(s->snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCReset(pc));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -416,6 +428,7 @@ PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt co
   s->dt_last = inc.t_new - inc.t;
   s->t = inc.t_new;
   if (P->chambers) PetscCall(ChamberCommit(P, s->t));
+  if (P->layers) PetscCall(LayerContactPair(P, P->U));  // the pairs for the next increment
   ++s->converged_states;
   ++s->step;
   if (inc.stabilized) {
