@@ -95,6 +95,11 @@ PetscErrorCode FindSlaves(Problem *P, LayerContactSet *c) {
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(P->U_work, &area));
   for (size_t l = 0; l < c->slaves.size(); ++l) {
+    std::vector<PetscInt> on_master;  // the PETSc ids of this pair's master layer
+    for (size_t t = 0; t < c->tri_layer.size(); ++t)
+      if (c->tri_layer[t] == (int)l)
+        for (int a = 0; a < 3; ++a) on_master.push_back(c->master_ids[c->master_tri[3 * t + a]]);
+    std::sort(on_master.begin(), on_master.end());
     PetscCall(VecZeroEntries(area));
     PetscCall(VecGhostGetLocalForm(area, &al));
     PetscCall(VecGetArray(al, &a));
@@ -107,7 +112,7 @@ PetscErrorCode FindSlaves(Problem *P, LayerContactSet *c) {
     PetscCall(VecGetArray(area, &a));
     for (PetscInt n = 0; n < m.num_owned; ++n) {
       const bool held = P->dof_constrained[3 * n] && P->dof_constrained[3 * n + 1] && P->dof_constrained[3 * n + 2];
-      if (a[3 * n] <= 0 || held || std::binary_search(c->master_ids.begin(), c->master_ids.end(), m.global_id[n]))
+      if (a[3 * n] <= 0 || held || std::binary_search(on_master.begin(), on_master.end(), m.global_id[n]))
         continue;
       c->nodes.push_back({n, (int)l, 0.0, c->penalty * PetscRealPart(a[3 * n])});
     }

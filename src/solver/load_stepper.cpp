@@ -280,11 +280,14 @@ PetscErrorCode NewtonSolve(LoadStepper *s, Increment *inc) {
     // A factorization that failed (a singular tangent at a wild iterate) leaves PETSc 3.18's MUMPS
     // refusing every later numeric factorization of the same pattern ("called after analysis
     // phase fails", then INFOG(1) = -3 in the solve): the retry starts from a new analysis.
+    // (Factorizations only: an AMG hierarchy built on the shifted matrix is not to be reset.)
     KSP ksp;
     PC pc;
+    PetscBool factor;
     PetscCall(SNESGetKSP(s->snes, &ksp));
     PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCReset(pc));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+    if (factor) PetscCall(PCReset(pc));
   }
   PetscFunctionReturn(0);
 }
