@@ -70,6 +70,20 @@ struct CellFields {
 // with_true_stress: also the Cauchy fields (output and reports; per-increment probes skip them).
 PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields, bool with_true_stress = true);
 
+// The unassembled tangent for domain decomposition (-mat_type is, PCBDDC; unassembled.cpp).
+// UnassembledDefaultType: before MatSetFromOptions, -pc_type bddc without -mat_type makes J a
+// MATIS. UnassembledCheckType: after it, sets problem->unassembled and refuses bddc on an
+// assembled matrix and MATIS with gas chambers. UnassembledMatrixSetUp: the local matrix over
+// the rank's element nodes, exactly preallocated. UnassembledAddElement: one element block by
+// local ids. UnassembledAddConstraintDiagonal: the constrained rows' unit diagonal, split over
+// the subdomains sharing each node (after assembly).
+PetscErrorCode UnassembledDefaultType(Mat J);
+PetscErrorCode UnassembledCheckType(Problem *problem);
+PetscErrorCode UnassembledMatrixSetUp(Problem *problem);
+PetscErrorCode UnassembledAddElement(Mat J, const int tri[3], const PetscScalar K[81]);
+PetscErrorCode UnassembledAddConstraintDiagonal(Problem *problem, Mat J);
+PetscErrorCode UnassembledDestroy(Problem *problem);
+
 // U with its ghost values as one local array (owned nodes, then ghosts), read-only, through the
 // ghosted vector `ghosted` (U itself, or a ghosted copy of its layout); every element loop starts
 // with it. Collective (the ghost update). Pair with RestoreLocalArray.

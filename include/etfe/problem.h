@@ -90,6 +90,10 @@ struct Problem {
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
   PetscBool near_null_space = PETSC_FALSE;  // rigid-body modes attached to J (AMG preconditioners)
+  // J is unassembled (MATIS, -mat_type is: domain decomposition); constraint_unit: 1 at the owned
+  // constrained DOFs, their diagonal (unassembled.cpp).
+  PetscBool unassembled = PETSC_FALSE;
+  Vec constraint_unit = nullptr;
   std::unique_ptr<Material> material;
   std::vector<double> history;        // committed history, HistorySize() per local element
   std::vector<double> history_trial;  // scratch for the commit pass

@@ -314,6 +314,10 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
         if (!P->dof_constrained[3 * tri[r / 3] + r % 3]) continue;
         for (int c = 0; c < 9; ++c) K[9 * r + c] = K[9 * c + r] = 0.0;
       }
+    if (P->unassembled) {
+      PetscCall(UnassembledAddElement(Pmat, tri, K));
+      continue;
+    }
     // Global block ids precomputed: no local-to-global lookup per element.
     PetscCall(MatSetValuesBlocked(Pmat, 3, &P->element_global[3 * e], 3, &P->element_global[3 * e], K, ADD_VALUES));
   }
@@ -333,12 +337,14 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   if (P->chambers) PetscCall(ChamberTangent(P, u));
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   if (P->layers) PetscCall(LayerContactJacobian(P, U, Pmat));
-  for (PetscInt d : P->con_owned_dof) {
-    const PetscScalar one = 1.0;
-    PetscCall(MatSetValuesLocal(Pmat, 1, &d, 1, &d, &one, ADD_VALUES));
-  }
+  if (!P->unassembled)  // unassembled: after the assembly, split over the subdomains
+    for (PetscInt d : P->con_owned_dof) {
+      const PetscScalar one = 1.0;
+      PetscCall(MatSetValuesLocal(Pmat, 1, &d, 1, &d, &one, ADD_VALUES));
+    }
   PetscCall(MatAssemblyBegin(Pmat, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Pmat, MAT_FINAL_ASSEMBLY));
+  if (P->unassembled) PetscCall(UnassembledAddConstraintDiagonal(P, Pmat));
   if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationTangent(P, Pmat));
   if (J != Pmat) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));

@@ -181,6 +181,9 @@ PetscErrorCode LayerContactCreate(Problem *P) {
     PetscFunctionReturn(0);
   }
   P->layers = c;
+  PetscCheck(!P->unassembled, P->comm, PETSC_ERR_SUP,
+             "-layer_contact couples nodes of different subdomains, which the unassembled tangent (-mat_type is, "
+             "-pc_type bddc) cannot hold: use an assembled solver path (e.g. options/solvers/mumps_lu.opts)");
   PetscCall(GatherMasters(P, c));
   PetscCall(FindSlaves(P, c));
   IS is;

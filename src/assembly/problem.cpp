@@ -33,9 +33,15 @@ static PetscErrorCode CreateMatrix(Problem *P, const std::vector<PetscInt> &d_nn
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-layer_contact", &layers));
   PetscCall(MatSetType(P->J, layers ? MATAIJ : MATBAIJ));
   PetscCall(MatSetOptionsPrefix(P->J, nullptr));
+  PetscCall(UnassembledDefaultType(P->J));
   PetscCall(MatSetFromOptions(P->J));
-  PetscCall(MatXAIJSetPreallocation(P->J, 3, d_nnz.data(), o_nnz.data(), nullptr, nullptr));
-  PetscCall(MatSetLocalToGlobalMapping(P->J, P->l2g, P->l2g));
+  PetscCall(UnassembledCheckType(P));
+  if (P->unassembled) {
+    PetscCall(UnassembledMatrixSetUp(P));
+  } else {
+    PetscCall(MatXAIJSetPreallocation(P->J, 3, d_nnz.data(), o_nnz.data(), nullptr, nullptr));
+    PetscCall(MatSetLocalToGlobalMapping(P->J, P->l2g, P->l2g));
+  }
   // A new nonzero would mean a wrong preallocation: make it a hard error, never a malloc.
   PetscCall(MatSetOption(P->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, P->has_pressure ? PETSC_FALSE : PETSC_TRUE));
@@ -230,6 +236,7 @@ PetscErrorCode ProblemDestroy(Problem *P) {
   PetscCall(VecDestroy(&P->F_work));
   PetscCall(VecDestroy(&P->reaction));
   PetscCall(MatDestroy(&P->J));
+  PetscCall(UnassembledDestroy(P));
   PetscCall(ISLocalToGlobalMappingDestroy(&P->l2g));
   if (P->contact) PetscCall(ContactDestroy(&P->contact));
   SceneObserverDestroy(&P->observer);

@@ -2,7 +2,7 @@
 //
 // The rule: an option may change on a restart when it decides how the increments are solved or
 // what is written, never what is computed. Allowed to change:
-//   solvers      -snes_* -ksp_* -pc_* -mat_* (MUMPS, ...) -sub_* -mg_* -redundant_* -fieldsplit_*
+//   solvers      -snes_* -ksp_* -pc_* -mat_* (MUMPS, ...) -matis_* -sub_* -mg_* -redundant_* -fieldsplit_*
 //                -etfe_lu_native_max_dof
 //                -load_force_rtol -load_max_cutbacks -load_max_it -load_grow_after -load_easy_iterations
 //                -load_extrapolate -load_tangent_predictor* (predictors and the cut-back policy)
@@ -35,7 +35,7 @@ namespace etfe {
 namespace {
 
 const char *const kMayChange[] = {
-    "snes_", "ksp_", "pc_", "mat_", "sub_", "mg_", "redundant_", "fieldsplit_",
+    "snes_", "ksp_", "pc_", "mat_", "matis_", "sub_", "mg_", "redundant_", "fieldsplit_",
     "load_force_rtol", "load_max_cutbacks", "load_max_it", "load_grow_after", "load_easy_iterations", "load_extrapolate",
     "load_tangent_predictor", "membrane_tangent_", "formfind_monitor", "load_force_roundoff",
     "membrane_near_null_space", "etfe_lu_native_max_dof", "etfe_pc_", "etfe_solver", "etfe_scalable_",
