@@ -9,6 +9,8 @@
   (-chamber_rank_one 0, the pressure updated between iterations only) far more, or no
   convergence.
 * A sealed chamber with a huge reservoir (-chamber_air_extra_volume) gives the supplied answer.
+* Sealing per stage (a power cut under snow, then the supply back) ends where supplied
+  throughout ends; snow on and off a sealed cushion brings it back to its inflated state.
 * The three-layer cushion (two chambers, -mesh_welds): 2 ranks agree with 1; a restart inside
   the sealed stage is bit for bit; a restart with another kappa is refused.
 * Bad input: a chamber group that does not exist, signs of the wrong count, a gauge pressure below
@@ -166,6 +168,16 @@ with scratch_dir() as tmp:
     fails = h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
     chk.check(not fails, "power cut: restarted after the release, bit for bit%s"
               % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
+
+    # --- unloading: the snow on the sealed cushion and off again; the film stays elastic and the
+    # isothermal gas is reversible, so the cushion comes back to its inflated state
+    _, _, hu = case(["-options_file", CI, "-chamber_air_pressure", "0.3,0.3,0.3", "-film_top_snow", "0,0.25,0",
+                     "-load_increments", 30, "-output", 0], tmp, "unload")
+    at1 = [r for r in hu if abs(float(r["time"]) - 1.0) < 1e-9][0]
+    for col in ("air_p_kPa", "air_V_m3", "node1_uZ", "top_mises"):
+        a, b = float(hu[-1][col]), float(at1[col])
+        chk.less(abs(a - b) / abs(b), 1e-7, "snow on and off the sealed cushion: %s back to %.8g (inflated %.8g)"
+                 % (col, a, b))
 
     # --- the foils' patterns with a 20 mm weld allowance and the MD mark: the allowance outline lies
     # 20 mm outside the pattern along every edge (the SVG's 4 decimals), further only at corners
