@@ -75,8 +75,8 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                              "", o->force_rtol, &o->force_rtol, nullptr));
   PetscCall(PetscOptionsReal("-load_force_roundoff",
                              "Also converged when |R| <= this * eps |x|max E h0 sqrt(triangles), the round-off floor "
-                             "of the membrane forces, which dense meshes (~10^6 triangles) reach above the force test "
-                             "(0: off; 10 is safe)",
+                             "of the membrane forces, which dense meshes (~10^5-10^6 triangles) reach above the force "
+                             "test (0: off)",
                              "", o->force_roundoff, &o->force_roundoff, nullptr));
   PetscCall(PetscOptionsReal("-load_plastic_strain_limit",
                              "Warn (once, naming the element, its position and the increment) when the equivalent "
