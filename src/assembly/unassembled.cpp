@@ -62,10 +62,6 @@ PetscErrorCode UnassembledCheckType(Problem *P) {
   PetscCheck(P->unassembled || !pc_set || std::strcmp(pc, PCBDDC), P->comm, PETSC_ERR_ARG_INCOMP,
              "-pc_type bddc needs the unassembled tangent: drop -mat_type (bddc then takes -mat_type is) or give "
              "-mat_type is");
-  PetscCheck(!P->unassembled || P->scene.chambers.empty(), P->comm, PETSC_ERR_SUP,
-             "-mat_type is (domain decomposition) does not combine with gas chambers (their rank-one stiffness wraps "
-             "the assembled tangent): use a direct solver (options/solvers/mumps_lu.opts) for scene %s",
-             P->scene.name.c_str());
   PetscFunctionReturn(0);
 }
 
