@@ -39,7 +39,6 @@ struct LayerContactSet {
   std::vector<Node> nodes;
   Vec master_u = nullptr;                // sequential: the master nodes' displacements
   VecScatter scatter = nullptr;
-  Vec force = nullptr;                   // global scratch for the contact forces
   PetscInt active = 0, paired = 0;       // global counts at the last evaluation / pairing
   double deepest = 0.0;                  // largest penetration at the last evaluation [mm]
 };

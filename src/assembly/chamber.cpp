@@ -5,6 +5,7 @@
 
 #include "etfe/assembly.h"
 #include "etfe/kernels/chamber.h"
+#include "etfe/kernels/geodesic.h"
 #include "etfe/kernels/pressure.h"
 #include "etfe/problem.h"
 
@@ -52,13 +53,9 @@ PetscErrorCode ChamberCheckStartVolume(Problem *P) {
   for (const Problem::PressureLoad &load : P->pressures) {
     if (load.chamber < 0) continue;
     for (PetscInt e : load.elements) {
-      double x[9], f[9];
+      double x[9];
       Coordinates(P->mesh, e, u, x);
-      PressureLoad(1.0, x, f, nullptr);  // three times a third of the area vector
-      double a[3] = {0, 0, 0};
-      for (int n = 0; n < 3; ++n)
-        for (int i = 0; i < 3; ++i) a[i] += f[3 * n + i];
-      area[load.chamber] += std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+      area[load.chamber] += TriangleArea(x, x + 3, x + 6);
     }
   }
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));

@@ -192,9 +192,6 @@ PetscErrorCode LayerContactCreate(Problem *P) {
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * nm, &c->master_u));
   PetscCall(VecScatterCreate(P->U, is, c->master_u, nullptr, &c->scatter));
   PetscCall(ISDestroy(&is));
-  PetscCall(VecDuplicate(P->U, &c->force));
-  // A new pair couples nodes the mesh does not: the matrix grows where contact starts.
-  PetscCall(MatSetOption(P->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   PetscCall(LayerContactPair(P, P->U));
   PetscFunctionReturn(0);
 }
@@ -270,7 +267,6 @@ PetscErrorCode LayerContactResidual(Problem *P, Vec U, Vec F) {
   PetscInt active = 0;
   double deepest = 0.0;
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(c.force));
   PetscCall(BeginArrays(c, U, &u, &um));
   for (const LayerContactSet::Node &s : c.nodes) {
     if (s.tri < 0) continue;
@@ -281,12 +277,11 @@ PetscErrorCode LayerContactResidual(Problem *P, Vec U, Vec F) {
     ++active, deepest = std::max(deepest, -g);
     PetscInt ids[4];
     PairIds(c, m, s, ids);
-    PetscCall(VecSetValuesBlocked(c.force, 4, ids, f, ADD_VALUES));
+    PetscCall(VecSetValuesBlocked(F, 4, ids, f, ADD_VALUES));  // a triangle's nodes may be another rank's
   }
   PetscCall(EndArrays(c, U, &u, &um));
-  PetscCall(VecAssemblyBegin(c.force));
-  PetscCall(VecAssemblyEnd(c.force));
-  PetscCall(VecAXPY(F, 1.0, c.force));
+  PetscCall(VecAssemblyBegin(F));
+  PetscCall(VecAssemblyEnd(F));
   PetscCallMPI(MPI_Allreduce(&active, &c.active, 1, MPIU_INT, MPI_SUM, P->comm));
   PetscCallMPI(MPI_Allreduce(&deepest, &c.deepest, 1, MPI_DOUBLE, MPI_MAX, P->comm));
   PetscFunctionReturn(0);
@@ -297,6 +292,7 @@ PetscErrorCode LayerContactJacobian(Problem *P, Vec U, Mat A) {
   const LocalMesh &m = P->mesh;
   const PetscScalar *u, *um;
   PetscFunctionBeginUser;
+  // A new pair couples nodes the mesh does not: the matrix grows where contact starts.
   PetscCall(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
   PetscCall(BeginArrays(c, U, &u, &um));
   for (const LayerContactSet::Node &s : c.nodes) {
@@ -340,7 +336,6 @@ PetscErrorCode LayerContactDestroy(Problem *P) {
   if (!P->layers) PetscFunctionReturn(0);
   PetscCall(VecScatterDestroy(&P->layers->scatter));
   PetscCall(VecDestroy(&P->layers->master_u));
-  PetscCall(VecDestroy(&P->layers->force));
   delete P->layers;
   P->layers = nullptr;
   PetscFunctionReturn(0);

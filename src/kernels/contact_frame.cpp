@@ -2,6 +2,7 @@
 // and the global axes (formulas in the header). Kept apart from the laws because the frame is
 // geometry: the follow frame recomputes it at every iterate, the frozen one once per pair.
 #include "etfe/kernels/contact_frame.h"
+#include "etfe/kernels/vec3.h"
 
 #include <cmath>
 
@@ -14,11 +15,6 @@ void Normalize(double v[3]) {
   if (n > 0) v[0] /= n, v[1] /= n, v[2] /= n;
 }
 
-void Cross(const double a[3], const double b[3], double c[3]) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 } // namespace
 

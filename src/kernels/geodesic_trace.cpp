@@ -3,6 +3,7 @@
 // turns the direction about that edge into the next triangle's plane (the unfolding), so the
 // component along the edge and the one across it are kept exactly.
 #include "etfe/kernels/geodesic.h"
+#include "etfe/kernels/vec3.h"
 
 #include <cmath>
 #include <limits>
@@ -15,11 +16,6 @@ void Sub(const double *a, const double *b, double *c) {
   for (int i = 0; i < 3; ++i) c[i] = a[i] - b[i];
 }
 double Dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-void Cross(const double *a, const double *b, double *c) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
 double Normalize(double *a) {
   const double n = std::sqrt(Dot(a, a));
   if (n > 0)

@@ -1,18 +1,11 @@
 // Node-to-triangle frictionless penalty contact between film layers (see layer_contact.h).
 #include "etfe/kernels/layer_contact.h"
+#include "etfe/kernels/vec3.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace etfe {
-
-namespace {
-
-void Cross(const double *a, const double *b, double *c) {
-  c[0] = a[1] * b[2] - a[2] * b[1], c[1] = a[2] * b[0] - a[0] * b[2], c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-} // namespace
 
 bool LayerGap(const double x[12], double side, double *g, double dg[12]) {
   const double *xs = x, *x1 = x + 3, *x2 = x + 6, *x3 = x + 9;

@@ -8,6 +8,7 @@
 // These run once per element per Newton iteration on meshes of 10^6 triangles: fixed-size
 // arrays and plain loops only, no heap, no exceptions.
 #include "etfe/kernels/membrane.h"
+#include "etfe/kernels/vec3.h"
 
 #include "etfe/kernels/status.h"
 
@@ -21,11 +22,6 @@ inline double Dot3(const double *a, const double *b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-inline void Cross3(const double *a, const double *b, double *c) {
-  c[0] = a[1] * b[2] - a[2] * b[1];
-  c[1] = a[2] * b[0] - a[0] * b[2];
-  c[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 // Below this sine of the angle between md_axis and the normal the projection has no reliable
 // direction (header contract: "within ~1e-3 of the normal").
@@ -48,7 +44,7 @@ int MembraneReferenceBuild(const double X[9], const double md_axis[3], double mi
     b[i] = X[6 + i] - X[i];
     c[i] = X[6 + i] - X[3 + i];
   }
-  Cross3(a, b, n);
+  Cross(a, b, n);
   const double twice_area = std::sqrt(Dot3(n, n));
   const double lmax2 = std::fmax(Dot3(a, a), std::fmax(Dot3(b, b), Dot3(c, c)));
   // The negated comparisons also reject NaN from overflowing coordinates.
@@ -76,7 +72,7 @@ int MembraneReferenceBuild(const double X[9], const double md_axis[3], double mi
     const double la = std::sqrt(Dot3(a, a));  // > 0: the area test passed
     for (int i = 0; i < 3; ++i) e1[i] = a[i] / la;
   }
-  Cross3(e3, e1, e2);
+  Cross(e3, e1, e2);
 
   // Local coordinates relative to node 1 (xi_1 = eta_1 = 0): differences keep full precision for
   // elements far from the origin.
@@ -108,9 +104,9 @@ int MembraneCarryAxis(const double X[9], const double Y[9], const double axis[3]
     a[i] = X[3 + i] - X[i], b[i] = X[6 + i] - X[i];
     ya[i] = Y[3 + i] - Y[i], yb[i] = Y[6 + i] - Y[i];
   }
-  Cross3(a, b, n);
+  Cross(a, b, n);
   double ny[3];
-  Cross3(ya, yb, ny);
+  Cross(ya, yb, ny);
   const double aa = Dot3(a, a), bb = Dot3(b, b), ab = Dot3(a, b), det = aa * bb - ab * ab;
   if (!(det > kSliverTol * kSliverTol * std::fmax(aa, bb) * std::fmax(aa, bb)) ||
       !(Dot3(ny, ny) > kSliverTol * kSliverTol * std::fmax(Dot3(ya, ya), Dot3(yb, yb)) *
@@ -202,7 +198,7 @@ double MembraneAreaRatio(const MembraneReference &ref, const double x[9], double
     a[i] = x[3 + i] - x[i];
     b[i] = x[6 + i] - x[i];
   }
-  Cross3(a, b, c);
+  Cross(a, b, c);
   const double twice_area = std::sqrt(Dot3(c, c));
   if (n) {
     // A collapsed triangle has no normal; zeros let the caller see it instead of NaN.
