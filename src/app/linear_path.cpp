@@ -3,6 +3,8 @@
 
 #include <cstring>
 
+#include "memory_check.h"
+
 namespace etfe {
 
 namespace {
@@ -68,7 +70,10 @@ PetscErrorCode ChooseLinearPath(MPI_Comm comm, PetscInt num_nodes) {
   const PetscInt dof = 3 * num_nodes;
   PetscCall(NamesKrylov(&krylov));
   const bool big = dof >= min_dof, many = size >= min_ranks;
-  if (choice == kDirect || (choice == kAuto && (krylov || !(big || many)))) PetscFunctionReturn(0);
+  if (choice == kDirect || (choice == kAuto && (krylov || !(big || many)))) {
+    PetscCall(CheckMemoryFits(comm, dof));
+    PetscFunctionReturn(0);
+  }
   PetscCall(ApplyScalablePath());
   if (choice == kScalable)
     PetscCall(PetscPrintf(comm, "  linear solver: scalable path (FGMRES + GAMG), as -etfe_solver asks\n"));
@@ -78,6 +83,7 @@ PetscErrorCode ChooseLinearPath(MPI_Comm comm, PetscInt num_nodes) {
                           " DOF on %d rank(s), %s -etfe_scalable_min_%s %" PetscInt_FMT
                           " (-etfe_solver direct keeps the direct solver)\n",
                           dof, size, big ? "from" : "ranks from", big ? "dof" : "ranks", big ? min_dof : min_ranks));
+  PetscCall(CheckMemoryFits(comm, dof));
   PetscFunctionReturn(0);
 }
 

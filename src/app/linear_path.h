@@ -12,7 +12,8 @@ namespace etfe {
 // num_nodes nodes (3 DOF each) on comm's ranks, puts its settings into the options database and
 // prints why. Called before the problem reads its options (the path names the matrix type and the
 // near-null space). auto keeps whatever the options say below the thresholds, and a Krylov
-// method the options name above them.
+// method the options name above them. Then checks that the path fits the nodes' memory
+// (memory_check.h).
 PetscErrorCode ChooseLinearPath(MPI_Comm comm, PetscInt num_nodes);
 
 } // namespace etfe

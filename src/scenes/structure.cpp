@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "etfe/kernels/nearest.h"
 #include "etfe/mesh/mesh_options.h"
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
@@ -69,16 +70,13 @@ std::string InitialBulge(double h, SceneSpec *scene) {
   }
   const double len = std::hypot(normal[0], normal[1], normal[2]);
   if (!(len > 0)) return "-structure_initial_bulge: the film has no mean normal (a closed surface?)";
-  std::vector<double> d(m.NumNodes(), 0.0);
+  std::vector<double> anchor_xyz;
+  for (int a : anchors) anchor_xyz.insert(anchor_xyz.end(), &m.coords[3 * a], &m.coords[3 * a] + 3);
+  std::vector<double> d = NearestAnchorDistances(m.coords, anchor_xyz);
   double dmax = 0.0;
   for (int n = 0; n < m.NumNodes(); ++n) {
-    if (held[n] == 3) continue;
-    double best = INFINITY;
-    for (int a : anchors) {
-      const double *x = &m.coords[3 * n], *y = &m.coords[3 * a];
-      best = std::min(best, std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]));
-    }
-    d[n] = best, dmax = std::max(dmax, best);
+    if (held[n] == 3) d[n] = 0.0;
+    dmax = std::max(dmax, d[n]);
   }
   scene->initial_guess.assign(3 * (size_t)m.NumNodes(), 0.0);
   for (int n = 0; n < m.NumNodes(); ++n) {

@@ -5,7 +5,8 @@ GAMG on the shifted preconditioning matrix (options/solvers/gmres_gamg_shifted.o
 with a lagged MUMPS BLR factorization (options/solvers/gmres_mumps_blr_lagged.opts):
 part A/B Mises and the five slides of every increment agree to 1e-8 of each quantity's largest
 value. Below the thresholds the automatic choice keeps the direct solver and says nothing. A
-Krylov solve that fails names its method and reason, and the increment is cut back."""
+Krylov solve that fails names its method and reason, and the increment is cut back. A path that
+needs more memory than the node has is refused before the first increment, with the estimate."""
 
 import os
 
@@ -56,6 +57,20 @@ def test(etfe, chk):
                   "a failed Krylov solve names the method, its reason and iterations")
         chk.check("cutting back" in out and "did not converge after 1 cut-backs" in out,
                   "the increment is cut back, then the run stops with the failure")
+
+        # A path past the node's memory is refused before anything large is made (a node of 1 MB
+        # stands in for a mesh too large for the machine), naming the estimate and the ways out.
+        base = ["-options_file", os.path.join(REPO, "options", "saddle", "dd1511.opts"), "-mesh_file", msh,
+                "-output", 0, "-output_file", os.path.join(tmp, "memory.h5"), "-etfe_memory_node_gb", 0.001]
+        for extra, path in (([], "a sparse direct factorization: ~2.5 kB per DOF"),
+                            (["-etfe_solver", "scalable"], "FGMRES + GAMG: ~2.1 kB per DOF")):
+            _, out = run(etfe, base + extra, expect_fail=True)
+            chk.check("memory: this run needs about" in out and path in out and "more than the node's 0.001 GB" in out
+                      and "gmres_hypre_lean.opts" in out and "-etfe_memory_check 0 runs it anyway" in out,
+                      "past the node's memory (%s): refused with the estimate and the ways out" % path)
+            chk.check("step " not in out, "refused before the first increment")
+        _, out = run(etfe, base + ["-etfe_memory_check", 0, "-load_stop_after", 1])
+        chk.check("stopped as asked after 1 increments" in out, "-etfe_memory_check 0 runs it anyway")
 
 
 main(test)

@@ -1,0 +1,129 @@
+// Whether the chosen linear solver fits the nodes' memory (memory_check.h).
+#include "memory_check.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+namespace etfe {
+
+namespace {
+
+// Peak memory per DOF of a whole run (all ranks of a node together), measured with this code on
+// the clamped membrane and DD1511 (docs/solvers.md, "The largest run here"). Lower ends of what
+// was measured, so that a refusal means the run cannot fit, not that it might not.
+struct PathMemory {
+  const char *name;
+  double kb_per_dof;
+};
+const PathMemory kDirect = {"a sparse direct factorization", 2.5};  // MUMPS, 1.5e6 DOF: 3.8 GB, grows as N log N
+const PathMemory kGamg = {"FGMRES + GAMG", 2.1};                    // 1.5e6 DOF, one rank: 3.2 GB
+const PathMemory kLean = {"a Krylov method", 1.1};                  // GMRES(20) + BoomerAMG on J, 1.5e7 DOF: 16.3 GB
+
+PetscErrorCode ChosenPath(PathMemory *path) {
+  char ksp[64] = "", pc[64] = "";
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-ksp_type", ksp, sizeof ksp, &set));
+  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pc, sizeof pc, &set));
+  const bool direct_pc = !std::strcmp(pc, "lu") || !std::strcmp(pc, "cholesky") || !pc[0];
+  if ((!ksp[0] || !std::strcmp(ksp, "preonly")) && direct_pc) *path = kDirect;
+  else if (!std::strcmp(pc, "bddc")) *path = {"BDDC (direct subdomain factorizations)", kDirect.kb_per_dof};
+  else if (!std::strcmp(pc, "gamg")) *path = kGamg;
+  else *path = kLean;
+  PetscFunctionReturn(0);
+}
+
+// kB from /proc/meminfo's line `key`, or 0.
+double MeminfoKb(const char *key) {
+  double kb = 0.0;
+  if (FILE *f = std::fopen("/proc/meminfo", "r")) {
+    char line[256];
+    const size_t n = std::strlen(key);
+    while (std::fgets(line, sizeof line, f))
+      if (!std::strncmp(line, key, n) && line[n] == ':') {
+        std::sscanf(line + n + 1, "%lf", &kb);
+        break;
+      }
+    std::fclose(f);
+  }
+  return kb;
+}
+
+// A batch job's memory limit (control group v2, then v1), in GB, or 0 where none is set.
+double CgroupLimitGb() {
+  const char *files[] = {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"};
+  for (const char *path : files)
+    if (FILE *f = std::fopen(path, "r")) {
+      double bytes = 0.0;
+      const int got = std::fscanf(f, "%lf", &bytes);
+      std::fclose(f);
+      if (got == 1 && bytes > 0.0) return bytes / 1e9;
+    }
+  return 0.0;
+}
+
+} // namespace
+
+PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
+  PetscBool check = PETSC_TRUE;
+  PetscReal node_gb = 0.0;
+  MPI_Comm node;
+  PetscMPIInt size, here, node_rank, rank;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "Memory check", "Sys");
+  PetscCall(PetscOptionsBool("-etfe_memory_check",
+                             "Refuse a run whose linear solver needs more memory than a node has (estimated per DOF "
+                             "from this code's measured runs)",
+                             "", check, &check, nullptr));
+  PetscCall(PetscOptionsReal("-etfe_memory_node_gb",
+                             "A node's memory [GB] for the check (0: the node's physical memory, or the batch job's "
+                             "limit where its control group sets one)",
+                             "", node_gb, &node_gb, nullptr));
+  PetscOptionsEnd();
+  if (!check) PetscFunctionReturn(0);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Comm_size(node, &here));
+  PetscCallMPI(MPI_Comm_rank(node, &node_rank));
+  PetscCallMPI(MPI_Comm_free(&node));
+  PathMemory path = kLean;
+  PetscCall(ChosenPath(&path));
+  const double need_gb = path.kb_per_dof * 1e3 * (double)dof * here / size / 1e9;
+  const double total_gb = MeminfoKb("MemTotal") * 1024.0 / 1e9, cgroup_gb = CgroupLimitGb();
+  double have_gb = node_gb > 0 ? node_gb : total_gb;
+  const bool job_limit = node_gb <= 0 && cgroup_gb > 0 && cgroup_gb < have_gb;
+  if (job_limit) have_gb = cgroup_gb;
+  const double avail_gb = node_gb > 0 ? node_gb : std::min(have_gb, MeminfoKb("MemAvailable") * 1024.0 / 1e9);
+  // The tightest node decides; its first rank speaks for it (have_gb 0: no /proc/meminfo, no check).
+  struct {
+    double ratio;
+    int rank;
+  } mine = {node_rank == 0 && have_gb > 0 ? need_gb / have_gb : 0.0, rank}, worst;
+  PetscCallMPI(MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+  if (worst.ratio <= 0.0) PetscFunctionReturn(0);
+  double v[4] = {need_gb, have_gb, avail_gb, (double)here};
+  PetscCallMPI(MPI_Bcast(v, 4, MPI_DOUBLE, worst.rank, comm));
+  char where[160];
+  std::snprintf(where, sizeof where, "%.3g GB on the node of rank %d (%d of the run's %d rank(s); %s: ~%.1f kB per DOF "
+                "as measured with this code, %" PetscInt_FMT " DOF)", v[0], worst.rank, (int)v[3], size, path.name,
+                path.kb_per_dof, dof);
+  const char *ways = "Ways out: more nodes (the estimate is per node: spread the ranks over machines with mpirun's "
+                     "host list or the batch scheduler), a leaner linear solver (-options_file "
+                     "options/solvers/gmres_hypre_lean.opts: ~1.1 kB per DOF), a coarser mesh; -etfe_memory_check 0 "
+                     "runs it anyway";
+  PetscCheck(v[0] <= v[1], comm, PETSC_ERR_MEM,
+             "memory: this run needs about %s, more than the node's %.3g GB%s: the system would end it part way "
+             "without a message. %s",
+             where, v[1], job_limit ? " (the batch job's limit)" : "", ways);
+  if (v[2] > 0 && v[0] > v[2])
+    PetscCall(PetscPrintf(comm,
+                          "  warning: memory: this run needs about %s, more than the %.3g GB the node has free now "
+                          "(of %.3g GB): other work on it may have to end first. %s\n",
+                          where, v[2], v[1], ways));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
