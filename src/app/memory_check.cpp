@@ -64,6 +64,27 @@ double CgroupLimitGb() {
   return 0.0;
 }
 
+// What a node offers: its physical memory or the batch job's limit (control group), and what is
+// free now; node_gb > 0 replaces both. have_gb 0: no /proc/meminfo (no check).
+struct NodeMemory {
+  double have_gb = 0.0, avail_gb = 0.0;
+  bool job_limit = false;
+};
+
+NodeMemory ReadNodeMemory(double node_gb) {
+  NodeMemory m;
+  if (node_gb > 0) {
+    m.have_gb = m.avail_gb = node_gb;
+    return m;
+  }
+  m.have_gb = MeminfoKb("MemTotal") * 1024.0 / 1e9;
+  const double cgroup_gb = CgroupLimitGb();
+  m.job_limit = cgroup_gb > 0 && cgroup_gb < m.have_gb;
+  if (m.job_limit) m.have_gb = cgroup_gb;
+  m.avail_gb = std::min(m.have_gb, MeminfoKb("MemAvailable") * 1024.0 / 1e9);
+  return m;
+}
+
 } // namespace
 
 PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
@@ -92,21 +113,17 @@ PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
   PathMemory path = kLean;
   PetscCall(ChosenPath(&path));
   const double need_gb = path.kb_per_dof * 1e3 * (double)dof * here / size / 1e9;
-  const double total_gb = MeminfoKb("MemTotal") * 1024.0 / 1e9, cgroup_gb = CgroupLimitGb();
-  double have_gb = node_gb > 0 ? node_gb : total_gb;
-  const bool job_limit = node_gb <= 0 && cgroup_gb > 0 && cgroup_gb < have_gb;
-  if (job_limit) have_gb = cgroup_gb;
-  const double avail_gb = node_gb > 0 ? node_gb : std::min(have_gb, MeminfoKb("MemAvailable") * 1024.0 / 1e9);
-  // The tightest node decides; its first rank speaks for it (have_gb 0: no /proc/meminfo, no check).
+  const NodeMemory mem = ReadNodeMemory(node_gb);
+  // The tightest node decides; its first rank speaks for it.
   struct {
     double ratio;
     int rank;
-  } mine = {node_rank == 0 && have_gb > 0 ? need_gb / have_gb : 0.0, rank}, worst;
+  } mine = {node_rank == 0 && mem.have_gb > 0 ? need_gb / mem.have_gb : 0.0, rank}, worst;
   PetscCallMPI(MPI_Allreduce(&mine, &worst, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
   if (worst.ratio <= 0.0) PetscFunctionReturn(0);
-  double v[4] = {need_gb, have_gb, avail_gb, (double)here};
-  PetscCallMPI(MPI_Bcast(v, 4, MPI_DOUBLE, worst.rank, comm));
-  char where[160];
+  double v[5] = {need_gb, mem.have_gb, mem.avail_gb, (double)here, mem.job_limit ? 1.0 : 0.0};
+  PetscCallMPI(MPI_Bcast(v, 5, MPI_DOUBLE, worst.rank, comm));
+  char where[320];
   std::snprintf(where, sizeof where, "%.3g GB on the node of rank %d (%d of the run's %d rank(s); %s: ~%.1f kB per DOF "
                 "as measured with this code, %" PetscInt_FMT " DOF)", v[0], worst.rank, (int)v[3], size, path.name,
                 path.kb_per_dof, dof);
@@ -117,7 +134,7 @@ PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
   PetscCheck(v[0] <= v[1], comm, PETSC_ERR_MEM,
              "memory: this run needs about %s, more than the node's %.3g GB%s: the system would end it part way "
              "without a message. %s",
-             where, v[1], job_limit ? " (the batch job's limit)" : "", ways);
+             where, v[1], v[4] > 0 ? " (the batch job's limit)" : "", ways);
   if (v[2] > 0 && v[0] > v[2])
     PetscCall(PetscPrintf(comm,
                           "  warning: memory: this run needs about %s, more than the %.3g GB the node has free now "
