@@ -70,19 +70,18 @@ PetscErrorCode ChooseLinearPath(MPI_Comm comm, PetscInt num_nodes) {
   const PetscInt dof = 3 * num_nodes;
   PetscCall(NamesKrylov(&krylov));
   const bool big = dof >= min_dof, many = size >= min_ranks;
-  if (choice == kDirect || (choice == kAuto && (krylov || !(big || many)))) {
-    PetscCall(CheckMemoryFits(comm, dof));
-    PetscFunctionReturn(0);
+  const bool scalable = choice == kScalable || (choice == kAuto && !krylov && (big || many));
+  if (scalable) {
+    PetscCall(ApplyScalablePath());
+    if (choice == kScalable)
+      PetscCall(PetscPrintf(comm, "  linear solver: scalable path (FGMRES + GAMG), as -etfe_solver asks\n"));
+    else
+      PetscCall(PetscPrintf(comm,
+                            "  linear solver: scalable path (FGMRES + GAMG) chosen automatically: %" PetscInt_FMT
+                            " DOF on %d rank(s), %s -etfe_scalable_min_%s %" PetscInt_FMT
+                            " (-etfe_solver direct keeps the direct solver)\n",
+                            dof, size, big ? "from" : "ranks from", big ? "dof" : "ranks", big ? min_dof : min_ranks));
   }
-  PetscCall(ApplyScalablePath());
-  if (choice == kScalable)
-    PetscCall(PetscPrintf(comm, "  linear solver: scalable path (FGMRES + GAMG), as -etfe_solver asks\n"));
-  else
-    PetscCall(PetscPrintf(comm,
-                          "  linear solver: scalable path (FGMRES + GAMG) chosen automatically: %" PetscInt_FMT
-                          " DOF on %d rank(s), %s -etfe_scalable_min_%s %" PetscInt_FMT
-                          " (-etfe_solver direct keeps the direct solver)\n",
-                          dof, size, big ? "from" : "ranks from", big ? "dof" : "ranks", big ? min_dof : min_ranks));
   PetscCall(CheckMemoryFits(comm, dof));
   PetscFunctionReturn(0);
 }

@@ -147,6 +147,14 @@ bool InPlan(const double *t, double px, double py, double tol = 1e-9) {
   return l1 >= -tol && l2 >= -tol && 1 - l1 - l2 >= -tol;
 }
 
+// The signed distance of the point xs from the plane of triangle t (9 coordinates), positive on
+// the side its normal points to; false for a degenerate triangle.
+bool GapTo(const double xs[3], const double *t, double *g) {
+  double x[12];
+  std::copy(xs, xs + 3, x), std::copy(t, t + 9, x + 3);
+  return LayerGap(x, 1.0, g, nullptr);
+}
+
 // A node keeps its triangle while its plan stays within 5 % of the triangle's size beyond an
 // edge: a node at a vertex of the layer below (a cushion's foils share their plan mesh) would
 // otherwise take a different triangle, hence plane and force, at every pairing.
@@ -237,16 +245,14 @@ PetscErrorCode LayerContactPair(Problem *P, Vec U) {
     if (xs[0] >= lo[0] && xs[0] <= hi[0] && xs[1] >= lo[1] && xs[1] <= hi[1])
       for (int t : grid[(size_t)cell(xs[0], 0) * cells + cell(xs[1], 1)]) {
         if (c.tri_layer[t] != s.layer || !InPlan(&pos[9 * t], xs[0], xs[1])) continue;
-        double x[12], g;
-        std::copy(xs, xs + 3, x), std::copy(&pos[9 * t], &pos[9 * t] + 9, x + 3);
-        if (LayerGap(x, 1.0, &g, nullptr) && std::fabs(g) < best) best = std::fabs(g), s.tri = t;
+        double g;
+        if (GapTo(xs, &pos[9 * t], &g) && std::fabs(g) < best) best = std::fabs(g), s.tri = t;
       }
     if (s.tri < 0) continue;
     ++paired;
     if (s.side == 0.0) {  // the first pairing fixes the side the node keeps to
-      double x[12], g;
-      std::copy(xs, xs + 3, x), std::copy(&pos[9 * s.tri], &pos[9 * s.tri] + 9, x + 3);
-      LayerGap(x, 1.0, &g, nullptr);
+      double g;
+      GapTo(xs, &pos[9 * s.tri], &g);
       s.side = g > 0 ? 1.0 : -1.0;
       if (g == 0.0) on_it = std::max(on_it, m.natural_id[s.local]);
     }

@@ -15,7 +15,6 @@ void Normalize(double v[3]) {
   if (n > 0) v[0] /= n, v[1] /= n, v[2] /= n;
 }
 
-
 } // namespace
 
 double ContactSupportFrame(const double centre[3], const double axis[3], double radius,

@@ -22,7 +22,6 @@ inline double Dot3(const double *a, const double *b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-
 // Below this sine of the angle between md_axis and the normal the projection has no reliable
 // direction (header contract: "within ~1e-3 of the normal").
 constexpr double kMdParallelTol = 1e-3;

@@ -72,12 +72,8 @@ std::string InitialBulge(double h, SceneSpec *scene) {
   if (!(len > 0)) return "-structure_initial_bulge: the film has no mean normal (a closed surface?)";
   std::vector<double> anchor_xyz;
   for (int a : anchors) anchor_xyz.insert(anchor_xyz.end(), &m.coords[3 * a], &m.coords[3 * a] + 3);
-  std::vector<double> d = NearestAnchorDistances(m.coords, anchor_xyz);
-  double dmax = 0.0;
-  for (int n = 0; n < m.NumNodes(); ++n) {
-    if (held[n] == 3) d[n] = 0.0;
-    dmax = std::max(dmax, d[n]);
-  }
+  const std::vector<double> d = NearestAnchorDistances(m.coords, anchor_xyz);  // 0 at the held nodes
+  const double dmax = *std::max_element(d.begin(), d.end());
   scene->initial_guess.assign(3 * (size_t)m.NumNodes(), 0.0);
   for (int n = 0; n < m.NumNodes(); ++n) {
     const double s = dmax > 0 ? d[n] / dmax : 0.0, lift = h * s * (2.0 - s);

@@ -1,8 +1,7 @@
 // What the general scene reports (structure_inputs.h): per surface group and region the mean GL
 // strains and PK2 Mises, the largest Mises (PK2 and Cauchy) and plastic strain and the wrinkled
-// elements and their (reference) area; the
-// probes' smallest principal stress and strain (elements) and displacement and slide (nodes); the
-// reaction on every supported node group; the rigid supports' pairs and largest slide. One CSV
+// elements and their (reference) area; the probes' smallest principal stress and strain
+// (elements) and displacement and slide (nodes); the reaction on every supported node group; the rigid supports' pairs and largest slide. One CSV
 // line per increment (the history), the same figures in the report after the last one.
 #include <petscsys.h>
 
