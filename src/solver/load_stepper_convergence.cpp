@@ -48,8 +48,12 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
     PetscFunctionReturn(0);
   }
   PetscCall(SNESConvergedDefault(snes, it, xnorm, ynorm, fnorm, reason, nullptr));
+  // SNES's relative tests only propose convergence: a residual small against the first one (which
+  // a wild start, a huge initial bulge, makes huge) or a small step is no equilibrium while the
+  // forces do not balance, so both go through the force balance below. Its failures stay, and so
+  // does its absolute test (|R| below -snes_atol N is balance by any measure).
+  if (*reason < 0 || *reason == SNES_CONVERGED_FNORM_ABS || it == 0) PetscFunctionReturn(0);
   const bool step_small = *reason == SNES_CONVERGED_SNORM_RELATIVE;
-  if ((*reason != SNES_CONVERGED_ITERATING && !step_small) || it == 0) PetscFunctionReturn(0);
   Problem *P = t->problem;
   PetscReal tol = t->rtol * P->diagnostics.force_scale;
   if (P->contact) {
@@ -80,6 +84,9 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
   // A step small against |x| is no equilibrium while the forces do not balance: a film thrown
   // far away (|x| huge) makes every step relatively small, and SNES's test would accept it.
   else if (step_small) *reason = SNES_DIVERGED_LINE_SEARCH;
+  // SNES's relative residual test passed above the force tolerance: Newton goes on, to the force
+  // balance or to its iteration limit (a cut-back).
+  else *reason = SNES_CONVERGED_ITERATING;
   PetscFunctionReturn(0);
 }
 
