@@ -1,6 +1,7 @@
 // Options files (see options_files.h).
 #include "options_files.h"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -36,15 +37,46 @@ bool Tokenize(const std::string &line, std::vector<std::string> *tokens) {
   return true;
 }
 
-// G named inside F: F's folder, then each folder above it.
-fs::path ResolveInclude(const fs::path &including, const std::string &name) {
-  const fs::path g(name);
-  if (g.is_absolute()) return g;
-  for (fs::path dir = fs::absolute(including).parent_path(); !dir.empty(); dir = dir.parent_path()) {
-    if (fs::exists(dir / g)) return dir / g;
+// The product's own folder: the nearest folder above the running executable that holds options/
+// (build/etfe -> the checkout), else the checkout it was built from, or empty.
+fs::path ProductRoot() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  for (fs::path dir = exe.parent_path(); !ec && !dir.empty(); dir = dir.parent_path()) {
+    if (fs::is_directory(dir / "options", ec)) return dir;
     if (dir == dir.root_path()) break;
   }
-  return fs::absolute(including).parent_path() / g;  // for the message
+#ifdef ETFE_SOURCE_DIR
+  if (fs::is_directory(fs::path(ETFE_SOURCE_DIR) / "options", ec)) return ETFE_SOURCE_DIR;
+#endif
+  return {};
+}
+
+// G named inside F: F's folder and each folder above it, then the working folder, then the
+// product's folder and its options/ (so that a user's file anywhere can include the shipped
+// "options/solvers/..." as the shipped cases do). Empty when none has it; *tried lists each path.
+fs::path ResolveInclude(const fs::path &including, const std::string &name, std::vector<fs::path> *tried) {
+  const fs::path g(name);
+  std::error_code ec;
+  if (g.is_absolute()) {
+    tried->push_back(g);
+    return fs::is_regular_file(g, ec) ? g : fs::path();
+  }
+  std::vector<fs::path> dirs;
+  for (fs::path dir = fs::absolute(including).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    dirs.push_back(dir);
+    if (dir == dir.root_path()) break;
+  }
+  dirs.push_back(fs::current_path(ec));
+  const fs::path root = ProductRoot();
+  if (!root.empty()) dirs.insert(dirs.end(), {root, root / "options"});
+  for (const fs::path &dir : dirs) {
+    const fs::path candidate = (dir / g).lexically_normal();
+    if (std::find(tried->begin(), tried->end(), candidate) != tried->end()) continue;
+    tried->push_back(candidate);
+    if (fs::is_regular_file(candidate, ec)) return candidate;
+  }
+  return {};
 }
 
 // "# requires: FILE from MAKER" (the form scripts/run reads), or false.
@@ -101,7 +133,14 @@ bool ExpandFile(const fs::path &file, std::vector<std::string> *out, std::set<st
           *error = where + ": -options_file needs a file name";
           return false;
         }
-        if (!ExpandFile(ResolveInclude(file, tokens[k + 1]), out, open, depth + 1, error, requirements)) {
+        std::vector<fs::path> tried;
+        const fs::path included = ResolveInclude(file, tokens[k + 1], &tried);
+        if (included.empty()) {
+          *error = where + ": -options_file " + tokens[k + 1] + ": no such file; looked for";
+          for (size_t i = 0; i < tried.size(); ++i) *error += (i ? ", " : " ") + tried[i].string();
+          return false;
+        }
+        if (!ExpandFile(included, out, open, depth + 1, error, requirements)) {
           *error = where + ": in -options_file " + tokens[k + 1] + ": " + *error;
           return false;
         }

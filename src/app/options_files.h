@@ -2,8 +2,10 @@
 // line is replaced in place by F's options, so the precedence stays PETSc's (later wins: options
 // after the file on the command line override it). An "-options_file G" line inside F names G
 // relative to F's folder or, failing that, to the nearest folder above F where G exists (the
-// repository root for the project's "options/solvers/..." includes): a run does not depend on
-// the current folder. A line that is not "-option [value]" stops with file:line and the reason.
+// repository root for the project's "options/solvers/..." includes), then to the working folder,
+// then to the product's folder (the one above the executable holding options/) and its options/:
+// a user's file anywhere includes the shipped solver files as the shipped cases do. A missing G
+// names every path tried. A line that is not "-option [value]" stops with file:line and the reason.
 #pragma once
 #include <string>
 #include <vector>
