@@ -32,7 +32,7 @@ struct ChamberSet {
 };
 
 // Creates the chambers of P->scene (after ProblemCreate); those sealed from stage 1 are sealed
-// with the supplied pressure at load time 0.
+// with the supplied pressure at load time 0. Refuses two chambers on the same side of one foil.
 PetscErrorCode ChamberCreate(Problem *P);
 // Volumes and gauge pressures at the local displacement array u (owned and ghost nodes, the
 // element loops' array). Collective.
@@ -45,7 +45,9 @@ double ChamberLoadPressure(const Problem *P, int chamber, double sign);
 PetscErrorCode ChamberTangent(Problem *P, const PetscScalar *u);
 // After a converged increment ending at load time t: a chamber whose sealed stage starts at t is
 // sealed with the gas it holds (volume now, supplied pressure at t); one sealed until t whose
-// next stage is not is supplied again. Collective.
+// next stage is not is supplied again. Fails (PETSC_ERR_NOT_CONVERGED) where a chamber's volume is
+// not positive, unless it is supplied and layer contact between its own foils keeps them apart
+// (LayerContactKeepsApart): its foils have passed through each other. Collective.
 PetscErrorCode ChamberCommit(Problem *P, double t);
 PetscErrorCode ChamberDestroy(Problem *P);
 // The committed state a checkpoint keeps: per chamber sealed (0/1) and amount (then, with sealing

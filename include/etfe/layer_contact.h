@@ -52,6 +52,11 @@ PetscErrorCode LayerContactResidual(Problem *P, Vec U, Vec F);
 // Adds the contact stiffness to the (not yet assembled) matrix. Collective.
 PetscErrorCode LayerContactJacobian(Problem *P, Vec U, Mat A);
 PetscErrorCode LayerContactDestroy(Problem *P);
+// Whether the pairs of c (nullptr: none) keep a chamber's surface groups apart: two or more
+// groups, each joined to the others by pairs between groups of the list (either way round). Only
+// then may a supplied chamber empty, its foils resting on each other. Otherwise *missing is a pair
+// of the list's groups not joined ("top:middle"), empty for a single group.
+bool LayerContactKeepsApart(const LayerContactSet *c, const std::vector<std::string> &groups, std::string *missing);
 // The pairs a checkpoint keeps (which triangle a node keeps while it stays near it): per owned
 // node the scene id of its master triangle, -1 for none.
 void LayerContactStateGet(const Problem *P, std::vector<double> *per_owned_node);

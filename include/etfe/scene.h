@@ -39,6 +39,10 @@ struct PressureSpec {
 // where the next is not (taking over from the sealed gas's pressure over that stage).
 struct ChamberSpec {
   std::string name;
+  // The surface groups that bound it and their signs (+1 where the group's normals point out of
+  // it): the set-up checks name them, and layer contact between them lets it empty.
+  std::vector<std::string> groups;
+  std::vector<double> signs;
   double origin[3] = {0, 0, 0};  // on the planes that close it, if any
   ScheduledValue supplied;       // gauge pressure [MPa] while supplied
   int sealed_from_stage = 0;

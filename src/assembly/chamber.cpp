@@ -1,12 +1,16 @@
 // Gas chambers (see chamber.h and kernels/chamber.h).
 #include "etfe/chamber.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
 
 #include "etfe/assembly.h"
 #include "etfe/kernels/chamber.h"
 #include "etfe/kernels/geodesic.h"
 #include "etfe/kernels/pressure.h"
+#include "etfe/layer_contact.h"
 #include "etfe/problem.h"
 
 namespace etfe {
@@ -76,6 +80,89 @@ PetscErrorCode ChamberCheckStartVolume(Problem *P) {
   PetscFunctionReturn(0);
 }
 
+// A foil bounds a chamber on one side: two chambers on the same side of one foil would be two
+// gases in one space, their pressures adding on it (a middle foil bounds one chamber above and
+// one below, with opposite signs). Nor does a chamber list one foil twice. Checked per element,
+// so that two names of one foil's elements are caught too.
+PetscErrorCode ChamberCheckSharedSides(Problem *P) {
+  struct Side {
+    int chamber, group;
+    double sign;
+  };
+  const std::vector<ChamberSpec> &spec = P->scene.chambers;
+  std::vector<std::pair<int, int>> entry;  // (chamber, group) in order: a flat index for the reduction
+  std::map<PetscInt, std::vector<Side>> at;
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < spec.size(); ++k)
+    for (size_t g = 0; g < spec[k].groups.size(); ++g) {
+      const auto set = P->mesh.element_sets.find(spec[k].groups[g]);
+      if (set != P->mesh.element_sets.end())
+        for (PetscInt e : set->second) at[e].push_back({(int)k, (int)g, spec[k].signs[g]});
+      entry.emplace_back((int)k, (int)g);
+    }
+  auto flat = [&](const Side &s) {
+    return (int)(std::find(entry.begin(), entry.end(), std::make_pair(s.chamber, s.group)) - entry.begin());
+  };
+  const int L = (int)entry.size();
+  int clash = L * L;  // the first clash a * L + b (a < b) of entries; L * L: none
+  for (const auto &kv : at)
+    for (size_t i = 0; i < kv.second.size(); ++i)
+      for (size_t j = i + 1; j < kv.second.size(); ++j) {
+        const Side &a = kv.second[i], &b = kv.second[j];
+        if (a.chamber != b.chamber && a.sign != b.sign) continue;  // one chamber on each side
+        clash = std::min(clash, std::min(flat(a), flat(b)) * L + std::max(flat(a), flat(b)));
+      }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &clash, 1, MPI_INT, MPI_MIN, P->comm));
+  if (clash == L * L) PetscFunctionReturn(0);
+  const auto [ka, ga] = entry[clash / L];
+  const auto [kb, gb] = entry[clash % L];
+  const std::string &na = spec[ka].name, &nb = spec[kb].name;
+  const std::string &a = spec[ka].groups[ga], &b = spec[kb].groups[gb];
+  PetscCheck(ka != kb, P->comm, PETSC_ERR_ARG_WRONG,
+             "chamber %s: its surface groups %s and %s share triangles (-chamber_%s_groups lists a foil twice): a "
+             "chamber's boundary is each foil once",
+             na.c_str(), a.c_str(), b.c_str(), na.c_str());
+  SETERRQ(P->comm, PETSC_ERR_ARG_WRONG,
+          "chambers %s and %s lie on the same side of one foil (surface group %s of %s, %s of %s, with the same sign "
+          "in -chamber_<name>_signs): two gases cannot fill one space, and their pressures would add on the foil. "
+          "Give each space one chamber (one gas on both sides of a middle foil: one chamber of the outer foils; two "
+          "chambers: the middle foil -1 for the upper one, +1 for the lower)",
+          na.c_str(), nb.c_str(), a.c_str(), na.c_str(), b.c_str(), nb.c_str());
+}
+
+// A load may push a supplied chamber's top foil down onto the foil below, never through it. A
+// chamber whose volume is not positive after a converged increment has turned inside out, unless
+// it is supplied and layer contact between its own foils keeps them apart: then they rest on each
+// other, the penalty's penetration leaving a slightly negative volume. Contact elsewhere does not
+// count (a pair top:bottom lets the top foil through a middle one), nor for a sealed chamber,
+// whose gas law has no meaning at a volume of zero.
+PetscErrorCode ChamberCheckInsideOut(Problem *P, double t) {
+  const ChamberSet &c = *P->chambers;
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < c.volume.size(); ++k) {
+    if (c.volume[k] > 0) continue;
+    const ChamberSpec &s = P->scene.chambers[k];
+    std::string missing, groups;
+    const bool apart = LayerContactKeepsApart(P->layers, s.groups, &missing);
+    if (apart && !c.sealed[k]) continue;
+    for (const std::string &g : s.groups) groups += (groups.empty() ? "" : ",") + g;
+    const int stage = std::max(0, std::min((int)std::floor(t - 1e-9), P->scene.NumStages() - 1)) + 1;
+    std::string way;  // a sealed chamber cannot empty: its gas law has no meaning there
+    if (!c.sealed[k] && !missing.empty())
+      way = ", or let its foils rest on each other: contact between them, " + missing + " in -layer_contact" +
+            (P->layers ? " (the pairs given do not join them)" : "");
+    else if (!c.sealed[k])
+      way = ", or bound it with two foils and let them rest on each other (-layer_contact)";
+    SETERRQ(P->comm, PETSC_ERR_NOT_CONVERGED,
+            "chamber %s turned inside out at load time %g (stage %d, volume %g m^3): its foils (%s) passed through "
+            "each other (a load heavier than the %s pressure), so the state cannot be trusted from here. Lower the "
+            "load or raise the pressure%s%s",
+            s.name.c_str(), t, stage, 1e-9 * c.volume[k], groups.c_str(), c.sealed[k] ? "sealed gas's" : "inflation",
+            c.sealed[k] ? "" : ", seal the chamber", way.c_str());
+  }
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode ChamberUpdate(Problem *P, Vec U) {
@@ -119,6 +206,7 @@ PetscErrorCode ChamberCreate(Problem *P) {
     PetscCall(MatCreateLRC(P->J, c->U, c->c, nullptr, &c->J));
     PetscCall(VecDuplicate(P->U, &c->g_work));
   }
+  PetscCall(ChamberCheckSharedSides(P));
   // Sealed from the start: the gas the chamber holds at load time 0.
   PetscCall(ChamberUpdate(P, P->U));
   PetscCall(ChamberCheckStartVolume(P));
@@ -213,14 +301,7 @@ PetscErrorCode ChamberCommit(Problem *P, double t) {
   ChamberSet &c = *P->chambers;
   PetscFunctionBeginUser;
   PetscCall(ChamberUpdate(P, P->U));
-  for (size_t k = 0; k < c.volume.size(); ++k)  // with layer contact a supplied chamber may empty
-    PetscCheck(c.volume[k] > 0 || (P->layers && !c.sealed[k]), P->comm,
-               PETSC_ERR_NOT_CONVERGED,
-               "chamber %s turned inside out at load time %g (volume %g m^3): its foils passed through each other "
-               "(a load heavier than the inflation pressure), so the state cannot be trusted from here. Lower the "
-               "load or raise the pressure, seal the chamber, or let the foils rest on each other (-layer_contact "
-               "top:bottom)",
-               P->scene.chambers[k].name.c_str(), t, 1e-9 * c.volume[k]);
+  PetscCall(ChamberCheckInsideOut(P, t));
   const double next = std::round(t) + 1;  // the stage that starts at t, if t ends one
   if (std::fabs(t - std::round(t)) > 1e-9) PetscFunctionReturn(0);
   for (size_t k = 0; k < c.volume.size(); ++k) {

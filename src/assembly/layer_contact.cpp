@@ -37,6 +37,12 @@ PetscErrorCode ReadOptions(Problem *P, LayerContactSet *c, bool *given) {
     PetscCheck(colon != std::string::npos && colon > 0 && colon + 1 < s.size(), P->comm, PETSC_ERR_ARG_WRONG,
                "-layer_contact %s: give slave:master surface groups, e.g. top:bottom", s.c_str());
     c->slaves.push_back(s.substr(0, colon)), c->masters.push_back(s.substr(colon + 1));
+    // Contact of a foil with itself is not modelled: every node of it lies on the layer, so the
+    // pair would hold nothing while a chamber of that foil counted as kept apart.
+    PetscCheck(c->slaves.back() != c->masters.back(), P->comm, PETSC_ERR_SUP,
+               "-layer_contact %s: a foil's contact with itself is not modelled; pair two different surface groups "
+               "(the upper foil's and the one below it, e.g. top:bottom)",
+               s.c_str());
     for (const std::string &g : {c->slaves.back(), c->masters.back()})
       PetscCheck(P->mesh.element_sets.count(g), P->comm, PETSC_ERR_ARG_WRONG,
                  "-layer_contact %s: the mesh has no surface group %s", s.c_str(), g.c_str());
@@ -119,6 +125,17 @@ PetscErrorCode FindSlaves(Problem *P, LayerContactSet *c) {
     PetscCall(VecRestoreArray(area, &a));
   }
   PetscCall(VecDestroy(&area));
+  // A pair without a node to hold (the slave's nodes all on its master layer or held) is a wrong
+  // pair of groups, not contact.
+  std::vector<PetscInt> count(c->slaves.size(), 0);
+  for (const LayerContactSet::Node &s : c->nodes) ++count[s.layer];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, count.data(), (int)count.size(), MPIU_INT, MPI_SUM, P->comm));
+  for (size_t l = 0; l < count.size(); ++l)
+    PetscCheck(count[l] > 0, P->comm, PETSC_ERR_ARG_WRONG,
+               "-layer_contact %s:%s pairs no node: every node of %s lies on %s or is held in every direction, so "
+               "there is nothing for contact to hold; pair two foils that meet only at their rim, the first one free "
+               "to move",
+               c->slaves[l].c_str(), c->masters[l].c_str(), c->slaves[l].c_str(), c->masters[l].c_str());
   PetscFunctionReturn(0);
 }
 
@@ -335,6 +352,31 @@ void LayerContactStateSet(Problem *P, const std::vector<double> &v) {
     const auto it = tri.find((PetscInt)v[s.local]);
     s.tri = v[s.local] < 0 || it == tri.end() ? -1 : it->second;
   }
+}
+
+bool LayerContactKeepsApart(const LayerContactSet *c, const std::vector<std::string> &groups, std::string *missing) {
+  missing->clear();
+  if (groups.size() < 2) return false;
+  // The groups joined by pairs, as components (union-find over the list's indices).
+  std::vector<size_t> root(groups.size());
+  std::iota(root.begin(), root.end(), 0);
+  auto find = [&](size_t i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  const auto index = [&](const std::string &g) {
+    return (size_t)(std::find(groups.begin(), groups.end(), g) - groups.begin());
+  };
+  for (size_t l = 0; c && l < c->slaves.size(); ++l) {
+    const size_t a = index(c->slaves[l]), b = index(c->masters[l]);
+    if (a < groups.size() && b < groups.size()) root[find(a)] = find(b);
+  }
+  for (size_t j = 1; j < groups.size(); ++j)
+    if (find(j) != find(0)) {
+      *missing = groups[0] + ":" + groups[j];
+      return false;
+    }
+  return true;
 }
 
 PetscErrorCode LayerContactDestroy(Problem *P) {

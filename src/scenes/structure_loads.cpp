@@ -293,7 +293,7 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
   for (size_t k = 0; k < in.chambers.size(); ++k) {
     const ChamberInput &c = in.chambers[k];
     ChamberSpec spec;
-    spec.name = c.name;
+    spec.name = c.name, spec.groups = c.groups, spec.signs = c.signs;
     for (int i = 0; i < 3; ++i) spec.origin[i] = c.origin[i];
     std::vector<double> p;
     for (double x : c.pressure.values) p.push_back(kPaToMPa * x);
