@@ -164,7 +164,7 @@ PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, in
                       "%zu control points (%g mm long), so it would take the values of the nearest point of a part "
                       "it is not on. The points are matched in 3D (give them with the nodes' heights)%s",
                       bc.group.c_str(), m.node_tags.empty() ? (long long)far : m.node_tags[far], bc.group.c_str(),
-                      x[0], x[1], x[2], worst, npts, length,
+                      x[0] + 0.0, x[1] + 0.0, x[2] + 0.0, worst, npts, length,  // + 0.0: no "-0"
                       open ? "; a closed loop (a frame's four corners) repeats its first point as its last, "
                              "with its values"
                            : "");
