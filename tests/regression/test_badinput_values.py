@@ -7,7 +7,7 @@ general scene checks for you"):
   a rigid plane's centre, a control point, a chamber's kappa, extra volume and origin, the
   film temperature, the membrane's tangent shift;
 * -film_<group>_thickness has -membrane_thickness's checks (a thickness in m refused, one in cm
-  warned) and an explicit 0 is refused, not taken as the default;
+  warned) and an explicit 0 is refused, not taken as the default; per-group values set up on 2 ranks;
 * -bc_<group>_points: two equal consecutive points are refused, and so is a group whose nodes lie
   far from the polyline (four frame corners without the first repeated); the closed loop runs;
 * units: the atmosphere in Pa, the density in g/cm^3, snow in Pa or negative, a temperature
@@ -87,6 +87,11 @@ def test_film_thickness(etfe, chk, tmp):
     runs(etfe, chk, tmp, HYPAR, ["-film_all_thickness", "0.02"], "-film_all_thickness 0.02",
          warning="-film_all_thickness 0.02: the thickness is in mm")
     runs(etfe, chk, tmp, HYPAR, ["-film_all_thickness", "0.25"], "-film_all_thickness 0.25")
+    # Per-group values are set on rank 0, whose outcome every rank takes (the ranks once parted here).
+    rc, out = T.run(etfe, with_scratch(HYPAR + ["-film_strip_1_thickness", "0.3", "-film_strip_2_md", "0,1,0"], tmp,
+                                       "np2"), np=2, expect_fail=None)
+    chk.check(rc == 0 and "etfe: completed" in out, "per-group thickness and MD on 2 ranks: the set-up runs (exit %d; %s)"
+              % (rc, T.error_message(out).strip()[:160]))
 
 
 def test_points(etfe, chk, tmp):
