@@ -2,6 +2,10 @@
 // assembly layer owns them because the residual and the tangent are what they change.
 #include <petscsys.h>
 
+#include <cmath>
+#include <cstdio>
+#include <string>
+
 #include "etfe/problem.h"
 
 namespace etfe {
@@ -42,11 +46,21 @@ PetscErrorCode MembraneOptionsFromCommandLine(MPI_Comm comm, Problem *P) {
       "", wrinkling_models, 2, wrinkling_models[wrinkling], &wrinkling, nullptr));
   P->wrinkling = wrinkling == 1 ? PETSC_TRUE : PETSC_FALSE;
   PetscOptionsEnd();
-  PetscCheck(P->tangent_shift >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-membrane_tangent_shift %g: the shift is relative to E h and must be >= 0",
-             P->tangent_shift);
-  PetscCheck(P->thickness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
-             "-membrane_thickness %g: the film thickness must be positive (mm)", P->thickness);
+  // PETSc reads "inf" and "nan" as numbers: refused here by name, not met later as a NaN.
+  auto num = [](double x) {  // as typed: PETSc's %g would print 0 as "0." and inf as "inf."
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", x);
+    return std::string(buf);
+  };
+  PetscCheck(P->tangent_shift >= 0 && std::isfinite(P->tangent_shift), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-membrane_tangent_shift %s: the shift is relative to E h and must be a finite number >= 0",
+             num(P->tangent_shift).c_str());
+  PetscCheck(P->thickness > 0 && std::isfinite(P->thickness), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-membrane_thickness %s: the film thickness must be a positive, finite number (mm)",
+             num(P->thickness).c_str());
+  PetscCheck(std::isfinite(P->min_area_ratio), comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-membrane_min_area_ratio %s: not a finite number; give a ratio such as 1e-3",
+             num(P->min_area_ratio).c_str());
   PetscFunctionReturn(0);
 }
 

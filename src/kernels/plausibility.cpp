@@ -58,12 +58,12 @@ PlausibilityCheck CheckMeshExtent(const MeshData &mesh, const std::string &file)
                      " mm; scale the mesh (e.g. Gmsh's Mesh.ScalingFactor) if this is not meant.");
 }
 
-PlausibilityCheck CheckThickness(double h) {
+PlausibilityCheck CheckThickness(double h, const char *option) {
   if (h >= kThicknessMin && h <= kThicknessMax) return {};
   const std::string intent = Intent(h, kThicknessMin, kThicknessMax, {{1e3, "m"}, {1e-3, "um"}, {10.0, "cm"}});
   const bool error = h < kThicknessErrorMin || h > kThicknessErrorMax;
   return Verdict(error ? Plausibility::Error : Plausibility::Warning,
-                 "-membrane_thickness " + Num(h) + ": the thickness is in mm and ETFE foils are " +
+                 std::string(option) + " " + Num(h) + ": the thickness is in mm and ETFE foils are " +
                      Num(kThicknessMin) + "-" + Num(kThicknessMax) + " mm thick" +
                      (error ? "; below " + Num(kThicknessErrorMin) + " mm or above " + Num(kThicknessErrorMax) +
                                   " mm no film has it."
@@ -135,6 +135,45 @@ PlausibilityCheck CheckPressure(const std::string &what, double p) {
                             : ", above " + Num(1e3 * kPressureWarn) + " kPa a foil bursts unless its span is a "
                                                                     "few cm.") +
                      intent);
+}
+
+PlausibilityCheck CheckAtmosphere(double p) {
+  if (p >= kAtmosphereMin && p <= kAtmosphereMax) return {};
+  const std::string intent =
+      Intent(p, kAtmosphereMin, kAtmosphereMax, {{1e-3, "Pa"}, {1e3, "MPa"}, {100.0, "bar"}, {101.325, "atm"}});
+  const bool error = p < kAtmosphereErrorMin || p > kAtmosphereErrorMax;
+  return Verdict(error ? Plausibility::Error : Plausibility::Warning,
+                 "-structure_atmosphere " + Num(p) + ": the atmospheric pressure is in kPa (absolute) and is " +
+                     Num(kAtmosphereMin) + "-" + Num(kAtmosphereMax) + " kPa where roofs stand (101.325 at sea level)" +
+                     (error ? "; below " + Num(kAtmosphereErrorMin) + " or above " + Num(kAtmosphereErrorMax) +
+                                  " kPa it is nowhere on Earth, and the chambers' gas laws would be off by that much."
+                            : ".") +
+                     intent);
+}
+
+PlausibilityCheck CheckDensity(double rho) {
+  if (rho >= kDensityMin && rho <= kDensityMax) return {};
+  const std::string intent = Intent(rho, kDensityMin, kDensityMax, {{1e3, "g/cm^3"}, {1e-3, "g/m^3"}});
+  const bool error = rho < kDensityErrorMin || rho > kDensityErrorMax;
+  return Verdict(error ? Plausibility::Error : Plausibility::Warning,
+                 "-structure_density " + Num(rho) + ": the density is in kg/m^3 and foils have " + Num(kDensityMin) +
+                     "-" + Num(kDensityMax) + " kg/m^3 (ETFE 1750)" +
+                     (error ? "; below " + Num(kDensityErrorMin) + " or above " + Num(kDensityErrorMax) +
+                                  " kg/m^3 no solid has it."
+                            : ".") +
+                     intent);
+}
+
+PlausibilityCheck CheckTemperature(const char *option, double T) {
+  if (T >= kTemperatureMin && T <= kTemperatureMax) return {};
+  std::string intent;  // a value in kelvin: an offset, not a factor
+  if (T - 273.15 >= kTemperatureMin && T - 273.15 <= kTemperatureMax)
+    intent = " Did you mean " + Num(T - 273.15) + " (the value in K)?";
+  const bool error = T > kTemperatureErrorMax;
+  return Verdict(error ? Plausibility::Error : Plausibility::Warning,
+                 std::string(option) + " " + Num(T) + ": the temperature is in deg C and ETFE roofs see " +
+                     Num(kTemperatureMin) + " to " + Num(kTemperatureMax) + " C" +
+                     (error ? "; above " + Num(kTemperatureErrorMax) + " C ETFE has melted." : ".") + intent);
 }
 
 } // namespace etfe

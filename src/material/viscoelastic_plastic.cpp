@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "etfe/input_plausibility.h"
 #include "etfe/kernels/viscoelastic_plastic.h"
 #include "material_internal.h"
 
@@ -126,10 +127,22 @@ PetscErrorCode ReadTemperatureShift(ViscoelasticPlasticLaw *law) {
   PetscCall(PetscOptionsReal("-material_temperature", "Temperature of the film [deg C] (default: the reference)", "",
                              law->temperature, &law->temperature, nullptr));
   PetscOptionsEnd();
+  // PETSc reads "inf" as a number: an infinite temperature would give a_T = 0 (the film fully
+  // relaxed at once) without a word. Then the range: a value in K, or past the melting point.
+  PetscCheck(std::isfinite(law->reference_temperature), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+             "-material_reference_temperature %s: not a finite number; give the temperature in deg C",
+             std::isnan(law->reference_temperature) ? "nan" : "inf");
+  PetscCheck(std::isfinite(law->temperature), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
+             "-material_temperature %s: not a finite number; give the temperature in deg C (default: the reference, "
+             "-material_reference_temperature)",
+             std::isnan(law->temperature) ? "nan" : "inf");
   PetscCheck(law->reference_temperature > -kZeroCelsius, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
              "-material_reference_temperature %g C is below absolute zero (-273.15 C)", law->reference_temperature);
   PetscCheck(law->temperature > -kZeroCelsius, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
              "-material_temperature %g C is below absolute zero (-273.15 C)", law->temperature);
+  PetscCall(ReportPlausibility(PETSC_COMM_WORLD, CheckTemperature("-material_temperature", law->temperature)));
+  PetscCall(ReportPlausibility(PETSC_COMM_WORLD,
+                               CheckTemperature("-material_reference_temperature", law->reference_temperature)));
   PetscCheck(law->ea >= 0 && std::isfinite(law->ea), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
              "-material_ea %g kJ/mol: the activation energy must be >= 0", law->ea);
   const double T = law->temperature + kZeroCelsius, Tref = law->reference_temperature + kZeroCelsius;

@@ -1,11 +1,17 @@
 // Real-array options with their whole default in -help (see real_array_option.h).
 #include "real_array_option.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
 namespace etfe {
+
+std::string OptionFullName(const PetscOptionItems *PetscOptionsObject, const char *name) {
+  const char *prefix = PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "";
+  return std::string("-") + prefix + (name[0] == '-' ? name + 1 : name);
+}
 
 PetscErrorCode OptionsRealArray(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
                                 std::vector<double> *v, PetscBool *named) {
@@ -35,12 +41,39 @@ PetscErrorCode OptionsRealArray(PetscOptionItems *PetscOptionsObject, const char
     char *end = nullptr;
     std::strtod(item, &end);
     PetscCheck(end != item && *end == '\0', PetscOptionsObject->comm, PETSC_ERR_ARG_WRONG,
-               "%s: value %zu (\"%s\") is not a number; give comma-separated numbers (default %s)", name,
-               v->size() + 1, item, shown.empty() ? "none" : shown.c_str());
+               "%s: value %zu (\"%s\") is not a number; give comma-separated numbers (default %s)",
+               OptionFullName(PetscOptionsObject, name).c_str(), v->size() + 1, item,
+               shown.empty() ? "none" : shown.c_str());
     PetscCall(PetscOptionsStringToReal(item, &x));
+    PetscCheck(std::isfinite(x), PetscOptionsObject->comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s: value %zu (\"%s\") is not a finite number; give finite numbers (default %s)",
+               OptionFullName(PetscOptionsObject, name).c_str(), v->size() + 1, item,
+               shown.empty() ? "none" : shown.c_str());
     v->push_back(x);
   }
   PetscCall(PetscTokenDestroy(&token));
+  PetscFunctionReturn(0);
+}
+
+std::string OptionNum(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", x);
+  return buf;
+}
+
+PetscErrorCode OptionsRealFinite(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
+                                 const char *unit, double *v, PetscBool *set, const char *default_text) {
+  const std::string fallback = default_text ? default_text : OptionNum(*v);
+  PetscReal x = *v;
+  PetscBool given = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsReal(name, help, "", x, &x, &given));
+  PetscCheck(std::isfinite(x), PetscOptionsObject->comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "%s %s: not a finite number; give the value%s%s, or leave the option out for its default (%s)",
+             OptionFullName(PetscOptionsObject, name).c_str(), OptionNum(x).c_str(), unit[0] ? " in " : "", unit,
+             fallback.c_str());
+  *v = x;
+  if (set) *set = given;
   PetscFunctionReturn(0);
 }
 

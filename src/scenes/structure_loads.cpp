@@ -253,6 +253,67 @@ std::string ChamberOpenEdge(const MeshData &m, const ChamberInput &c, const std:
   return "";
 }
 
+// Rank 0: where a chamber's open edges all lie in one plane (a rim clamped in a flat frame, a flat
+// base), that plane closes it, so the origin must lie on it: off it, the volume is closed by a
+// cone from the origin to the rim instead, which the start then finds negative or too large (and
+// "flip the signs" would not be the way out). Returns "" or the message; a rim that is not flat
+// (symmetry planes meeting, a warped clamped edge) is left to the other checks.
+std::string ChamberOriginOffRim(const MeshData &m, const ChamberInput &c) {
+  std::map<std::pair<int, int>, int> uses;
+  for (const std::string &g : c.groups)
+    for (int e : m.element_sets.at(g))
+      for (int k = 0; k < 3; ++k) {
+        const int a = m.triangles[3 * e + k], b = m.triangles[3 * e + (k + 1) % 3];
+        uses[{std::min(a, b), std::max(a, b)}]++;
+      }
+  std::set<int> rim;
+  for (const auto &kv : uses)
+    if (kv.second == 1) rim.insert(kv.first.first), rim.insert(kv.first.second);
+  if (rim.size() < 3) return "";
+  auto x = [&](int n) { return &m.coords[3 * n]; };
+  auto dist = [](const double *p, const double *q) { return std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]); };
+  // The plane through three rim nodes far apart: a, the node farthest from it, the node farthest
+  // from the line through both.
+  const int a = *rim.begin();
+  int b = a, c3 = a;
+  for (int n : rim)
+    if (dist(x(n), x(a)) > dist(x(b), x(a))) b = n;
+  const double extent = dist(x(a), x(b));
+  double ab[3], nrm[3] = {0, 0, 0}, best = 0.0;
+  for (int i = 0; i < 3; ++i) ab[i] = x(b)[i] - x(a)[i];
+  for (int n : rim) {
+    const double an[3] = {x(n)[0] - x(a)[0], x(n)[1] - x(a)[1], x(n)[2] - x(a)[2]};
+    const double cr[3] = {ab[1] * an[2] - ab[2] * an[1], ab[2] * an[0] - ab[0] * an[2], ab[0] * an[1] - ab[1] * an[0]};
+    const double len = std::hypot(cr[0], cr[1], cr[2]);
+    if (len > best) best = len, c3 = n, nrm[0] = cr[0] / len, nrm[1] = cr[1] / len, nrm[2] = cr[2] / len;
+  }
+  if (!(extent > 0) || !(best > 1e-6 * extent * extent) || c3 == a) return "";  // the rim is a line
+  auto off = [&](const double *p) {
+    return std::fabs((p[0] - x(a)[0]) * nrm[0] + (p[1] - x(a)[1]) * nrm[1] + (p[2] - x(a)[2]) * nrm[2]);
+  };
+  for (int n : rim)
+    if (off(x(n)) > 1e-6 * extent) return "";  // not flat
+  const double d = off(c.origin.data());
+  if (d <= 1e-3 * extent) return "";
+  double centre[3] = {0, 0, 0};
+  for (int n : rim)
+    for (int i = 0; i < 3; ++i) centre[i] += x(n)[i] / rim.size();
+  // Round-off (1e-14 of a coordinate) printed as 0.
+  auto tidy = [](double v, double scale) { return std::fabs(v) < 1e-9 * scale ? 0.0 : v; };
+  const double p0[3] = {tidy(x(a)[0], extent), tidy(x(a)[1], extent), tidy(x(a)[2], extent)};
+  for (int i = 0; i < 3; ++i) nrm[i] = tidy(nrm[i], 1.0), centre[i] = tidy(centre[i], extent);
+  char buf[700];
+  std::snprintf(buf, sizeof buf,
+                "chamber %s: -chamber_%s_origin (%g, %g, %g) lies %g mm off the plane of its open rim (the %zu nodes "
+                "on edges that no other of its triangles shares lie in the plane through (%g, %g, %g) with normal "
+                "(%g, %g, %g)): that plane closes the chamber, and the volume is measured from the origin, so the "
+                "origin must lie on it. Give a point of that plane as -chamber_%s_origin (e.g. %g,%g,%g, the rim's "
+                "centre)",
+                c.name.c_str(), c.name.c_str(), c.origin[0], c.origin[1], c.origin[2], d, rim.size(), p0[0], p0[1],
+                p0[2], nrm[0], nrm[1], nrm[2], c.name.c_str(), centre[0], centre[1], centre[2]);
+  return buf;
+}
+
 // Rank 0: the chamber's triangles, each turned by its group's sign, must all face the same way
 // (outward), or the divergence theorem adds volumes of opposite sign: two of them sharing an edge
 // then run along it in the same direction. Returns "" or a message naming the edge and groups.
@@ -287,6 +348,8 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
       if (err.empty()) err = ChamberOpenEdge(scene->mesh, c, held_mask);
     for (const ChamberInput &c : in.chambers)
       if (err.empty()) err = ChamberMisorientedEdge(scene->mesh, c);
+    for (const ChamberInput &c : in.chambers)
+      if (err.empty()) err = ChamberOriginOffRim(scene->mesh, c);
   }
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
   scene->atmosphere = kPaToMPa * in.atmosphere;
@@ -325,13 +388,13 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene) {
+namespace {
+
+// Rank 0: each element's thickness and MD from the surface groups that set them; "" or the
+// message naming an element two groups give different values.
+PetscErrorCode FillFilmParts(const StructureInputs &in, bool any_h, bool any_md, SceneSpec *scene, std::string *err) {
   MeshData &m = scene->mesh;
-  bool any_h = false, any_md = false;
-  std::string err;
   PetscFunctionBeginUser;
-  for (const FilmInput &f : in.films) any_h |= f.thickness > 0, any_md |= f.md_strip || !f.md.empty();
-  if (!SceneHoldsMesh(comm) || (!any_h && !any_md)) PetscFunctionReturn(0);
   // Each element takes a group's value; two groups giving it different values is an error.
   std::vector<std::string> h_from(m.NumElements()), md_from(m.NumElements());
   if (any_h) scene->element_thickness.assign(m.NumElements(), 0.0);  // 0: the default, filled in by the problem
@@ -356,21 +419,70 @@ PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, Scen
     for (int e : els) {
       if (f.thickness > 0) {
         if (!h_from[e].empty() && scene->element_thickness[e] != f.thickness)
-          err = "element " + std::to_string(e) + " is in the surface groups " + h_from[e] + " and " + f.group +
-                ", which give it different thicknesses (-film_<group>_thickness): give one of them";
+          *err = "element " + std::to_string(e) + " is in the surface groups " + h_from[e] + " and " + f.group +
+                 ", which give it different thicknesses (-film_<group>_thickness): give one of them";
         scene->element_thickness[e] = f.thickness, h_from[e] = f.group;
       }
       if (md) {
         double *d = &scene->element_md[3 * (size_t)e];
         if (!md_from[e].empty() && (d[0] != axis[0] || d[1] != axis[1] || d[2] != axis[2]))
-          err = "element " + std::to_string(e) + " is in the surface groups " + md_from[e] + " and " + f.group +
-                ", which give it different MD directions (-film_<group>_md): give one of them";
+          *err = "element " + std::to_string(e) + " is in the surface groups " + md_from[e] + " and " + f.group +
+                 ", which give it different MD directions (-film_<group>_md): give one of them";
         for (int i = 0; i < 3; ++i) d[i] = axis[i];
         md_from[e] = f.group;
       }
     }
   }
+  PetscFunctionReturn(0);
+}
+
+// An MD direction within this angle's sine of the element's plane normal has no direction in the
+// film: the element's frame then falls back to its first edge (MembraneReferenceBuild).
+constexpr double kMdNormalSin = 0.1;  // 5.7 degrees
+
+// Rank 0: the MD direction against the film: refused where it is normal to every element (the
+// MD would be each element's first edge), a warning where it is normal to some.
+std::string CheckMdAcrossFilm(const StructureInputs &in, const SceneSpec &scene, std::string *warning) {
+  const MeshData &m = scene.mesh;
+  int count = 0, first = -1;
+  for (int e = 0; e < m.NumElements(); ++e) {
+    const double *md = scene.element_md.empty() ? in.md : &scene.element_md[3 * (size_t)e];
+    double n[3];
+    StructureTriangleNormal(m, e, n);
+    const double nn = std::hypot(n[0], n[1], n[2]), mm = std::hypot(md[0], md[1], md[2]);
+    if (!(nn > 0) || !(mm > 0)) continue;
+    const double along = (md[0] * n[0] + md[1] * n[1] + md[2] * n[2]) / (nn * mm);  // cosine to the normal
+    if (std::sqrt(std::max(0.0, 1.0 - along * along)) < kMdNormalSin) count++, first = first < 0 ? e : first;
+  }
+  if (count == 0) return "";
+  const double *md = scene.element_md.empty() ? in.md : &scene.element_md[3 * (size_t)first];
+  const char *option = scene.element_md.empty() ? "-structure_md" : "-structure_md or -film_<group>_md";
+  char buf[700];
+  std::snprintf(buf, sizeof buf,
+                "the MD (roll) direction (%g, %g, %g) of %s is within %.1f degrees of the normal of %d of the film's %d "
+                "elements (the first: element %d): those take its projection onto their plane as MD, which their "
+                "slightest tilt turns any way (exactly normal: the element's first edge). Give a direction along the "
+                "film (a flat roof in plan: x or y; -film_<group>_md strip: a strip's long axis)",
+                md[0], md[1], md[2], option, std::asin(kMdNormalSin) * 180.0 / M_PI, count, m.NumElements(), first);
+  if (count == m.NumElements()) return buf;
+  *warning = buf;
+  return "";
+}
+
+} // namespace
+
+PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene) {
+  bool any_h = false, any_md = false;
+  std::string err, warning;
+  PetscFunctionBeginUser;
+  for (const FilmInput &f : in.films) any_h |= f.thickness > 0, any_md |= f.md_strip || !f.md.empty();
+  // Rank 0 holds the mesh; every rank takes its outcome (Rank0Outcome is collective).
+  if (SceneHoldsMesh(comm)) {
+    if (any_h || any_md) PetscCall(FillFilmParts(in, any_h, any_md, scene, &err));
+    if (err.empty()) err = CheckMdAcrossFilm(in, *scene, &warning);
+  }
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+  if (!warning.empty()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "etfe: warning: %s\n", warning.c_str()));
   PetscFunctionReturn(0);
 }
 

@@ -6,6 +6,7 @@
 // the names there are, before anything is computed.
 #include <petscsys.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "etfe/input_plausibility.h"
 #include "real_array_option.h"
 #include "structure_inputs.h"
 
@@ -58,12 +60,13 @@ PetscErrorCode ReadStageArray(PetscOptionItems *PetscOptionsObject, const std::s
                               const char *help, StageArray *a) {
   PetscFunctionBeginUser;
   a->option = "-" + prefix + key;
+  // OptionsRealArray refuses values that are not finite, by the option's name.
   PetscCall(OptionsRealArray(PetscOptionsObject, (std::string("-") + key).c_str(), help, &a->values, nullptr));
-  for (double x : a->values)
-    PetscCheck(std::isfinite(x), PetscOptionsObject->comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: values must be finite",
-               a->option.c_str());
   PetscFunctionReturn(0);
 }
+
+// kPa per plan area: above it a snow load is one in Pa (0.75 kPa typed as 750).
+constexpr double kSnowMax = 20.0;
 
 PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
   const std::string prefix = "bc_" + group + "_";
@@ -95,6 +98,17 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
   PetscCheck(bc->points.size() % 3 == 0 && bc->points.size() != 3, comm, PETSC_ERR_ARG_SIZ,
              "-%spoints: give two or more control points, 3 coordinates each (%zu values given)", prefix.c_str(),
              bc->points.size());
+  // Two equal consecutive points make a segment of no length: the nodes there would take the
+  // first point's values, not the ones interpolated between its neighbours.
+  for (size_t k = 3; k < bc->points.size(); k += 3) {
+    const double *a = &bc->points[k - 3], *b = &bc->points[k];
+    const double scale = std::max({1.0, std::fabs(a[0]), std::fabs(a[1]), std::fabs(a[2])});
+    PetscCheck(std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]) > 1e-9 * scale, comm, PETSC_ERR_ARG_WRONG,
+               "-%spoints: control points %zu and %zu are the same point (%s, %s, %s): give each point once (a "
+               "closed loop repeats only its first point, as its last)",
+               prefix.c_str(), k / 3, k / 3 + 1, OptionNum(b[0]).c_str(), OptionNum(b[1]).c_str(),
+               OptionNum(b[2]).c_str());
+  }
   PetscCheck(bc->force.values.size() % 3 == 0, comm, PETSC_ERR_ARG_SIZ,
              "-%sforce: give fx,fy,fz for each stage (%zu values given)", prefix.c_str(), bc->force.values.size());
   PetscFunctionReturn(0);
@@ -102,37 +116,63 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
 
 PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
   const std::string prefix = "film_" + group + "_";
-  PetscBool set = PETSC_FALSE;
+  PetscBool set = PETSC_FALSE, h_set = PETSC_FALSE;
   char md[256] = "";
   PetscFunctionBeginUser;
   f->group = group;
   PetscOptionsBegin(comm, prefix.c_str(), ("Film surface group " + group).c_str(), "Scene");
-  PetscCall(PetscOptionsReal("-thickness", "Film thickness of this group [mm] (default -membrane_thickness)", "",
-                             f->thickness, &f->thickness, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-thickness",
+                              "Film thickness of this group [mm] (default -membrane_thickness)", "mm", &f->thickness,
+                              &h_set, "-membrane_thickness"));
   PetscCall(PetscOptionsString("-md",
                                "MD (roll) direction of this group: x,y,z, or strip (its long axis, as the strips "
                                "of the cutting patterns run)",
                                "", md, md, sizeof md, nullptr));
-  PetscCall(PetscOptionsReal("-stress_ratio", "Form finding: MD:TD prestress ratio of this group", "", f->stress_ratio,
-                             &f->stress_ratio, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-stress_ratio", "Form finding: MD:TD prestress ratio of this group",
+                              "", &f->stress_ratio, nullptr));
   PetscCall(ReadStageArray(PetscOptionsObject, prefix, "pressure",
                            "Follower pressure [kPa] at the end of each stage, along the elements' normal (the side "
                            "the triangles' orientation points to)",
                            &f->pressure));
-  PetscCall(PetscOptionsReal("-wind_cp",
-                             "Wind pressure coefficient on the face the normal points to (> 0 pushes onto it, < 0 "
-                             "suction); times -structure_wind",
-                             "", f->wind_cp, &f->wind_cp, &set));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-wind_cp",
+                              "Wind pressure coefficient on the face the normal points to (> 0 pushes onto it, < 0 "
+                              "suction); times -structure_wind",
+                              "", &f->wind_cp, &set));
   PetscCall(ReadStageArray(PetscOptionsObject, prefix, "snow",
                            "Snow [kPa per plan area] at the end of each stage: a vertical dead load", &f->snow));
   PetscOptionsEnd();
   f->wind_given = set;
-  PetscCheck(f->thickness >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sthickness %g must be positive (mm)",
-             prefix.c_str(), f->thickness);
+  // Given, the thickness is this group's, with -membrane_thickness's checks; an explicit 0 is no
+  // thickness (not "the default", which is what leaving the option out gives).
+  if (h_set) {
+    PetscCheck(f->thickness > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%sthickness %s must be positive (mm): give the group's thickness, or leave the option out for "
+               "-membrane_thickness",
+               prefix.c_str(), OptionNum(f->thickness).c_str());
+    PetscCall(ReportPlausibility(comm, CheckThickness(f->thickness, ("-" + prefix + "thickness").c_str())));
+  }
+  // Snow presses down on the plan, in kPa: a negative value would lift the film, and a value no
+  // roof carries is a load in Pa (a warning here would only be followed by a failed increment).
+  for (double x : f->snow.values) {
+    PetscCheck(x >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s %s: snow is a downward load in kPa per plan area and cannot be negative; for an upward load give "
+               "-%swind_cp (suction) or -%spressure",
+               f->snow.option.c_str(), OptionNum(x).c_str(), prefix.c_str(), prefix.c_str());
+    PetscCheck(x <= kSnowMax, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s %s: snow is in kPa per plan area and the heaviest roof snow loads are about 10 kPa (above %s kPa "
+               "no foil roof carries it). Did you mean %s (the value in Pa)?",
+               f->snow.option.c_str(), OptionNum(x).c_str(), OptionNum(kSnowMax).c_str(), OptionNum(1e-3 * x).c_str());
+  }
   if (std::strcmp(md, "strip") == 0) {
     f->md_strip = true;
   } else if (md[0]) {
-    for (char *tok = std::strtok(md, ","); tok; tok = std::strtok(nullptr, ",")) f->md.push_back(std::atof(tok));
+    for (char *tok = std::strtok(md, ","); tok; tok = std::strtok(nullptr, ",")) {
+      char *end = nullptr;
+      f->md.push_back(std::strtod(tok, &end));
+      PetscCheck(end != tok && *end == '\0' && std::isfinite(f->md.back()), comm, PETSC_ERR_ARG_WRONG,
+                 "-%smd: \"%s\" is not a finite number; give a non-zero direction x,y,z or the word strip",
+                 prefix.c_str(), tok);
+    }
     PetscCheck(f->md.size() == 3 && std::hypot(f->md[0], f->md[1], f->md[2]) > 0, comm, PETSC_ERR_ARG_WRONG,
                "-%smd: give a non-zero direction x,y,z or the word strip", prefix.c_str());
   }
@@ -158,7 +198,7 @@ PetscErrorCode ReadRigid(MPI_Comm comm, const std::string &name, RigidInput *r) 
                               "", types, 4, types[0], &type, nullptr));
   PetscCall(OptionsRealArray(PetscOptionsObject, "-centre", "A point on the axis x,y,z [mm]", &centre, nullptr));
   PetscCall(OptionsRealArray(PetscOptionsObject, "-axis", "Axis direction x,y,z", &axis, nullptr));
-  PetscCall(PetscOptionsReal("-radius", "Radius [mm]", "", r->radius, &r->radius, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-radius", "Radius [mm]", "mm", &r->radius, nullptr));
   PetscCall(PetscOptionsString("-curve", "type curve: the node group (a circular arc) whose circle is the support", "",
                                curve, curve, sizeof curve, nullptr));
   PetscCall(OptionsNameList(PetscOptionsObject, "-nodes",
@@ -212,13 +252,25 @@ PetscErrorCode ReadChamber(MPI_Comm comm, const std::string &name, ChamberInput 
                              "Per stage 1 sealed, 0 supplied (e.g. 0,1,0: a power cut in stage 2; the supply "
                              "takes over again from the sealed pressure over stage 3); instead of -sealed_from_stage",
                              &c->sealed, nullptr));
-  PetscCall(PetscOptionsReal("-kappa", "Gas law exponent when sealed (1 isothermal, 1.4 adiabatic air)", "", c->kappa,
-                             &c->kappa, nullptr));
-  PetscCall(PetscOptionsReal("-extra_volume", "Volume beyond the membranes (ducts, a reservoir) [m^3]", "",
-                             c->extra_volume, &c->extra_volume, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-kappa",
+                              "Gas law exponent when sealed (1 isothermal, 1.4 adiabatic air)", "", &c->kappa, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-extra_volume",
+                              "Volume beyond the membranes (ducts, a reservoir) [m^3]", "m^3", &c->extra_volume,
+                              nullptr));
   PetscOptionsEnd();
   PetscCheck(!c->groups.empty(), comm, PETSC_ERR_ARG_WRONG,
              "chamber %s: give the surface groups that bound it (-%sgroups top,bottom)", name.c_str(), prefix.c_str());
+  // A group listed twice would be met as two triangles on every one of its edges, facing the same way.
+  for (size_t g = 0; g < c->groups.size(); ++g)
+    for (size_t h = 0; h < g; ++h)
+      PetscCheck(c->groups[g] != c->groups[h], comm, PETSC_ERR_ARG_WRONG,
+                 "-%sgroups: group %s is listed twice (entries %zu and %zu): list each surface that bounds the "
+                 "chamber once",
+                 prefix.c_str(), c->groups[g].c_str(), h + 1, g + 1);
+  PetscCheck(c->kappa >= 1.0 && c->kappa <= 5.0 / 3.0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%skappa %s: the exponent of the sealed gas law p V^kappa = const lies between 1 (isothermal) and the "
+             "ratio of specific heats (adiabatic: 1.4 for air, 5/3 at most for any gas)",
+             prefix.c_str(), OptionNum(c->kappa).c_str());
   if (c->signs.empty()) c->signs.assign(c->groups.size(), 1.0);
   PetscCheck(c->signs.size() == c->groups.size(), comm, PETSC_ERR_ARG_SIZ,
              "-%ssigns: one sign per group of -%sgroups (%zu for %zu)", prefix.c_str(), prefix.c_str(), c->signs.size(),
@@ -303,24 +355,25 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
                              "patterns fit the supports only with compression); false: the patterns are the reference "
                              "from the start and the mesh's shape is the first guess (a cushion's lens, stretched)",
                              "", in->pattern_lay_on, &in->pattern_lay_on, nullptr));
-  PetscCall(PetscOptionsReal("-structure_initial_bulge",
-                             "Initial guess: lift the free film by up to this much [mm] along its normal (a flat "
-                             "film under pressure has no out-of-plane stiffness to start from)",
-                             "", in->initial_bulge, &in->initial_bulge, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_initial_bulge",
+                              "Initial guess: lift the free film by up to this much [mm] along its normal (a flat "
+                              "film under pressure has no out-of-plane stiffness to start from)",
+                              "mm", &in->initial_bulge, nullptr));
   PetscCall(ReadStageArray(PetscOptionsObject, "", "structure_wind",
                            "Wind velocity pressure q [kPa] at the end of each stage (times -film_<group>_wind_cp)",
                            &in->wind));
   PetscCall(ReadStageArray(PetscOptionsObject, "", "structure_self_weight",
                            "Self-weight factor at the end of each stage (1: the film's weight)", &in->self_weight));
-  PetscCall(PetscOptionsReal("-structure_density", "Film density [kg/m^3] for the self-weight (ETFE: 1750)", "",
-                             in->density, &in->density, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_density",
+                              "Film density [kg/m^3] for the self-weight (ETFE: 1750)", "kg/m^3", &in->density, nullptr));
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_rigid", "Rigid supports by name (-rigid_<name>_*)", rigid));
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_regions", "Report regions by name (-region_<name>_box)",
                             regions));
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_chambers", "Gas chambers by name (-chamber_<name>_*)",
                             chambers));
-  PetscCall(PetscOptionsReal("-structure_atmosphere", "Atmospheric pressure [kPa, absolute] for the chambers' gas laws",
-                             "", in->atmosphere, &in->atmosphere, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_atmosphere",
+                              "Atmospheric pressure [kPa, absolute] for the chambers' gas laws", "kPa", &in->atmosphere,
+                              nullptr));
   PetscCall(OptionsNameList(PetscOptionsObject, "-structure_report",
                             "Surface groups and regions reported and written to the history (default: all)",
                             &in->report));
@@ -341,7 +394,14 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
   for (int i = 0; i < 3; ++i) in->md[i] = md[i];
   PetscCheck(in->probe_elements.size() % 2 == 0 && in->probe_nodes.size() % 2 == 0, comm, PETSC_ERR_ARG_SIZ,
              "-structure_probe_elements / -structure_probe_nodes: give plan points, 2 values (x,y) each");
-  PetscCheck(in->density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-structure_density %g must be positive", in->density);
+  PetscCheck(in->stages >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-structure_stages %d: give the number of load stages (1 or more), or 0 to take it from the longest "
+             "per-stage option",
+             (int)in->stages);
+  PetscCheck(in->density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-structure_density %g must be positive (kg/m^3)",
+             in->density);
+  PetscCall(ReportPlausibility(comm, CheckDensity(in->density)));
+  PetscCall(ReportPlausibility(comm, CheckAtmosphere(in->atmosphere)));
   PetscCheck(!(form_finding && in->reference == 1), comm, PETSC_ERR_ARG_WRONG,
              "-structure_reference pattern: form finding finds the surface the patterns are cut from; run it without");
   PetscFunctionReturn(0);

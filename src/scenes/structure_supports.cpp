@@ -18,8 +18,8 @@ namespace {
 size_t StagesOf(const StageArray &a, size_t points) { return a.values.size() / std::max<size_t>(points, 1); }
 
 // Where a point projects onto the polyline through `pts` (3 per point): segment k and the
-// fraction s along it (the nearest segment; the first of equals).
-void ProjectOnPolyline(const std::vector<double> &pts, const double *x, int *k, double *s) {
+// fraction s along it (the nearest segment in 3D; the first of equals); returns the distance.
+double ProjectOnPolyline(const std::vector<double> &pts, const double *x, int *k, double *s) {
   double best = INFINITY;
   const int n = (int)pts.size() / 3;
   for (int i = 0; i + 1 < n; ++i) {
@@ -31,7 +31,20 @@ void ProjectOnPolyline(const std::vector<double> &pts, const double *x, int *k, 
     for (int c = 0; c < 3; ++c) d2 += (ax[c] - t * ab[c]) * (ax[c] - t * ab[c]);
     if (d2 < best) best = d2, *k = i, *s = t;
   }
+  return std::sqrt(best);
 }
+
+double PolylineLength(const std::vector<double> &pts) {
+  double len = 0.0;
+  for (size_t i = 3; i < pts.size(); i += 3)
+    len += std::hypot(pts[i] - pts[i - 3], pts[i + 1] - pts[i - 2], pts[i + 2] - pts[i - 1]);
+  return len;
+}
+
+// A node farther than this fraction of the polyline's length from it takes values meant for
+// somewhere else: an open polyline drawn round a closed loop (its last edge then interpolated
+// along the other three), or points given off the group (in plan, away from its heights).
+constexpr double kPolylineFar = 0.1;
 
 struct Held {
   ScheduledValue value;
@@ -130,6 +143,34 @@ PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, in
     if (it == scene->mesh.node_sets.end() || it->second.empty()) {
       err = "-bc_" + bc.group + "_*: node group " + bc.group + " of " + scene->mesh.source + " has no nodes";
       continue;
+    }
+    if (npts) {
+      // The group's node farthest from the control points' polyline, against its length.
+      const MeshData &m = scene->mesh;
+      int far = -1, k = 0;
+      double worst = 0.0, s = 0.0;
+      for (int n : it->second) {
+        const double d = ProjectOnPolyline(bc.points, &m.coords[3 * n], &k, &s);
+        if (d > worst) worst = d, far = n;
+      }
+      const double length = PolylineLength(bc.points);
+      if (far >= 0 && worst > kPolylineFar * length) {
+        const double *x = &m.coords[3 * far];
+        const double *a = &bc.points[0], *b = &bc.points[3 * (npts - 1)];
+        const bool open = std::hypot(b[0] - a[0], b[1] - a[1], b[2] - a[2]) > 0;
+        char buf[900];
+        std::snprintf(buf, sizeof buf,
+                      "-bc_%s_points: node %lld of group %s (at %g, %g, %g) lies %g mm from the polyline through the "
+                      "%zu control points (%g mm long), so it would take the values of the nearest point of a part "
+                      "it is not on. The points are matched in 3D (give them with the nodes' heights)%s",
+                      bc.group.c_str(), m.node_tags.empty() ? (long long)far : m.node_tags[far], bc.group.c_str(),
+                      x[0] + 0.0, x[1] + 0.0, x[2] + 0.0, worst, npts, length,  // + 0.0: no "-0"
+                      open ? "; a closed loop (a frame's four corners) repeats its first point as its last, "
+                             "with its values"
+                           : "");
+        err = buf;
+        continue;
+      }
     }
     for (int n : it->second) {
       for (int c = 0; c < 3 && err.empty(); ++c) {

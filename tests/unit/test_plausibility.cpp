@@ -92,6 +92,32 @@ void TestLoads() {
         e.message.c_str());
 }
 
+void TestStructureValues() {
+  const PlausibilityCheck g = CheckThickness(0.00025, "-film_roof_thickness");
+  CHECK(Says(g, Plausibility::Error, "-film_roof_thickness 0.00025: the thickness is in mm") &&
+            Says(g, Plausibility::Error, "Did you mean 0.25 (the value in m)?"),
+        "per-group thickness in m: %s", g.message.c_str());
+  for (double p : {50.0, 101.325, 110.0}) CHECK(etfe::CheckAtmosphere(p).level == Plausibility::Fine, "%g kPa", p);
+  const PlausibilityCheck pa = etfe::CheckAtmosphere(101325);
+  CHECK(Says(pa, Plausibility::Error, "Did you mean 101.325 (the value in Pa)?"), "101325: %s", pa.message.c_str());
+  CHECK(Says(etfe::CheckAtmosphere(0.101325), Plausibility::Error, "Did you mean 101.325 (the value in MPa)?"),
+        "0.101325: %s", etfe::CheckAtmosphere(0.101325).message.c_str());
+  CHECK(Says(etfe::CheckAtmosphere(30), Plausibility::Warning, "-structure_atmosphere 30"), "30 kPa");
+  for (double rho : {900.0, 1750.0, 2200.0}) CHECK(etfe::CheckDensity(rho).level == Plausibility::Fine, "%g", rho);
+  const PlausibilityCheck d = etfe::CheckDensity(1.75);
+  CHECK(Says(d, Plausibility::Error, "Did you mean 1750 (the value in g/cm^3)?"), "1.75: %s", d.message.c_str());
+  CHECK(Says(etfe::CheckDensity(500), Plausibility::Warning, "-structure_density 500"), "500 kg/m^3");
+  CHECK(etfe::CheckDensity(1e5).level == Plausibility::Error, "1e5 kg/m^3");
+  for (double T : {-50.0, 20.0, 60.0, 150.0})
+    CHECK(etfe::CheckTemperature("-material_temperature", T).level == Plausibility::Fine, "%g C", T);
+  const PlausibilityCheck k = etfe::CheckTemperature("-material_temperature", 293.15);
+  CHECK(Says(k, Plausibility::Error, "Did you mean 20 (the value in K)?"), "293.15: %s", k.message.c_str());
+  CHECK(Says(etfe::CheckTemperature("-material_temperature", 1000), Plausibility::Error, "ETFE has melted"), "1000 C");
+  CHECK(Says(etfe::CheckTemperature("-material_reference_temperature", 200), Plausibility::Warning,
+             "-material_reference_temperature 200: the temperature is in deg C"),
+        "200 C");
+}
+
 } // namespace
 
 int main() {
@@ -100,5 +126,6 @@ int main() {
   TestMaterial();
   TestCompensation();
   TestLoads();
+  TestStructureValues();
   TEST_MAIN_END();
 }
