@@ -58,6 +58,18 @@ struct FlattenOptions {
   // (compensation): when given, the links fit these instead of their 3D lengths.
   // The lines' length3d stays the 3D (design) length; link_error is against the target.
   std::vector<double> link_target;
+  // A strip whose whole outline lies in one plane (a film cut to a plane frame: a cushion's foil)
+  // keeps it: the outline nodes stay where they are in that plane and only the interior is
+  // flattened (its links fit as above). The outline's 3D lengths are then kept exactly, as the
+  // boundary weight aims to, and so is its shape: a free flattening of a lifted foil (a cushion's
+  // start lens) bows the frame's straight sides outward to give the longer interior links room,
+  // a pattern larger than the frame. Planar: every outline node within outline_plane_rtol times
+  // the outline's largest distance from its centroid of the outline's best-fit plane, and the
+  // strip's projection onto that plane without folds (a graph over the frame's plane);
+  // otherwise, with link_target given (compensation: the outline's targets are not its 3D
+  // place), or with hold_planar_outline false, the free flattening.
+  bool hold_planar_outline = true;
+  double outline_plane_rtol = 1e-6;
 };
 
 // A named line: the polyline through the mesh edges whose two nodes are both in the node set.
@@ -83,7 +95,9 @@ struct FlattenResult {
   std::vector<double> link_length3d;   // L_i, mm (the target with FlattenOptions::link_target)
   std::vector<double> link_error;      // (l_i - L_i) / L_i
   int num_boundary_links = 0;
-  std::string initial_guess;  // "projection" (best-fit plane) or "unfolding" (triangle by triangle)
+  std::string initial_guess;  // "projection" (best-fit plane), "unfolding" (triangle by triangle) or
+                              // "outline plane" (FlattenOptions::hold_planar_outline)
+  bool outline_held = false;  // the outline kept in its plane (FlattenOptions::hold_planar_outline)
   double S_initial = 0.0, S = 0.0;  // eq. 2.23 at the initial guess and at the end, mm^2
   std::vector<double> S_history;    // S after each iteration, at the weights of its stage
   int iterations = 0;               // all stages together

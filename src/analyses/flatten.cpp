@@ -19,6 +19,10 @@
 // and an unfolding that places the triangles one by one from a central one, keeping each
 // triangle's 3D shape; the unfolding is exact for developable strips and stays fold-free for
 // strongly curved ones where a projection folds.
+//
+// A strip whose outline lies in one plane (a film cut to a plane frame) keeps that outline
+// (FlattenOptions::hold_planar_outline): its nodes are fixed at their places in the plane, the
+// layout is the projection onto it, and only the interior links are fitted.
 #include <petscksp.h>
 
 #include <algorithm>
@@ -125,6 +129,22 @@ void FixRigidMotion(const std::vector<double> &x, int nn, Problem *p) {
     if (k != 2 * a && k != 2 * a + 1 && k != 2 * b + 1) p->eq[k] = p->nfree++;
 }
 
+// FlattenOptions::hold_planar_outline: the outline nodes fixed where the projection onto their
+// plane puts them (which fixes the rigid motion too), the rest free.
+void HoldOutline(const MeshData &m, const std::vector<char> &on_outline, std::vector<double> *x, Problem *p,
+                 FlattenResult *out) {
+  AlignPrincipal(x);
+  p->eq.assign(2 * (size_t)m.NumNodes(), -1);
+  for (int n = 0; n < m.NumNodes(); ++n)
+    if (!on_outline[n]) p->eq[2 * (size_t)n] = p->nfree++, p->eq[2 * (size_t)n + 1] = p->nfree++;
+  p->outline_held = out->outline_held = true;
+  for (int i = 0; i < p->topo->NumLinks(); ++i)  // as Iterate weighs them: a held link is a constant
+    if (on_outline[p->topo->links[2 * i]] && on_outline[p->topo->links[2 * i + 1]]) p->w[i] = 0.0;
+  out->initial_guess = "outline plane";
+  Objective(*p, *x, &out->S_initial, nullptr);
+  out->S = out->S_initial;
+}
+
 } // namespace
 
 bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenResult *out,
@@ -147,11 +167,19 @@ bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenRes
   double lmean = 0.0;
   if (!LinkTargets(m, t, opt, &p, &lmean, err)) return false;
   std::vector<double> x;
-  if (!InitialLayout(m, t, p, &x, out, err)) return false;
-  FixRigidMotion(x, m.NumNodes(), &p);
+  std::vector<char> on_outline;
+  // With target lengths (compensation) the outline's 3D place is no longer its target: free.
+  if (opt.hold_planar_outline && opt.link_target.empty() && OutlinePlaneLayout(m, t, opt.outline_plane_rtol, &x, &on_outline)) {
+    HoldOutline(m, on_outline, &x, &p, out);
+  } else {
+    if (!InitialLayout(m, t, p, &x, out, err)) return false;
+    FixRigidMotion(x, m.NumNodes(), &p);
+  }
 
   std::string msg;
-  const PetscErrorCode ierr = Iterate(m, opt, &p, lmean, &x, out, &msg);
+  // Every node on the outline (a single triangle, a ring one element wide): nothing to solve.
+  const PetscErrorCode ierr = p.nfree ? Iterate(m, opt, &p, lmean, &x, out, &msg) : 0;
+  if (!p.nfree) out->converged = true;
   Objective(p, x, &out->S, nullptr);
   if (ierr) return Fail(m, err, Format("PETSc error %d while flattening (see the PETSc "
                                        "message above)", (int)ierr));

@@ -282,7 +282,8 @@ PetscErrorCode Iterate(const MeshData &m, const FlattenOptions &opt, Problem *p,
   LinearSystem ls;
   std::vector<double> weights;
   PetscFunctionBeginUser;
-  if (opt.weight_growth > 1.0)
+  // A held outline leaves the boundary links nothing to do: one stage.
+  if (opt.weight_growth > 1.0 && !p->outline_held)
     for (double wb = opt.interior_weight; wb < opt.boundary_weight; wb *= opt.weight_growth)
       weights.push_back(wb);
   weights.push_back(opt.boundary_weight);
@@ -291,7 +292,12 @@ PetscErrorCode Iterate(const MeshData &m, const FlattenOptions &opt, Problem *p,
     const bool last = k + 1 == weights.size();
     double sw = 0.0;
     for (int i = 0; i < p->topo->NumLinks(); ++i) {
-      p->w[i] = p->topo->Boundary(i) ? weights[k] : opt.interior_weight;
+      // A link between two held nodes (FlattenOptions::hold_planar_outline) is a constant of S:
+      // weight 0, so that S, its settling test and the line search see the free links only.
+      const int a = p->topo->links[2 * i], b = p->topo->links[2 * i + 1];
+      const bool fixed = p->eq[2 * (size_t)a] < 0 && p->eq[2 * (size_t)a + 1] < 0 && p->eq[2 * (size_t)b] < 0 &&
+                         p->eq[2 * (size_t)b + 1] < 0;
+      p->w[i] = fixed ? 0.0 : p->topo->Boundary(i) ? weights[k] : opt.interior_weight;
       sw += p->w[i] * p->L[i] * p->L[i];
     }
     bool converged = false;

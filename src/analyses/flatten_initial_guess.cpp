@@ -186,5 +186,73 @@ void UnfoldGuess(const MeshData &m, const Topology &t, std::vector<double> *xy) 
   }
 }
 
+// The layout for FlattenOptions::hold_planar_outline: every node projected onto the best-fit
+// plane of the outline nodes (its normal turned towards the triangles' mean normal, as in
+// ProjectionGuess), the outline nodes flagged in *on_outline. False when the outline is not
+// planar within rtol (of its largest distance from its centroid), is degenerate, or the
+// projection folds (the strip is no graph over that plane): then the free flattening applies.
+bool OutlinePlaneLayout(const MeshData &m, const Topology &t, double rtol, std::vector<double> *xy,
+                        std::vector<char> *on_outline) {
+  const int nn = m.NumNodes();
+  on_outline->assign(nn, 0);
+  for (int i = 0; i < t.NumLinks(); ++i)
+    if (t.Boundary(i)) (*on_outline)[t.links[2 * i]] = (*on_outline)[t.links[2 * i + 1]] = 1;
+  int no = 0;
+  double c[3] = {0, 0, 0};
+  for (int i = 0; i < nn; ++i)
+    if ((*on_outline)[i]) {
+      ++no;
+      for (int k = 0; k < 3; ++k) c[k] += m.coords[3 * (size_t)i + k];
+    }
+  if (no < 3) return false;
+  for (double &v : c) v /= no;
+  double C[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, reach = 0.0;
+  for (int i = 0; i < nn; ++i) {
+    if (!(*on_outline)[i]) continue;
+    const double d[3] = {m.coords[3 * (size_t)i] - c[0], m.coords[3 * (size_t)i + 1] - c[1],
+                         m.coords[3 * (size_t)i + 2] - c[2]};
+    reach = std::max(reach, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) C[3 * a + b] += d[a] * d[b];
+  }
+  double vals[3], V[9];
+  SymEigen3(C, vals, V);
+  if (!(reach > 0) || !(vals[1] > 1e-12 * vals[0])) return false;  // a straight outline spans no plane
+  double e1[3] = {V[0], V[3], V[6]}, e3[3] = {V[2], V[5], V[8]};
+  for (int i = 0; i < nn; ++i) {
+    if (!(*on_outline)[i]) continue;
+    const double *X = &m.coords[3 * (size_t)i];
+    if (std::fabs((X[0] - c[0]) * e3[0] + (X[1] - c[1]) * e3[1] + (X[2] - c[2]) * e3[2]) > rtol * reach) return false;
+  }
+  double N[3] = {0, 0, 0};
+  for (int e = 0; e < m.NumElements(); ++e) {
+    const double *a = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e]];
+    const double *b = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 1]];
+    const double *d = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    N[0] += u[1] * v[2] - u[2] * v[1];
+    N[1] += u[2] * v[0] - u[0] * v[2];
+    N[2] += u[0] * v[1] - u[1] * v[0];
+  }
+  if (e3[0] * N[0] + e3[1] * N[1] + e3[2] * N[2] < 0)
+    for (double &v : e3) v = -v;
+  const double e2[3] = {e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2],
+                        e3[0] * e1[1] - e3[1] * e1[0]};
+  xy->assign(2 * (size_t)nn, 0.0);
+  for (int i = 0; i < nn; ++i) {
+    const double d[3] = {m.coords[3 * (size_t)i] - c[0], m.coords[3 * (size_t)i + 1] - c[1],
+                         m.coords[3 * (size_t)i + 2] - c[2]};
+    (*xy)[2 * (size_t)i] = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
+    (*xy)[2 * (size_t)i + 1] = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
+  }
+  // Every triangle on one side (counter-clockwise, seen from e3): no fold, no sliver.
+  for (int e = 0; e < m.NumElements(); ++e) {
+    const int *v = &m.triangles[3 * (size_t)e];
+    if (!(Cross2(&(*xy)[2 * (size_t)v[0]], &(*xy)[2 * (size_t)v[1]], &(*xy)[2 * (size_t)v[2]]) > 0)) return false;
+  }
+  return true;
+}
+
 } // namespace flatten
 } // namespace etfe

@@ -34,6 +34,7 @@ struct Problem {
   std::vector<PetscInt> eq;  // 2 per node: equation number or -1 for a fixed coordinate
   PetscInt nfree = 0;
   double min_len2d = 0.0;  // plane links at or below this length count as collapsed
+  bool outline_held = false;  // the outline nodes are fixed (FlattenOptions::hold_planar_outline)
 };
 
 struct LinearSystem {
@@ -56,6 +57,8 @@ void SymEigen3(const double Ain[9], double vals[3], double vecs[9]);
 void AlignPrincipal(std::vector<double> *xy);
 void ProjectionGuess(const MeshData &m, std::vector<double> *xy);
 void UnfoldGuess(const MeshData &m, const Topology &t, std::vector<double> *xy);
+bool OutlinePlaneLayout(const MeshData &m, const Topology &t, double rtol, std::vector<double> *xy,
+                        std::vector<char> *on_outline);
 
 // flatten_gauss_newton.cpp
 int Objective(const Problem &p, const std::vector<double> &x, double *S, int *bad);

@@ -91,8 +91,11 @@ double ViscoelasticPlasticRelaxationFraction(const ViscoelasticPlasticMaterial &
   return f;
 }
 
-int ViscoelasticPlasticUpdate(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], const double *hist_old,
-                       double *hist_new, double S[3], double D[9]) {
+namespace {
+
+// The law in its own measures (Green-Lagrange/PK2, or Biot for kMeasureBiot): strain e, stress s.
+int UpdateInMeasure(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], const double *hist_old,
+                    double *hist_new, double S[3], double D[9]) {
   const int n = Terms(m);
   const int nh = ViscoelasticPlasticHistorySize(n);
   double old[ViscoelasticPlasticHistorySize(kMaxPronyTerms)];
@@ -137,6 +140,81 @@ int ViscoelasticPlasticUpdate(const ViscoelasticPlasticMaterial &m, double dt, c
   for (int i = 0; i < n; ++i) {
     const double *h = old + 7 + 3 * i;
     for (int k = 0; k < 3; ++k) hist_new[7 + 3 * i + k] = decay[i] * h[k] + weight[i] * (S0[k] - S0n[k]);
+  }
+  return status;
+}
+
+// The in-plane right stretch U of C = I + 2E, closed form for 2x2: U = (C + d I) / t with
+// d = sqrt(det C), t = sqrt(tr C + 2 d); u = (U11, U22, U12) and du[3 j + k] = du_k / dE_j (E in
+// Voigt form, engineering shear). False for det C <= 0 or non-finite input.
+bool RightStretch(const double E[3], double u[3], double du[9]) {
+  const double c11 = 1.0 + 2.0 * E[0], c22 = 1.0 + 2.0 * E[1], c12 = E[2];
+  const double det = c11 * c22 - c12 * c12;
+  if (!(det > 0.0) || !std::isfinite(det)) return false;
+  const double d = std::sqrt(det), t = std::sqrt(c11 + c22 + 2.0 * d);
+  u[0] = (c11 + d) / t, u[1] = (c22 + d) / t, u[2] = c12 / t;
+  const double dC[3][3] = {{2.0, 0.0, 0.0}, {0.0, 2.0, 0.0}, {0.0, 0.0, 1.0}};  // d(c11, c22, c12) / dE_j
+  for (int j = 0; j < 3; ++j) {
+    const double dd = (c22 * dC[j][0] + c11 * dC[j][1] - 2.0 * c12 * dC[j][2]) / (2.0 * d);
+    const double dt = (dC[j][0] + dC[j][1] + 2.0 * dd) / (2.0 * t);
+    du[3 * j + 0] = (dC[j][0] + dd - u[0] * dt) / t;
+    du[3 * j + 1] = (dC[j][1] + dd - u[1] * dt) / t;
+    du[3 * j + 2] = (dC[j][2] - u[2] * dt) / t;
+  }
+  return true;
+}
+
+// x = A^-1 b for a 3x3 A (Cramer's rule; A is the Sylvester operator below, well conditioned
+// for stretches near 1).
+void Solve3(const double A[9], const double b[3], double x[3]) {
+  const double adj[9] = {A[4] * A[8] - A[5] * A[7], A[2] * A[7] - A[1] * A[8], A[1] * A[5] - A[2] * A[4],
+                         A[5] * A[6] - A[3] * A[8], A[0] * A[8] - A[2] * A[6], A[2] * A[3] - A[0] * A[5],
+                         A[3] * A[7] - A[4] * A[6], A[1] * A[6] - A[0] * A[7], A[0] * A[4] - A[1] * A[3]};
+  const double det = A[0] * adj[0] + A[1] * adj[3] + A[2] * adj[6];
+  for (int i = 0; i < 3; ++i) x[i] = (adj[3 * i] * b[0] + adj[3 * i + 1] * b[1] + adj[3 * i + 2] * b[2]) / det;
+}
+
+// The Sylvester operator of U S + S U = 2 T on Voigt (S11, S22, S12): M s = 2 t.
+void SylvesterMatrix(const double u[3], double M[9]) {
+  const double v[9] = {2.0 * u[0], 0.0, 2.0 * u[2], 0.0, 2.0 * u[1], 2.0 * u[2], u[2], u[2], u[0] + u[1]};
+  std::memcpy(M, v, sizeof v);
+}
+
+} // namespace
+
+int ViscoelasticPlasticUpdate(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], const double *hist_old,
+                              double *hist_new, double S[3], double D[9]) {
+  if (m.measure != kMeasureBiot) return UpdateInMeasure(m, dt, E, hist_old, hist_new, S, D);
+  // Biot measures: the law on e = U - I gives the Biot stress T and dT/de; S solves U S + S U = 2 T
+  // (T = sym(U S) is S's work conjugate on U), and dS/dE = M^-1 (2 dT/dE - dM/dE s).
+  double u[3], du[9];
+  if (!RightStretch(E, u, du)) {
+    S[0] = S[1] = S[2] = 0.0;
+    if (hist_new && hist_new != hist_old)
+      std::memcpy(hist_new, hist_old, sizeof(double) * (size_t)ViscoelasticPlasticHistorySize(Terms(m)));
+    return KERNEL_NONFINITE;
+  }
+  const double e[3] = {u[0] - 1.0, u[1] - 1.0, 2.0 * u[2]};
+  double T[3], DT[9];
+  const int status = UpdateInMeasure(m, dt, e, hist_old, hist_new, T, DT);
+  if (status != KERNEL_OK) {
+    S[0] = S[1] = S[2] = 0.0;
+    return status;
+  }
+  double M[9];
+  SylvesterMatrix(u, M);
+  const double twoT[3] = {2.0 * T[0], 2.0 * T[1], 2.0 * T[2]};
+  Solve3(M, twoT, S);
+  for (int j = 0; j < 3; ++j) {  // column j: d/dE_j
+    const double *duj = &du[3 * j];
+    const double dej[3] = {duj[0], duj[1], 2.0 * duj[2]};
+    double rhs[3], col[3];
+    for (int k = 0; k < 3; ++k) rhs[k] = 2.0 * (DT[3 * k] * dej[0] + DT[3 * k + 1] * dej[1] + DT[3 * k + 2] * dej[2]);
+    rhs[0] -= 2.0 * duj[0] * S[0] + 2.0 * duj[2] * S[2];
+    rhs[1] -= 2.0 * duj[1] * S[1] + 2.0 * duj[2] * S[2];
+    rhs[2] -= duj[2] * (S[0] + S[1]) + (duj[0] + duj[1]) * S[2];
+    Solve3(M, rhs, col);
+    for (int k = 0; k < 3; ++k) D[3 * k + j] = col[k];
   }
   return status;
 }

@@ -4,7 +4,9 @@
 // time-temperature shift: an increment of dt physical seconds is dt / a_T of reduced time with
 //   a_T = exp(Ea/R (1/T - 1/T_ref))   (T, T_ref in kelvin; a_T < 1 above T_ref: faster relaxation).
 // The history (plastic state, the instantaneous elastic stress and each branch's internal stress)
-// lives in the element history arrays, so checkpoints carry it.
+// lives in the element history arrays, so checkpoints carry it. -material_strain_measure picks the
+// measures the numbers are in: Green-Lagrange/PK2 (the plastic law's) or engineering (Biot), the
+// measures of a uniaxial lab curve (kernels/viscoelastic_plastic.h).
 #include <petscsys.h>
 
 #include <cmath>
@@ -51,8 +53,11 @@ public:
     PetscFunctionBeginUser;
     PetscCall(PetscPrintf(comm,
                           "  material: viscoelastic_plastic (Prony series on the elastic strain, %d terms; plane-stress "
-                          "von Mises, %d hardening segments), E0 = %g MPa, relaxed %g MPa, nu = %g\n",
-                          m.nterms, m.plastic.nseg, m.plastic.young,
+                          "von Mises, %d hardening segments; %s), E0 = %g MPa, relaxed %g MPa, nu = %g\n",
+                          m.nterms, m.plastic.nseg,
+                          m.measure == kMeasureBiot ? "engineering measures: Biot strain and stress"
+                                                    : "Green-Lagrange strain, PK2 stress",
+                          m.plastic.young,
                           m.plastic.young * ViscoelasticPlasticRelaxationFraction(m, HUGE_VAL), m.plastic.nu));
     for (int k = 0; k < m.plastic.nseg; ++k)
       PetscCall(PetscPrintf(comm, "    segment %d: yield %g MPa, plastic modulus %g MPa\n", k, m.plastic.yield[k],
@@ -76,7 +81,16 @@ PetscErrorCode ReadSpectrum(ViscoelasticPlasticMaterial *m) {
   PetscInt nt = kMaxPronyTerms, ng = kMaxPronyTerms;
   PetscBool set_t = PETSC_FALSE, set_g = PETSC_FALSE;
   PetscFunctionBeginUser;
+  const char *measures[] = {"green_lagrange", "engineering"};
+  PetscInt measure = m->measure;
   PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Viscoelastic-plastic material", "Material");
+  PetscCall(PetscOptionsEList("-material_strain_measure",
+                              "Strain and stress the law's numbers are in: green_lagrange (Green-Lagrange strain, PK2 "
+                              "stress, as the plastic law) or engineering (Biot strain U - I and its conjugate stress: "
+                              "uniaxially the engineering strain and nominal stress of a lab curve, for parameters "
+                              "fitted to one)",
+                              "", measures, 2, measures[measure], &measure, nullptr));
+  m->measure = measure == 1 ? kMeasureBiot : kMeasureGreenLagrange;
   PetscCall(PetscOptionsRealArray("-material_prony_tau",
                                   "Relaxation times of the Maxwell branches [s at the reference temperature], "
                                   "increasing (none: the plastic law)",

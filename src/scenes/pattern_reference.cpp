@@ -10,6 +10,9 @@
 // the doubly curved frame (its interior links are up to ~1.3 % off their 3D lengths), and a lay-on
 // without drawing compresses parts of the film, which a membrane cannot carry (measured: Newton
 // finds no equilibrium even at 1/2500 of such a stage, the line search failing at |R| ~ 1e-3 N).
+// A strip whose outline lies in one plane (a cushion's foil in its frame) keeps that outline in
+// the pattern (FlattenOptions::hold_planar_outline): the film is cut to the frame, so the
+// stress-free state is the flat planform whatever lens the mesh starts from.
 #include <petscsys.h>
 
 #include <cstdio>
@@ -55,11 +58,12 @@ bool FlattenStrips(const MeshData &m, const PatternStrips &p, std::vector<double
         Y[0] = r.xy[2 * n], Y[1] = r.xy[2 * n + 1], Y[2] = 0.0;
       }
     }
-    char line[320];
+    char line[400];
     std::snprintf(line, sizeof line,
-                  "%s: reference = flat pattern of strip %s (%zu elements, outline 3D %.3f mm, 2D %.3f mm, largest "
+                  "%s: reference = flat pattern of strip %s (%zu elements, outline 3D %.3f mm, 2D %.3f mm%s, largest "
                   "link error %.2e)\n",
-                  p.scene.c_str(), name.c_str(), it->second.size(), r.outline_length3d, r.outline_length2d, r.max_rel_error);
+                  p.scene.c_str(), name.c_str(), it->second.size(), r.outline_length3d, r.outline_length2d,
+                  r.outline_held ? ", the outline held in its plane: cut to the frame" : "", r.max_rel_error);
     *lines += line;
   }
   for (int e = 0; e < m.NumElements(); ++e)

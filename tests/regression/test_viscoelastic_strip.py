@@ -8,7 +8,10 @@
     (options/material/comitti_bosi_2024_md.opts): a creep test at 0.5 MPa gives the effective
     modulus S/E = 1/D(t) of their compliance at 1, 1e2, 1e3, 1e4, 1e5 s within 0.5 % (the
     tolerance the interconversion is asked to meet; the creep stress in PK2 moves by ~strain,
-    6e-4, under the dead nominal force);
+    6e-4, under the dead nominal force), and in the model's own measures, nominal stress over
+    engineering strain, within 1e-4 (the set runs the law in them: -material_strain_measure
+    engineering; in Green-Lagrange/PK2 it was 6.4e-4 above); at 8 MPa (0.68-0.87 % strain) the
+    same within 1e-4 (in Green-Lagrange/PK2: 1.0-1.3 % above);
   * the same load history cut into other stages at the same times gives the same answer: the
     thesis's ETFE drawn to 1 % in 10 s and held to 3 610 s as (ramp, log-spaced hold), (two half
     ramps, a plain stage of 1 800 s, a hold of 1 800 s) and (ramp, one plain stage of 3 600 s): the
@@ -63,9 +66,9 @@ def sls_relaxation(etfe, chk, tmp):
     chk.less(worst, 1e-6, "SLS relaxation on the strip: largest |S - E0 E (g_inf + g exp(-t/tau))| / (E0 E)")
 
 
-def comitti_creep(etfe, chk, tmp):
+def comitti_creep(etfe, chk, tmp, stress=0.5):
     csvp = os.path.join(tmp, "cb.csv")
-    T.run(etfe, ["-scene", "strip", "-strip_test", "creep", "-strip_stress", 0.5,
+    T.run(etfe, ["-scene", "strip", "-strip_test", "creep", "-strip_stress", stress,
                  "-options_file", "options/material/comitti_bosi_2024_md.opts",
                  "-load_stage_duration", 0, "-load_hold_after", 1, "-load_hold_duration", 1e5, "-load_hold_first", 1e-3,
                  "-load_increments", 160, "-strip_history", csvp, "-output", 0, "-load_monitor", 0])
@@ -75,8 +78,17 @@ def comitti_creep(etfe, chk, tmp):
         r = min(rs, key=lambda r: abs(math.log(max(r["seconds"], 1e-30) / target)))
         modulus = r["stress_pk2"] / r["strain_gl"]
         rel = modulus * D(r["seconds"]) - 1.0
-        chk.less(abs(rel), 5e-3, "Comitti & Bosi MD creep at %.4g s: S/E = %.2f MPa against 1/D(t) = %.2f MPa, "
-                 "relative difference" % (r["seconds"], modulus, 1 / D(r["seconds"])))
+        if stress < 1.0:  # in PK2/GL the measures differ by 1.5 x strain: small at 0.5 MPa only
+            chk.less(abs(rel), 5e-3, "Comitti & Bosi MD creep at %.4g s: S/E = %.2f MPa against 1/D(t) = %.2f MPa, "
+                     "relative difference" % (r["seconds"], modulus, 1 / D(r["seconds"])))
+        # In the model's own measures (their tests': nominal stress, engineering strain), which the set's
+        # -material_strain_measure engineering runs the law in: the interconversion's accuracy, not the
+        # measures' 1.5 x strain (6e-4 here).
+        nominal = r["stress_nominal"] / r["strain"]
+        rel = nominal * D(r["seconds"]) - 1.0
+        chk.less(abs(rel), 1e-4, "Comitti & Bosi MD creep at %g MPa, %.4g s (strain %.3g %%), nominal stress / "
+                 "engineering strain %.3f MPa against 1/D(t) = %.3f MPa, relative difference"
+                 % (stress, r["seconds"], 100 * r["strain"], nominal, 1 / D(r["seconds"])))
 
 
 def same_history_other_stages(etfe, chk):
@@ -138,6 +150,7 @@ def main_test(etfe, chk):
     with T.scratch_dir("etfe-viscoelastic") as tmp:
         sls_relaxation(etfe, chk, tmp)
         comitti_creep(etfe, chk, tmp)
+        comitti_creep(etfe, chk, tmp, 8.0)  # 0.68-0.87 % strain: 1.0-1.3 % apart in Green-Lagrange/PK2
     same_history_other_stages(etfe, chk)
     no_branch_is_plastic(etfe, chk)
     bad_input(etfe, chk)

@@ -2,7 +2,9 @@
 // against finite differences in every state (viscoelastic, on each yield segment, unloading);
 // the standard linear solid in relaxation (step and ramp) and in creep against its closed forms;
 // no Maxwell branch == the plastic law bit for bit; very short relaxation times == the plastic
-// law at the relaxed modulus; the stress as the sum of the branches; the material checks.
+// law at the relaxed modulus; the stress as the sum of the branches; the material checks; the
+// Biot measures' tangent, and a uniaxial relaxation test against the published model in its own
+// measures (engineering strain, nominal stress) in both measures.
 #include "etfe/kernels/viscoelastic_plastic.h"
 
 #include <cmath>
@@ -76,8 +78,9 @@ void Step(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], St
   CHECK(ViscoelasticPlasticUpdate(m, dt, E, s->h.data(), s->h.data(), S, D) == KERNEL_OK, "step failed");
 }
 
-void TestTangentEveryState() {
-  const ViscoelasticPlasticMaterial m = EtfeTwoBranches();
+void TestTangentEveryState(int measure) {
+  ViscoelasticPlasticMaterial m = EtfeTwoBranches();
+  m.measure = measure;
   State s(m);
   double S[3];
   // Biaxial loading in steps of 5 s, staying elastic: viscoelastic state with internal stresses.
@@ -112,6 +115,60 @@ void TestTangentEveryState() {
   CheckTangent(m, 5.0, Eun, s, "unloading");
   // Relaxation under held strain: yielded, then held for 100 s, the stress falls inside the surface.
   CheckTangent(m, 100.0, Ey2, s, "held after yield");
+  // Shear and a large stretch (the Biot measures' stretch U differs most from 1 + E there).
+  const double Esh[3] = {0.3, -0.05, 0.4};
+  CheckTangent(m, 5.0, Esh, s, "shear and stretch");
+}
+
+// A uniaxial test in the published model's measures: the engineering strain e held along x, y
+// free (Syy = 0 by Newton on Eyy), the nominal stress P = (1 + e) Sxx returned. E_xx = e + e^2/2.
+double UniaxialNominal(const ViscoelasticPlasticMaterial &m, double dt, double e, State *s) {
+  const double exx = e + 0.5 * e * e;
+  double E[3] = {exx, -m.plastic.nu * exx, 0.0}, S[3], D[9];
+  std::vector<double> scratch(s->h.size());
+  for (int it = 0; it < 30; ++it) {
+    CHECK(ViscoelasticPlasticUpdate(m, dt, E, s->h.data(), scratch.data(), S, D) == KERNEL_OK, "uniaxial step");
+    if (std::fabs(S[1]) <= 1e-14 * std::fabs(S[0])) break;
+    E[1] -= S[1] / D[4];
+  }
+  CHECK(std::fabs(S[1]) <= 1e-12 * std::fabs(S[0]), "uniaxial: Syy = %g with Sxx = %g", S[1], S[0]);
+  s->h = scratch;
+  return (1.0 + e) * S[0];
+}
+
+// The published model in its own measures: a relaxation test at engineering strain e gives the
+// nominal stress P(t) = E(t) e, E(t) = E0 (1 - sum g_i (1 - exp(-t/tau_i))). With the Biot measures
+// the law gives it to round-off at any strain; with Green-Lagrange/PK2 it is (1 + e)(1 + e/2) too
+// high: 1.16 % at 0.77 % strain (the measure mapping docs/viscoelastic.md states).
+void TestNominalAgainstPublished() {
+  ViscoelasticPlasticMaterial m = EtfeTwoBranches();
+  m.plastic.yield[0] = m.plastic.yield[1] = 1e9;  // the linear viscoelastic model: no yield within reach
+  const double E0 = m.plastic.young;
+  for (const double e : {0.0077, 0.02, 0.05}) {
+    for (const int measure : {kMeasureBiot, kMeasureGreenLagrange}) {
+      m.measure = measure;
+      State s(m);
+      double t = 0.0, worst = 0.0, P0 = 0.0;
+      for (int k = 0; k <= 12; ++k) {
+        const double dt = k == 0 ? 0.0 : 0.5 * std::pow(2.0, k - 1);  // the step, then held: 0.5 s ... 1024 s
+        t += dt;
+        const double P = UniaxialNominal(m, dt, e, &s);
+        const double published = E0 * ViscoelasticPlasticRelaxationFraction(m, t) * e;
+        if (k == 0) P0 = P;
+        worst = std::fmax(worst, std::fabs(P / published - 1.0));
+      }
+      const double mapping = (1.0 + e) * (1.0 + 0.5 * e) - 1.0;  // GL/PK2 against the lab measures
+      std::printf("  uniaxial relaxation at e = %.4f, %s: nominal stress against the published model's, worst %.3e "
+                  "(instantaneous %.6f MPa against %.6f)\n",
+                  e, measure == kMeasureBiot ? "Biot" : "Green-Lagrange/PK2", worst, P0, E0 * e);
+      if (measure == kMeasureBiot)
+        CHECK(worst <= 1e-12, "Biot measures: P(t) = E(t) e to round-off at e = %g (worst %g)", e, worst);
+      else
+        CHECK(std::fabs(worst - mapping) <= 0.02 * mapping,
+              "Green-Lagrange/PK2: P(t) / (E(t) e) - 1 = %g at e = %g, the mapping error (1+e)(1+e/2)-1 = %g",
+              worst, e, mapping);
+    }
+  }
 }
 
 // Step strain e at t = 0, held: S(t) = E0 e (g_inf + g exp(-t/tau)) for any step sizes.
@@ -280,7 +337,9 @@ void TestChecks() {
 } // namespace
 
 int main() {
-  TestTangentEveryState();
+  TestTangentEveryState(kMeasureGreenLagrange);
+  TestTangentEveryState(kMeasureBiot);
+  TestNominalAgainstPublished();
   TestRelaxationStep();
   TestRelaxationRamp();
   TestCreep();

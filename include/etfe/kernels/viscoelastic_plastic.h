@@ -13,11 +13,24 @@ namespace etfe {
 
 constexpr int kMaxPronyTerms = 32;
 
+// The strain and stress the law's numbers are in (ViscoelasticPlasticMaterial::measure).
+//  * kMeasureGreenLagrange: the law maps Green-Lagrange strain E to 2nd Piola-Kirchhoff stress S
+//    directly, as the plastic law (the thesis's). Fitted to a uniaxial test in engineering strain e
+//    and nominal stress P, it gives P = (1 + e)(1 + e/2) E0 e at small e: 1.5 e above (1.2 % at
+//    0.8 % strain).
+//  * kMeasureBiot: the law maps the Biot strain U - I (U the in-plane right stretch, C = U^2 =
+//    I + 2E) to the Biot stress T = (U S + S U) / 2, its work conjugate (T : dU = S : dE); for a
+//    uniaxial test these are the engineering strain and the nominal stress, the measures of the
+//    lab curve, exactly. The history (plastic strain, S0, the branches) is in these measures.
+constexpr int kMeasureGreenLagrange = 0;
+constexpr int kMeasureBiot = 1;
+
 struct ViscoelasticPlasticMaterial {
   PlasticMaterial plastic;      // E0 (instantaneous modulus), nu and the hardening curve
   int nterms;                   // Maxwell branches (0: the plastic law itself)
   double tau[kMaxPronyTerms];   // relaxation times [s], increasing
   double g[kMaxPronyTerms];     // modulus fractions of E0, > 0, sum < 1
+  int measure = kMeasureGreenLagrange;  // kMeasureGreenLagrange or kMeasureBiot (above)
 };
 
 // History of one element (integration point): ViscoelasticPlasticHistorySize(nterms) doubles,
@@ -43,6 +56,8 @@ double ViscoelasticPlasticRelaxationFraction(const ViscoelasticPlasticMaterial &
 // the return map is the plastic one of modulus geff E0 at the strain E + Deff^-1 Shist and D its
 // consistent tangent. dt = 0 is the instantaneous response (geff = 1). hist_new may alias
 // hist_old. Returns the plastic return map's status (hist_new = hist_old, S = 0 on failure).
+// With measure kMeasureBiot all of this is in the Biot measures; E, S and D are still the Green-
+// Lagrange strain, the PK2 stress and dS/dE (KERNEL_NONFINITE for det C <= 0).
 int ViscoelasticPlasticUpdate(const ViscoelasticPlasticMaterial &m, double dt, const double E[3], const double *hist_old,
                        double *hist_new, double S[3], double D[9]);
 
