@@ -42,9 +42,10 @@ struct OutputField {
   // family's largest value in the step. A field that shares with none is its own family.
   const char *family;
   FieldWhen when;
-  // Its name(s) in the XDMF index: one name shows the dataset as one attribute (Scalar, Vector,
-  // Tensor6 by its columns), one name per column shows each column as a scalar; nullptr: it is
-  // the grid's geometry or topology, not an attribute.
+  // Its name in the XDMF index, one attribute of all its columns (src/io/xdmf.cpp: Scalar,
+  // Vector, Tensor6 or Matrix); a name of several columns lists them in order (PK2_Sxx_Syy_Sxy),
+  // since ParaView shows them only as components 0, 1, 2. nullptr: it is the grid's geometry or
+  // topology, not an attribute.
   const char *viewer;
   const char *description;
   const double *(*values)(const OutputValues &);
@@ -64,9 +65,9 @@ inline constexpr OutputField kOutputFields[] = {
      "von Mises of the PK2 stress, average of the elements around the node",
      [](const OutputValues &v) { return v.cells.nodal_mises.data(); }},
     {"stress", Layout::Cells, 3, FieldKind::Tensor, false, "MPa", "stress", FieldWhen::Step,
-     "PK2_Sxx PK2_Syy PK2_Sxy", "2nd Piola-Kirchhoff stress Sxx Syy Sxy, element MD/TD frame (x = MD)",
+     "PK2_Sxx_Syy_Sxy", "2nd Piola-Kirchhoff stress Sxx Syy Sxy, element MD/TD frame (x = MD)",
      [](const OutputValues &v) { return v.cells.stress.data(); }},
-    {"strain", Layout::Cells, 3, FieldKind::Tensor, false, "1", "strain", FieldWhen::Step, "GL_Exx GL_Eyy GL_Exy",
+    {"strain", Layout::Cells, 3, FieldKind::Tensor, false, "1", "strain", FieldWhen::Step, "GL_Exx_Eyy_Exy",
      "Green-Lagrange strain Exx Eyy Exy (tensor shear), element MD/TD frame",
      [](const OutputValues &v) { return v.cells.strain.data(); }},
     {"mises", Layout::Cells, 1, FieldKind::Scalar, false, "MPa", "stress", FieldWhen::Step, "mises_PK2",
@@ -83,7 +84,7 @@ inline constexpr OutputField kOutputFields[] = {
     {"cauchy_mises", Layout::Cells, 1, FieldKind::Scalar, false, "MPa", "stress", FieldWhen::Step, "cauchy_mises",
      "von Mises of the Cauchy stress", [](const OutputValues &v) { return v.cells.cauchy_mises.data(); }},
     {"principal_stress", Layout::Cells, 2, FieldKind::Other, false, "MPa", "stress", FieldWhen::Step,
-     "principal_stress_1 principal_stress_2", "in-plane principal Cauchy stresses, largest first",
+     "principal_stress_1_2", "in-plane principal Cauchy stresses, largest first",
      [](const OutputValues &v) { return v.cells.principal.data(); }},
     {"principal_dir1", Layout::Cells, 3, FieldKind::Vector, false, "1", "principal_direction", FieldWhen::Step,
      "principal_dir1", "unit direction of principal_stress_1, global, current configuration (sign free)",
@@ -92,7 +93,7 @@ inline constexpr OutputField kOutputFields[] = {
      "principal_dir2", "unit direction of principal_stress_2, global, current configuration (sign free)",
      [](const OutputValues &v) { return v.cells.dir2.data(); }},
     {"plastic_strain", Layout::Cells, 3, FieldKind::Tensor, false, "1", "strain", FieldWhen::Plastic,
-     "plastic_Exx plastic_Eyy plastic_Exy", "plastic Green-Lagrange strain Exx Eyy Exy, element MD/TD frame",
+     "plastic_Exx_Eyy_Exy", "plastic Green-Lagrange strain Exx Eyy Exy, element MD/TD frame",
      [](const OutputValues &v) { return v.cells.ep.data(); }},
     {"plastic_strain_eq", Layout::Cells, 1, FieldKind::Scalar, false, "1", "strain", FieldWhen::Plastic,
      "plastic_strain_eq", "equivalent plastic strain", [](const OutputValues &v) { return v.cells.ep_bar.data(); }},
@@ -108,9 +109,9 @@ inline constexpr OutputField kOutputFields[] = {
      "contact_force", "contact force in the pair's frame: x0 tangent, y0, z0 normal (f_z < 0 in compression)",
      [](const OutputValues &v) { return v.force.data(); }},
     {"contact/slide_local", Layout::Pairs, 2, FieldKind::Vector, false, "mm", "slide_local", FieldWhen::Contact,
-     "slide_x0 slide_y0", "slide since t0 along the pair's x0, y0", [](const OutputValues &v) { return v.slide_local.data(); }},
+     "slide_x0_y0", "slide since t0 along the pair's x0, y0", [](const OutputValues &v) { return v.slide_local.data(); }},
     {"contact/slide_global", Layout::Pairs, 2, FieldKind::Vector, false, "mm", "slide_global", FieldWhen::Contact,
-     "slide_X slide_Y", "slide since t0 in plan, global X, Y", [](const OutputValues &v) { return v.slide_global.data(); }},
+     "slide_X_Y", "slide since t0 in plan, global X, Y", [](const OutputValues &v) { return v.slide_global.data(); }},
     {"contact/status", Layout::Pairs, 1, FieldKind::Scalar, true, "1", "contact_status", FieldWhen::Contact,
      "contact_status", "0 open, 1 stick, 2 slip", [](const OutputValues &v) { return v.status.data(); }},
     {"contact/node", Layout::Pairs, 1, FieldKind::Scalar, true, "1", "contact_node", FieldWhen::Contact, nullptr,
@@ -124,21 +125,21 @@ constexpr int OutputFieldIndex(std::string_view name) {
   return -1;
 }
 
-// A row's viewer names fit its columns: none, one name for 1, 3 or 6 columns (Scalar, Vector,
-// Tensor6 in the XDMF), or one name per column.
-constexpr bool ViewerFitsColumns(const OutputField &f) {
-  if (!f.viewer) return true;
-  int names = 1;
-  for (const char *c = f.viewer; *c; ++c) names += *c == ' ';
-  return names == f.components || (names == 1 && (f.components == 1 || f.components == 3 || f.components == 6));
-}
-
-constexpr bool ViewersFitColumns() {
-  for (const OutputField &f : kOutputFields)
-    if (!ViewerFitsColumns(f)) return false;
+// A row's viewer name is one word: the XDMF index shows a row as one attribute. (Columns as
+// scalars of their own would need hyperslabs, which ParaView's XDMF3 readers skip.)
+constexpr bool ViewerIsOneName(const OutputField &f) {
+  if (!f.viewer || !*f.viewer) return !f.viewer;
+  for (const char *c = f.viewer; *c; ++c)
+    if (*c == ' ') return false;
   return true;
 }
-static_assert(ViewersFitColumns(), "an output field's viewer names do not fit its columns (see OutputField::viewer)");
+
+constexpr bool ViewersAreOneName() {
+  for (const OutputField &f : kOutputFields)
+    if (!ViewerIsOneName(f)) return false;
+  return true;
+}
+static_assert(ViewersAreOneName(), "an output field's viewer name is not one word (see OutputField::viewer)");
 
 // The names the file uses, by enum value: vector_field_type, and the field table's location and
 // written columns.

@@ -180,6 +180,20 @@ PetscErrorCode IterateShape(Problem *P, SNES snes, const FormFindOptions &o, dou
   PetscFunctionReturn(0);
 }
 
+// The found surface as written: without the surface group "all" of every element (the general
+// scene and the mesh generators add it to name the whole film, and add it again when they read the
+// file) where other surface groups name the strips: written, it would overlap them, and
+// -analysis cutpattern refuses overlapping strips.
+MeshData WrittenSurface(const MeshData &shape) {
+  const auto all = shape.element_sets.find("all");
+  if (all == shape.element_sets.end() || shape.element_sets.size() < 2 ||
+      (int)all->second.size() != shape.NumElements())
+    return shape;
+  MeshData m = shape;
+  m.element_sets.erase("all");
+  return m;
+}
+
 // Writes the found surface as Gmsh (rank 0) to -formfind_mesh_out or beside the results.
 PetscErrorCode WriteFoundSurface(Problem *P, const OutputFile *out, const FormFindOptions &o, const MeshData &shape,
                                  std::string *path) {
@@ -193,7 +207,8 @@ PetscErrorCode WriteFoundSurface(Problem *P, const OutputFile *out, const FormFi
     auto dir = std::filesystem::path(*path).parent_path();
     if (!dir.empty()) std::filesystem::create_directories(dir, ec);
     std::string err;
-    PetscCheck(WriteGmshFile(*path, shape, &err), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "%s", err.c_str());
+    PetscCheck(WriteGmshFile(*path, WrittenSurface(shape), &err), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "%s",
+               err.c_str());
   }
   PetscFunctionReturn(0);
 }

@@ -46,8 +46,15 @@ PetscErrorCode ChooseLUPackage(Problem *P, PC pc) {
   }
   const bool factor = !pc_set || !std::strcmp(pctype, PCLU) || !std::strcmp(pctype, PCCHOLESKY);
   const bool mumps = factor && (pkg_set ? !std::strcmp(pkg, MATSOLVERMUMPS) : !native);
+  // Asking reads the option: a -mat_mumps_icntl_14 that does not apply (options/solvers/mumps_lu.opts
+  // sets it, then another package or PC is chosen) is not reported as never used at the end.
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &icntl14));
-  if (mumps && !icntl14) PetscCall(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "200"));
+  if (mumps && !icntl14) {
+    PetscCall(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "200"));
+    // The program's own default, not the user's: read here, so that a run in which MUMPS never
+    // factors (every increment converged without a Newton step) does not call it never used.
+    PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &icntl14));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -1,12 +1,14 @@
-// The XDMF index (see xdmf.h). Every field of a step appears under its viewer name(s) from the
-// field table: a whole dataset as a Scalar, Vector or Tensor6 attribute, or each column of it as
-// a scalar named for its component and measure (PK2_Sxx, GL_Exx), because ParaView shows an
-// unnamed 3-vector of tensor components as if it were a vector.
+// The XDMF index (see xdmf.h). Every field of a step appears under its viewer name from the field
+// table, as one attribute of the whole dataset: Scalar, Vector (3 columns of a vector), Tensor6,
+// or Matrix (any other columns: tensor components, principal pairs, 2-D slides; its name lists the
+// columns, PK2_Sxx_Syy_Sxy). Every DataItem is a plain HDF5 dataset: ParaView's XDMF3 readers
+// ("Xdmf3 Reader S/T") skip a HyperSlab item ("Skipping unrecognized array type [None]": its
+// number type is not known before it is read) and the XDMF2 one cannot read XDMF3's
+// "file:path|start:stride:count:space" selection, while all three read a Matrix.
 #include "xdmf.h"
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 namespace etfe {
 
@@ -20,8 +22,11 @@ static_assert(kCoordinates >= 0 && kTriangles >= 0 && kContactNode >= 0 && kDisp
 
 const char *Center(Layout l) { return l == Layout::Nodes ? "Node" : "Cell"; }
 
-const char *AttributeType(int components) {
-  return components == 3 ? "Vector" : components == 6 ? "Tensor6" : "Scalar";
+const char *AttributeType(const OutputField &fl) {
+  if (fl.components == 1) return "Scalar";
+  if (fl.components == 3 && fl.kind == FieldKind::Vector) return "Vector";
+  if (fl.components == 6 && fl.kind == FieldKind::Tensor) return "Tensor6";
+  return "Matrix";
 }
 
 class XdmfWriter {
@@ -36,8 +41,6 @@ private:
     return std::string(fl.when == FieldWhen::Open ? "/" : group_) + fl.name;
   }
   void Item(const OutputField &fl);
-  void Whole(const char *name, const OutputField &fl);
-  void Column(const std::string &name, const OutputField &fl, int c);
   void Shown(const OutputField &fl);
   void Mesh(const char *topology, const char *more, const OutputField &cells);
   void Film(const char *grid, const double *time);
@@ -58,33 +61,12 @@ void XdmfWriter::Item(const OutputField &fl) {
                  ix_.results.c_str(), Path(fl).c_str());
 }
 
-void XdmfWriter::Whole(const char *name, const OutputField &fl) {
-  std::fprintf(f_, " <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", name,
-               AttributeType(fl.components), Center(fl.location));
+// A field under its viewer name, all its columns as one attribute.
+void XdmfWriter::Shown(const OutputField &fl) {
+  std::fprintf(f_, " <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"%s\">\n", fl.viewer, AttributeType(fl),
+               Center(fl.location));
   Item(fl);
   std::fprintf(f_, " </Attribute>\n");
-}
-
-// Column c of a dataset, as a hyperslab (start, stride, count) of it.
-void XdmfWriter::Column(const std::string &name, const OutputField &fl, int c) {
-  const long long rows = Rows(fl);
-  std::fprintf(f_, " <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"%s\">\n", name.c_str(),
-               Center(fl.location));
-  std::fprintf(f_, "  <DataItem ItemType=\"HyperSlab\" Dimensions=\"%lld 1\" Type=\"HyperSlab\">\n", rows);
-  std::fprintf(f_, "   <DataItem Dimensions=\"3 2\" Format=\"XML\">0 %d 1 1 %lld 1</DataItem>\n", c, rows);
-  std::fprintf(f_, " ");
-  Item(fl);
-  std::fprintf(f_, "  </DataItem>\n </Attribute>\n");
-}
-
-// A field under its viewer name(s): one name for the dataset, or one per column.
-void XdmfWriter::Shown(const OutputField &fl) {
-  std::istringstream names(fl.viewer);
-  std::vector<std::string> words;
-  for (std::string w; names >> w;) words.push_back(w);
-  if (words.size() == 1) Whole(fl.viewer, fl);
-  else
-    for (int c = 0; c < (int)words.size(); ++c) Column(words[c], fl, c);
 }
 
 // The grid's topology (cells: its connectivity) and geometry (the reference coordinates).
@@ -110,7 +92,7 @@ void XdmfWriter::Film(const char *grid, const double *time) {
 void XdmfWriter::Contact() {
   std::fprintf(f_, " <Grid Name=\"contact\" GridType=\"Uniform\">\n");
   Mesh("Polyvertex", " NodesPerElement=\"1\"", kOutputFields[kContactNode]);
-  Whole(kOutputFields[kDisplacement].viewer, kOutputFields[kDisplacement]);
+  Shown(kOutputFields[kDisplacement]);
   for (const OutputField *fl : ix_.fields)
     if (fl->viewer && fl->location == Layout::Pairs) Shown(*fl);
   std::fprintf(f_, " </Grid>\n");

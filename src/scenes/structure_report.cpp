@@ -2,7 +2,9 @@
 // strains and PK2 Mises, the largest Mises (PK2 and Cauchy) and plastic strain and the wrinkled
 // elements and their (reference) area; the probes' smallest principal stress and strain
 // (elements) and displacement and slide (nodes); the reaction on every supported node group; the rigid supports' pairs and largest slide. One CSV
-// line per increment (the history), the same figures in the report after the last one.
+// line per increment (the history), the same figures in the report after the last one. A probe
+// node is named in the report by its scene id, reference position and surface groups, since
+// several nodes can share a plan point (a cushion's foils at its centre: the lowest id wins).
 #include <petscsys.h>
 
 #include <algorithm>
@@ -29,7 +31,37 @@ struct StructureContext {
   std::vector<std::vector<char>> in_item;       // per item, per local element
   std::vector<std::vector<char>> in_support;    // per support group, per local node
   std::vector<PetscInt> probe_elements, probe_nodes;
+  std::vector<double> probe_node_X;             // reference X, Y, Z per probe node
+  std::vector<std::string> probe_node_groups;   // the surface groups of its elements, comma separated
+  std::vector<PetscInt> support_shared;         // per support group: its nodes in another one too
 };
+
+// Where a probe node is and which surface groups (element sets but "all") its elements are in.
+PetscErrorCode ProbeNodeWhere(Problem *P, PetscInt node, double X[3], std::string *groups) {
+  const LocalMesh &m = P->mesh;
+  std::vector<double> x(3, 0.0);
+  std::vector<int> in(m.element_sets.size(), 0);  // the same names, in the same order, on every rank
+  PetscFunctionBeginUser;
+  for (PetscInt l = 0; l < m.num_owned; ++l)
+    if (m.natural_id[l] == node)
+      for (int i = 0; i < 3; ++i) x[i] = m.X[3 * l + i];
+  size_t k = 0;
+  for (const auto &set : m.element_sets) {
+    for (PetscInt e : set.second)
+      for (int a = 0; a < 3 && !in[k]; ++a) in[k] = m.natural_id[m.tri[3 * e + a]] == node;
+    ++k;
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, x.data(), 3, MPI_DOUBLE, MPI_SUM, P->comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, in.data(), (int)in.size(), MPI_INT, MPI_MAX, P->comm));
+  for (int i = 0; i < 3; ++i) X[i] = x[i];
+  groups->clear();
+  k = 0;
+  for (const auto &set : m.element_sets) {
+    if (in[k++] && set.first != "all") *groups += (groups->empty() ? "" : ",") + set.first;
+  }
+  if (groups->empty()) *groups = "all";
+  PetscFunctionReturn(0);
+}
 
 // Per item: sums of Exx, Eyy, Exy, Mises, count; maxima of Mises, ep; wrinkled count and area.
 struct Figures {
@@ -62,11 +94,30 @@ PetscErrorCode Setup(Problem *P, void *vctx) {
     PetscCall(ProblemNearestElement(P, c->probe_element_at[k], c->probe_element_at[k + 1], &e));
     c->probe_elements.push_back(e);
   }
+  c->probe_node_X.clear(), c->probe_node_groups.clear();
   for (size_t k = 0; k + 1 < c->probe_node_at.size(); k += 2) {
     PetscInt n;
+    double X[3];
+    std::string groups;
     PetscCall(ProblemNearestNode(P, c->probe_node_at[k], c->probe_node_at[k + 1], &n));
+    PetscCall(ProbeNodeWhere(P, n, X, &groups));
     c->probe_nodes.push_back(n);
+    c->probe_node_X.insert(c->probe_node_X.end(), X, X + 3);
+    c->probe_node_groups.push_back(groups);
   }
+  // A node in two support groups (a corner of two held edges) adds its reaction to both sums.
+  c->support_shared.assign(c->supports.size(), 0);
+  for (size_t k = 0; k < c->supports.size(); ++k)
+    for (PetscInt l = 0; l < m.num_owned; ++l)
+      if (c->in_support[k][l])
+        for (size_t j = 0; j < c->supports.size(); ++j)
+          if (j != k && c->in_support[j][l]) {
+            c->support_shared[k]++;
+            break;
+          }
+  if (!c->support_shared.empty())
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, c->support_shared.data(), (int)c->support_shared.size(), MPIU_INT,
+                               MPI_SUM, P->comm));
   PetscFunctionReturn(0);
 }
 
@@ -221,9 +272,15 @@ PetscErrorCode Report(Problem *P, void *vctx) {
                           c->items[k].c_str(), v.count[3 * k], v.mean[4 * k + 3], v.mean[4 * k], v.mean[4 * k + 1],
                           v.mean[4 * k + 2], v.peak[4 * k], v.peak[4 * k + 3], v.peak[4 * k + 1], v.peak[4 * k + 2],
                           v.count[3 * k + 1], v.count[3 * k + 2]));
-  for (size_t k = 0; k < c->supports.size(); ++k)
-    PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N\n", c->supports[k].c_str(),
-                          v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2]));
+  for (size_t k = 0; k < c->supports.size(); ++k) {
+    char shared[160] = "";
+    if (c->support_shared[k])
+      std::snprintf(shared, sizeof shared,
+                    " (%" PetscInt_FMT " of its nodes are in another support group too: nodes shared by two "
+                    "groups count in each)", c->support_shared[k]);
+    PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N%s\n", c->supports[k].c_str(),
+                          v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2], shared));
+  }
   if (P->layers)
     PetscCall(PetscPrintf(P->comm,
                           "structure: layer contact: %" PetscInt_FMT " of %" PetscInt_FMT
@@ -246,13 +303,20 @@ PetscErrorCode Report(Problem *P, void *vctx) {
                           v.pairs[0], v.pairs[1], v.pairs[2], slide));
   }
   for (size_t k = 0; k < c->probe_elements.size(); ++k)
-    PetscCall(PetscPrintf(P->comm, "structure: element %zu (nearest %g, %g) smin = %.4f MPa, emin = %.4e\n", k + 1,
-                          c->probe_element_at[2 * k], c->probe_element_at[2 * k + 1], v.probe_e[2 * k], v.probe_e[2 * k + 1]));
+    PetscCall(PetscPrintf(P->comm,
+                          "structure: probe element %zu (nearest plan %.10g, %.10g): scene element %" PetscInt_FMT
+                          ", smin = %.4f MPa, emin = %.4e\n",
+                          k + 1, c->probe_element_at[2 * k], c->probe_element_at[2 * k + 1], c->probe_elements[k],
+                          v.probe_e[2 * k], v.probe_e[2 * k + 1]));
   for (size_t k = 0; k < c->probe_nodes.size(); ++k) {
     char slide[96] = "";
     if (P->contact) std::snprintf(slide, sizeof slide, ", slide (%.4f, %.4f) mm", v.probe_n[5 * k + 3], v.probe_n[5 * k + 4]);
-    PetscCall(PetscPrintf(P->comm, "structure: node %zu (nearest %g, %g) u = (%.4f, %.4f, %.4f) mm%s\n", k + 1,
-                          c->probe_node_at[2 * k], c->probe_node_at[2 * k + 1], v.probe_n[5 * k], v.probe_n[5 * k + 1],
+    const double *X = &c->probe_node_X[3 * k];
+    PetscCall(PetscPrintf(P->comm,
+                          "structure: probe node %zu (nearest plan %.10g, %.10g): scene node %" PetscInt_FMT
+                          " at (%.17g, %.17g, %.17g) mm in %s, u = (%.4f, %.4f, %.4f) mm%s\n",
+                          k + 1, c->probe_node_at[2 * k], c->probe_node_at[2 * k + 1], c->probe_nodes[k], X[0], X[1],
+                          X[2], c->probe_node_groups[k].c_str(), v.probe_n[5 * k], v.probe_n[5 * k + 1],
                           v.probe_n[5 * k + 2], slide));
   }
   PetscFunctionReturn(0);
