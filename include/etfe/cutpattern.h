@@ -37,15 +37,23 @@ struct CutPatternOptions {
   double md_axis[3] = {1.0, 0.0, 0.0};
   // The drawings (DXF, SVG): a weld/seam allowance outline and the MD (roll) direction mark.
   double seam_allowance = 0.0;  // mm
-  PetscBool md_mark = PETSC_FALSE;
+  PetscBool md_mark = PETSC_TRUE;
+  // Roll nesting (-cutpattern_roll_width, 0: none): every strip on a roll this wide, gap apart.
+  double roll_width = 0.0, roll_gap = 10.0;  // mm
+  // The first-yield strain S_y1 / E of the film (0: none known), above which a fabrication error
+  // is warned about, and where it came from.
+  double first_yield_strain = 0.0;
+  std::string first_yield_source;
 };
 
 PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions *o);
 // The sub-mesh of one element set (a strip), nodes renumbered in order of first use, with every
 // node set restricted to it.
 MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const std::string &name);
-// shape: the 3D surface (valid on rank 0). Writes <dir>/<stem>_<strip>.{dxf,svg,msh} and
-// <dir>/<stem>_lines.csv; prints one line per named line. Collective.
+// shape: the 3D surface (valid on rank 0). Writes <dir>/<stem>_<strip>.{dxf,svg,msh},
+// <dir>/<stem>_lines.csv, <dir>/<stem>_errors.csv (pattern_errors.h) and, with a roll width,
+// <dir>/<stem>_nesting.{dxf,svg}; prints one line per named line and edge, warns of errors above
+// the first-yield strain and prints the roll length and waste. Collective.
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o,
                              const std::string &dir, const std::string &stem);
 

@@ -124,13 +124,10 @@ bool FlattenStrip(const MeshData &strip3d, const FlattenOptions &opt, FlattenRes
 
 // ---- Export (src/analyses/pattern_export.cpp) ---------------------------------------------------
 
-// ASCII DXF R12 (AC1009), units mm: a closed POLYLINE per outline loop on layer OUTLINE, an open
-// (or closed) POLYLINE per named line piece on a layer named after its set (upper case; cut_* in
-// red, weld_* in blue, others green) and, when labels is set, TEXT with each line's name and 2D
-// length on layer LABELS.
-// What a drawing adds to the outline and the lines: labels; a second outline seam_allowance mm
-// outside it (the weld or seam allowance the fabricator cuts along; layer SEAM, group "seam"); an
-// arrow along the pattern's long axis marked MD (the roll direction; layer MD, group "md").
+// The drawings (etfe/pattern_sheet.h has the layers and labels): ASCII DXF R12 (AC1009) with
+// $INSUNITS = 4 (mm), closed POLYLINEs on OUTLINE (the cut line: seam_allowance mm outside the
+// pattern) and WELD (the pattern's edge), one layer per named line, the MD arrow on MD (when
+// md_mark) and, when labels is set, the strip's name and dimensions on TEXT, clear of the outlines.
 struct PatternDrawing {
   bool labels = true;
   double seam_allowance = 0.0;
@@ -145,9 +142,8 @@ inline bool WritePatternDxf(const std::string &path, const FlattenResult &r, con
   return WritePatternDxf(path, r, strip_name, d, err);
 }
 
-// SVG 1.1 in mm (width/height in mm, viewBox in mm, y upwards as in the DXF): one closed <path>
-// per outline loop in group "outline", one <polyline> per named line piece in group "lines"
-// (cut_* red, weld_* blue, others green) and, when labels is set, <text> labels.
+// SVG 1.1 in mm (width/height in mm, viewBox in mm, y upwards as in the DXF): the DXF's content,
+// one group per layer (id = its name in lower case), and a scale bar.
 bool WritePatternSvg(const std::string &path, const FlattenResult &r, const std::string &strip_name,
                      const PatternDrawing &drawing, std::string *err);
 inline bool WritePatternSvg(const std::string &path, const FlattenResult &r, const std::string &strip_name, bool labels,

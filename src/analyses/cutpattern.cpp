@@ -10,11 +10,42 @@
 
 #include "etfe/input_plausibility.h"
 #include "etfe/kernels/compensation.h"
+#include "etfe/kernels/plasticity.h"
 #include "etfe/kernels/status.h"
 #include "etfe/material.h"
 #include "etfe/mesh/gmsh_reader.h"
+#include "etfe/pattern_errors.h"
+#include "etfe/pattern_sheet.h"
 
 namespace etfe {
+
+namespace {
+
+// The film's first-yield strain S_y1 / E, the limit a fabrication error is warned against: the
+// plastic law's first yield stress, or, for a law without one, -material_yield's first value
+// (the plastic law's default: ETFE's 13.28 MPa, SPEC §4) over its Young's modulus.
+PetscErrorCode FirstYieldStrain(MPI_Comm comm, CutPatternOptions *o) {
+  std::unique_ptr<Material> m;
+  double E = 0, nu = 0;
+  PetscReal sy[kMaxHardeningSegments] = {13.28};
+  PetscInt n = kMaxHardeningSegments;
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(MaterialCreateFromOptions(comm, &m));
+  m->ElasticConstants(&E, &nu);
+  const PlasticMaterial *plastic = m->PlasticLaw();
+  if (plastic) sy[0] = plastic->yield[0];
+  else PetscCall(PetscOptionsGetRealArray(nullptr, nullptr, "-material_yield", sy, &n, &set));
+  o->first_yield_strain = E > 0 && sy[0] > 0 ? sy[0] / E : 0.0;
+  char src[200];
+  std::snprintf(src, sizeof src, "S_y1 %g MPa / E %g MPa, %s", (double)sy[0], E,
+                plastic ? "the material's plastic law"
+                        : (set ? "-material_yield" : "ETFE's first yield (-material_yield's default)"));
+  o->first_yield_source = src;
+  PetscFunctionReturn(0);
+}
+
+} // namespace
 
 PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions *o) {
   char strips[512] = "", lines[512] = "";
@@ -51,8 +82,16 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
                              "Weld/seam allowance [mm]: a second outline this far outside each pattern, what the "
                              "fabricator cuts (0: none)",
                              "", o->seam_allowance, &o->seam_allowance, nullptr));
-  PetscCall(PetscOptionsBool("-cutpattern_md_mark", "Mark the MD (roll) direction, the pattern's long axis, on each drawing",
+  PetscCall(PetscOptionsBool("-cutpattern_md_mark",
+                             "Mark the MD (roll) direction, the pattern's long axis, on each drawing (layer MD; "
+                             "-cutpattern_md_mark 0 leaves it out)",
                              "", o->md_mark, &o->md_mark, nullptr));
+  PetscCall(PetscOptionsReal("-cutpattern_roll_width",
+                             "Nest all strips on a roll this wide [mm] (each turned to its least width, shelves "
+                             "along the roll): <stem>_nesting.{dxf,svg}, the roll length and waste (0: no nesting)",
+                             "", o->roll_width, &o->roll_width, nullptr));
+  PetscCall(PetscOptionsReal("-cutpattern_roll_gap", "Gap between the strips nested on the roll [mm]", "", o->roll_gap,
+                             &o->roll_gap, nullptr));
   PetscCall(PetscOptionsRealArray("-cutpattern_prestress",
                                   "Design prestress S_MD,S_TD[,S_MD-TD] (PK2, MPa) for -cutpattern_compensation "
                                   "stress, MD along the pattern's long axis",
@@ -64,6 +103,11 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
   PetscCheck(o->seam_allowance >= 0 && std::isfinite(o->seam_allowance), comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_seam_allowance %g: the allowance is a distance outside the pattern, >= 0 mm",
              o->seam_allowance);
+  PetscCheck(o->roll_width >= 0 && std::isfinite(o->roll_width) && o->roll_gap >= 0 && std::isfinite(o->roll_gap),
+             comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-cutpattern_roll_width %g / -cutpattern_roll_gap %g: give the roll's width and the gap in mm, >= 0 "
+             "(width 0: no nesting)", o->roll_width, o->roll_gap);
+  PetscCall(FirstYieldStrain(comm, o));
   PetscCheck(o->comp_md > -1 && o->comp_td > -1 && std::isfinite(o->comp_md) && std::isfinite(o->comp_td), comm,
              PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_compensation_md %g / _td %g: compensation strains must be finite and > -1", o->comp_md,
@@ -303,6 +347,7 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
         if (kv.first != "all") names.push_back(kv.first);
     std::vector<FlattenResult> results(names.size()), design(names.size());
     std::vector<PatternTableEntry> table;
+    std::vector<PatternStripErrors> errors;
     const bool compensated = o.compensation != Compensation::None;
     PatternDrawing drawing;
     drawing.seam_allowance = o.seam_allowance, drawing.md_mark = o.md_mark;
@@ -316,8 +361,22 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
       }
       table.push_back({names[k], &results[k], compensated ? &design[k] : nullptr});
       report += StripReport(names[k], base, strip, results[k], compensated ? &design[k] : nullptr, o.compensation);
+      errors.push_back(PatternErrors(strip, results[k], names[k]));
+      report += PatternErrorReport(errors.back(), o.first_yield_strain, o.first_yield_source);
     }
     if (ok && !WritePatternLineTable(dir + "/" + stem + "_lines.csv", table, &err)) ok = 0;
+    if (ok && !WritePatternErrors(dir + "/" + stem + "_errors.csv", errors, o.first_yield_strain, &err)) ok = 0;
+    if (ok) report += "cutpattern: fabrication errors per edge and strip: " + dir + "/" + stem + "_errors.csv\n";
+    if (ok && o.roll_width > 0) {
+      std::vector<NestItem> items;
+      for (size_t k = 0; k < names.size(); ++k) items.push_back({names[k], &results[k]});
+      NestResult nest;
+      Sheet sheet;
+      const std::string base = dir + "/" + stem + "_nesting";
+      ok = NestOnRoll(items, drawing, o.roll_width, o.roll_gap, &nest, &sheet, &err) &&
+           WriteSheetDxf(base + ".dxf", sheet, &err) && WriteSheetSvg(base + ".svg", sheet, &err);
+      if (ok) report += NestReport(nest, o.roll_width, base);
+    }
   }
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_NOT_CONVERGED));
   PetscCall(PetscPrintf(comm, "%s", report.c_str()));

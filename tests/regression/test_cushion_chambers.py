@@ -198,7 +198,8 @@ with scratch_dir() as tmp:
             t = max(0.0, min(1.0, ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (dx * dx + dy * dy)))
             best = min(best, math.hypot(p[0] - a[0] - t * dx, p[1] - a[1] - t * dy))
         return best
-    outline, seam = group_points("outline"), group_points("seam")
+    # The SVG's groups are the DXF's layers: "weld" the pattern's edge, "outline" the cut line.
+    outline, seam = group_points("weld"), group_points("outline")
     mids = [((a[0] + b[0]) / 2, (a[1] + b[1]) / 2) for a, b in zip(seam, seam[1:] + seam[:1])]
     dm = [distance(m, outline) for m in mids]
     chk.check(len(seam) == len(outline) and max(abs(x - 20.0) for x in dm) < 1e-3,

@@ -7,8 +7,9 @@
 //  * a flat (tilted, irregular) strip comes back congruent;
 //  * degenerate input is rejected with a message;
 //  * the DXF pairs group codes with values, has HEADER/TABLES/ENTITIES and EOF, and its
-//    outline POLYLINE holds the outline's vertices; the SVG holds one path per outline loop
-//    with the same vertices and one polyline per named line piece.
+//    outline POLYLINE holds the outline's vertices (layers OUTLINE, WELD, TEXT and one per
+//    named line); the SVG holds one path per outline loop with the same vertices in its group
+//    "outline" and one polyline per named line piece.
 #include <petscsys.h>
 #include <unistd.h>
 
@@ -438,7 +439,8 @@ void TestExport(const std::string &dir) {
   CHECK(!pairs.empty() && pairs.back() == std::make_pair(0, std::string("EOF")), "DXF ends in EOF");
   std::vector<std::string> sections;
   bool nesting_ok = true, in_section = false, in_entities = false;
-  int outline_polylines = 0, line_polylines = 0, texts = 0;
+  int outline_polylines = 0, weld_polylines = 0, line_polylines = 0, texts = 0;
+  std::vector<std::string> text_values;
   std::vector<int> outline_vertices;
   std::vector<std::vector<double>> outline_xy;
   std::string layer;
@@ -472,6 +474,9 @@ void TestExport(const std::string &dir) {
           outline_vertices.push_back(0);
           outline_xy.emplace_back();
           CHECK(flag == 1, "outline POLYLINE closed flag %d", flag);
+        } else if (ly == "WELD") {  // the net pattern edge (the same as OUTLINE without an allowance)
+          ++weld_polylines;
+          CHECK(flag == 1, "weld POLYLINE closed flag %d", flag);
         } else {
           ++line_polylines;
         }
@@ -481,6 +486,8 @@ void TestExport(const std::string &dir) {
         outline_xy.back().push_back(y);
       } else if (p.second == "TEXT") {
         ++texts;
+        for (size_t j = k + 1; j < pairs.size() && pairs[j].first != 0; ++j)
+          if (pairs[j].first == 1) text_values.push_back(pairs[j].second);
       } else if (p.second != "VERTEX" && p.second != "SEQEND") {
         CHECK(false, "unexpected DXF entity %s", p.second.c_str());
       }
@@ -492,7 +499,15 @@ void TestExport(const std::string &dir) {
   for (const PatternLine &l : r.lines) pieces += l.paths.size();
   CHECK(outline_polylines == (int)r.outline.size(), "DXF outline polylines %d", outline_polylines);
   CHECK(line_polylines == (int)pieces, "DXF line polylines %d vs %zu", line_polylines, pieces);
-  CHECK(texts == 1 + (int)r.lines.size(), "DXF labels %d", texts);
+  CHECK(weld_polylines == (int)r.outline.size(), "DXF weld polylines %d", weld_polylines);
+  // Labels: the strip's name, dimensions, corner letters and one label per named line.
+  auto labelled = [&](const std::string &start) {
+    for (const std::string &t : text_values)
+      if (t.rfind(start, 0) == 0) return true;
+    return false;
+  };
+  CHECK(texts >= 1 + (int)r.lines.size() && labelled("export strip "), "DXF labels %d", texts);
+  for (const PatternLine &l : r.lines) CHECK(labelled(l.name + " "), "DXF label of line %s", l.name.c_str());
   if (outline_polylines == 1) {
     CHECK(outline_vertices[0] == (int)r.outline[0].size(), "DXF outline vertices %d vs %zu",
           outline_vertices[0], r.outline[0].size());
@@ -502,7 +517,7 @@ void TestExport(const std::string &dir) {
         dev = std::max(dev, std::fabs(outline_xy[0][2 * k + c] - r.xy[2 * r.outline[0][k] + c]));
     CHECK(dev < 1e-6, "DXF outline coordinates off by %g", dev);
   }
-  for (const char *lay : {"CUT_START", "CUT_END", "WELD_TOP", "WELD_BOTTOM", "CENTRE", "LABELS"}) {
+  for (const char *lay : {"CUT_START", "CUT_END", "WELD_TOP", "WELD_BOTTOM", "CENTRE", "OUTLINE", "WELD", "TEXT"}) {
     bool found = false;
     for (size_t k = 0; k + 1 < pairs.size(); ++k)
       found = found || (pairs[k] == std::make_pair(0, std::string("LAYER")) &&
@@ -526,8 +541,9 @@ void TestExport(const std::string &dir) {
         "SVG mm size and viewBox");
   CHECK(Count(svg, "</svg>") == 1 && svg.find("</svg>") + 7 == svg.size(), "SVG closes");
   CHECK(Count(svg, "<g ") == Count(svg, "</g>"), "SVG groups balanced");
-  CHECK(Count(svg, "<path ") == r.outline.size(), "SVG outline paths");
-  const size_t p0 = svg.find("<path d=\"");
+  // Closed paths: OUTLINE and WELD per loop, the scale bar's bar and 3 ticks.
+  CHECK(Count(svg, "<path ") == 2 * r.outline.size() + 4, "SVG outline paths");
+  const size_t p0 = svg.find("<path d=\"", svg.find("<g id=\"outline\""));
   if (p0 != std::string::npos) {
     const std::string dattr = svg.substr(p0 + 9, svg.find('"', p0 + 9) - p0 - 9);
     CHECK(Count(dattr, ",") == r.outline[0].size(), "SVG outline vertices %zu vs %zu",
@@ -538,8 +554,9 @@ void TestExport(const std::string &dir) {
                 Count(svg, "<text "));
   }
   CHECK(Count(svg, "<polyline ") == pieces, "SVG polylines");
-  CHECK(Count(svg, "<text ") == 1 + r.lines.size(), "SVG labels");
-  CHECK(Count(svg, "stroke=\"#d00000\"") == 2 && Count(svg, "stroke=\"#0040d0\"") == 2,
+  CHECK(Count(svg, "<text ") == (size_t)texts + 2, "SVG labels (the DXF's and the scale bar's 2)");
+  // One group per layer: cut_* red, weld_* and WELD blue.
+  CHECK(Count(svg, "stroke=\"#d00000\"") == 2 && Count(svg, "stroke=\"#0040d0\"") == 3,
         "SVG colours of cut and weld lines");
 
   const std::vector<std::string> csv = ReadLines(stem + ".csv");
