@@ -23,8 +23,7 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 // Viscous stabilization (stabilization.cpp): Begin makes the residual carry
 // relative * E h0 * (U - anchor) on free DOFs and the tangent its diagonal, until End;
-// MoveAnchor starts a proximal pass from U; Measure gives the force's work on U - anchor (N mm)
-// and its largest nodal size (N) at U.
+// MoveAnchor starts a proximal pass from U; Measure gives the force at U (StabilizingForce).
 PetscErrorCode StabilizationBegin(Problem *problem, double relative, Vec anchor);
 PetscErrorCode StabilizationMoveAnchor(Problem *problem, Vec U);
 void StabilizationEnd(Problem *problem);
@@ -32,7 +31,22 @@ PetscErrorCode AddStabilizationForce(Problem *problem, Vec U, Vec F);
 PetscErrorCode AddStabilizationTangent(Problem *problem, Mat J);
 // The 2-norm of the stabilizing force at U (N).
 PetscErrorCode StabilizationForceNorm(Problem *problem, Vec U, PetscReal *norm);
-PetscErrorCode StabilizationMeasure(Problem *problem, Vec U, double *work, double *force_max);
+// The stabilizing force f at a converged state U, given the film's internal forces Fint at U:
+// what the load stepper weighs to decide whether the state is an equilibrium. f is the out-of-
+// balance force of the unstabilized equations there; g = Fint + f is what the film takes from
+// outside (loads, contact, reactions), its nodal sizes summed are the forces in play. Collective.
+struct StabilizingForce {
+  double work = 0.0;                 // f . (U - anchor) [N mm]
+  double norm = 0.0;                 // |f|_2 [N]
+  double largest = 0.0;              // largest nodal |f| [N]
+  PetscInt node = -1;                // its scene node id
+  double position[3] = {0, 0, 0};    // that node's position at U [mm]
+  double resultant[3] = {0, 0, 0};   // sum of f over the nodes [N]
+  double moment[3] = {0, 0, 0};      // sum of (x - c) x f, c the nodes' centroid [N mm]
+  double applied = 0.0;              // sum over the nodes of |g| [N]
+  double applied_moment = 0.0;       // sum over the nodes of |x - c| |g| [N mm]
+};
+PetscErrorCode StabilizationMeasure(Problem *problem, Vec U, Vec Fint, StabilizingForce *force);
 PetscErrorCode StabilizationDestroy(Problem *problem);
 // The largest committed equivalent plastic strain, its element (natural id, -1 without a
 // plastic law) and that element's reference centroid [mm] (collective).

@@ -46,6 +46,15 @@ struct LoadStepperOptions {
   PetscInt stabilize_when = 1;  // index into kStabilizeWhen
   PetscReal stabilize_rtol = 0.0;
   PetscInt stabilize_passes = 20;
+  // A stabilized increment is an equilibrium (accepted) while its stabilizing force carries at
+  // most stabilize_force_max of the forces in play (resultant and moment against the loads, contact
+  // forces and reactions); a run while that force did at most stabilize_work_max of the work done
+  // on the film (0: no limit). docs/stabilization.md: what was measured, why these values.
+  PetscReal stabilize_force_max = 0.1;
+  PetscReal stabilize_work_max = 0.25;
+  // Refuse a history whose DOF constraints leave a rigid motion of the film free (without rigid
+  // contact supports; free_rigid_motions.h); false: only say which motions are free.
+  PetscBool check_supports = PETSC_TRUE;
   // After a caught signal (etfe/interrupt.h), how long Newton may go on to finish the increment
   // under way before it is given up and the run stops at the last converged one (s).
   PetscReal signal_grace = 10.0;

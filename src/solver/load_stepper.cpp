@@ -4,6 +4,8 @@
 //   AttemptIncrement  predictor and Newton solve from the committed state (it commits nothing,
 //                     so the same increment can be attempted again);
 // and then, converged:
+//   CheckStabilizedIncrement  a stabilized answer whose force carries the load is no equilibrium:
+//                     cut back as a failed one (load_stepper_equilibrium.cpp);
 //   RepeatLaggedIncrement  (-contact_lagged_repeat) solved again while its lagged statuses change;
 //   CommitIncrement   material history, contact states, work, U and load time committed;
 //   GrowIncrement     step-size control: a cut increment grows again after easy ones;
@@ -12,6 +14,8 @@
 //   IncrementFailure  why (SNES's reason, the element or node at fault, the way out);
 //   CutBack           (U back at the committed state) the increment halved, the run stopped
 //                     once -load_max_cutbacks halvings are spent.
+// Before the first increment, a film whose constraints leave a rigid motion free is refused
+// (free_rigid_motions.h).
 // Committed state = (U, material history, contact states, load time): a failed attempt leaves
 // history and contact untouched, so a cut-back repeats the increment from exactly its start.
 #include <algorithm>
@@ -24,6 +28,7 @@
 #include "etfe/layer_contact.h"
 #include "etfe/assembly.h"
 #include "etfe/contact.h"
+#include "etfe/free_rigid_motions.h"
 #include "etfe/interrupt.h"
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
@@ -96,6 +101,21 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
                              "", o->stabilize_rtol, &o->stabilize_rtol, nullptr));
   PetscCall(PetscOptionsInt("-load_stabilize_passes", "Most proximal passes per increment", "", o->stabilize_passes,
                             &o->stabilize_passes, nullptr));
+  PetscCall(PetscOptionsReal("-load_stabilize_force_max",
+                             "A stabilized increment is an equilibrium while its stabilizing force carries at most this "
+                             "share of the forces in play (resultant and moment against the loads, contact forces and "
+                             "reactions); above it the increment is cut back, and the run fails \"not in "
+                             "equilibrium\" once the cut-backs are spent (0: no limit)",
+                             "", o->stabilize_force_max, &o->stabilize_force_max, nullptr));
+  PetscCall(PetscOptionsReal("-load_stabilize_work_max",
+                             "A run whose stabilizing force did more than this share of the work done on the film "
+                             "(increments' work magnitudes) fails \"not in equilibrium\" at its end (0: no limit)",
+                             "", o->stabilize_work_max, &o->stabilize_work_max, nullptr));
+  PetscCall(PetscOptionsBool("-load_check_supports",
+                             "Refuse a load history whose DOF constraints leave a rigid motion of the film free (a "
+                             "translation or rotation no support touches) unless rigid contact supports may hold it; "
+                             "false: only print the free motions",
+                             "", o->check_supports, &o->check_supports, nullptr));
   PetscCall(PetscOptionsReal("-etfe_signal_grace",
                              "After SIGTERM, SIGINT, SIGUSR1 or SIGXCPU: seconds Newton may go on to finish the increment "
                              "under way; then the run stops at the last converged increment (checkpoint, results "
@@ -109,6 +129,9 @@ PetscErrorCode LoadStepperOptionsFromCommandLine(MPI_Comm comm, LoadStepperOptio
   PetscCheck(o->signal_grace >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-etfe_signal_grace %g: use seconds >= 0 (0: stop within the first Newton iteration after the signal)",
              (double)o->signal_grace);
+  PetscCheck(o->stabilize_force_max >= 0 && o->stabilize_work_max >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-load_stabilize_force_max %g, -load_stabilize_work_max %g: use shares >= 0 (0: no limit)",
+             (double)o->stabilize_force_max, (double)o->stabilize_work_max);
   PetscCheck(o->stabilize > 0 && o->stabilize_rtol >= 0 && o->stabilize_passes >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-load_stabilize %g, -load_stabilize_rtol %g, -load_stabilize_passes %" PetscInt_FMT
              ": use a positive stabilization, a tolerance >= 0 and passes >= 0", (double)o->stabilize,
@@ -314,7 +337,12 @@ PetscErrorCode StabilizedSolve(LoadStepper *s, Increment *inc, bool restart) {
     PetscCall(StabilizationMoveAnchor(P, P->U));
     PetscCall(NewtonSolve(s, inc));
   }
-  if (inc->Converged()) PetscCall(StabilizationMeasure(P, P->U, &inc->stab_work, &inc->stab_force));
+  // The force at the answer, against what the film takes from outside (load_stepper_equilibrium.cpp
+  // decides whether the answer is an equilibrium).
+  if (inc->Converged()) {
+    PetscCall(FormInternalForce(P, P->U, s->Fint));
+    PetscCall(StabilizationMeasure(P, P->U, s->Fint, &inc->stab));
+  }
   StabilizationEnd(P);
   PetscFunctionReturn(0);
 }
@@ -410,6 +438,7 @@ PetscErrorCode AccountIncrementWork(LoadStepper *s) {
   d.increment_work = 0.5 * PetscRealPart(w);
   d.increment_shift_work = d.shift_work;
   s->work_total += d.increment_work;
+  s->work_magnitude += std::fabs(d.increment_work);
   s->shift_work_total += d.shift_work;
   PetscCall(VecCopy(s->Fint, s->Fint_committed));
   PetscFunctionReturn(0);
@@ -434,11 +463,7 @@ PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt co
   if (P->layers) PetscCall(LayerContactPair(P, P->U));  // the pairs for the next increment
   ++s->converged_states;
   ++s->step;
-  if (inc.stabilized) {
-    ++s->res->stabilized;
-    s->stab_work_total += inc.stab_work;
-    s->stab_force_max = std::max(s->stab_force_max, inc.stab_force);
-  }
+  AccountStabilizedIncrement(s, inc);
   PetscCall(WarnPlasticStrain(s));
   PetscFunctionReturn(0);
 }
@@ -487,6 +512,7 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
   PetscCall(ProblemUpdateReactions(P, P->U));
   // (a signal's stop leaves it to the checkpoint: the continued results then list the same steps)
   if (OutputLastStep(s->out) != s->step && !res->interrupted) PetscCall(OutputWriteStep(s->out, P, P->U, s->step, s->t));
+  PetscCall(StabilizationSummary(s));  // may find the run not in equilibrium
   res->completed = res->failure.empty() ? PETSC_TRUE : PETSC_FALSE;
   res->steps = s->step;
   res->time = s->t;
@@ -505,18 +531,6 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
                           "(-contact_lagged_repeat %" PetscInt_FMT "); %" PetscInt_FMT " increments committed at that "
                           "limit or after a repeat that failed (statuses possibly not settled)\n",
                           s->lagged_repeats, P->contact->lagged_repeat, s->lagged_unsettled));
-  if (res->stabilized) {
-    PetscReal reaction_max;
-    PetscCall(VecMaxNodalNorm(P->reaction, &reaction_max));
-    PetscCall(PetscPrintf(P->comm,
-                          "etfe: %" PetscInt_FMT " increments stabilized (-load_stabilize %g, -load_stabilize_when %s): "
-                          "the stabilizing force did %.3e N mm of work (%.2e of the work done on the film), largest "
-                          "nodal stabilizing force %.3e N (%.2e of the largest reaction)%s\n",
-                          res->stabilized, (double)s->o.stabilize, kStabilizeWhen[s->o.stabilize_when],
-                          s->stab_work_total, s->work_total != 0 ? s->stab_work_total / std::fabs(s->work_total) : 0.0,
-                          s->stab_force_max, reaction_max > 0 ? s->stab_force_max / reaction_max : 0.0,
-                          s->ck.restart[0] ? " since the restart" : ""));
-  }
   PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, s->snes_max_it, s->snes_max_f));
   PetscCall(VecDestroy(&s->Fint));
   PetscCall(VecDestroy(&s->Fint_committed));
@@ -533,6 +547,7 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
                               const CheckpointOptions &ck, LoadStepperResult *res) {
   LoadStepper s(P, snes, out, o, ck, res);
   PetscFunctionBeginUser;
+  PetscCall(CheckSupportsHoldRigidMotions(P, P->U, o.check_supports));
   PetscCall(LoadStepperBegin(&s));
   while (!s.Finished()) {
     Increment inc = NextIncrement(s);
@@ -542,6 +557,17 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
     if (stop) {  // the last converged state is the committed one
       if (s.checkpoint_step != s.step) PetscCall(WriteCheckpoint(&s));
       break;
+    }
+    CheckStabilizedIncrement(s, &inc);
+    if (inc.unbalanced) {
+      // The stabilization carries the load: cut back like a failed solve (in a smaller increment
+      // a slack region's stabilizing force shrinks, a carried load's does not); once the
+      // cut-backs are spent the run stops at the committed state, "not in equilibrium".
+      PetscCall(VecCopy(s.U_committed, P->U));
+      const bool exhausted = CutBack(&s, inc);
+      PetscCall(ReportUnbalancedIncrement(&s, inc, exhausted));
+      if (exhausted) break;
+      continue;
     }
     if (!inc.Converged()) {
       // The committed state back (history and contact were never touched), the increment halved.

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <string>
 
+#include "etfe/assembly.h"
 #include "etfe/kernels/status.h"
 #include "etfe/load_stepper.h"
 
@@ -42,7 +43,14 @@ struct LoadStepper {
   Vec U_solved = nullptr;
   PetscInt lagged_repeats = 0, lagged_unsettled = 0;
   double work_total = 0.0, shift_work_total = 0.0;
+  double work_magnitude = 0.0;  // sum of |work| of the increments (a load cycle does not cancel it)
   double stab_work_total = 0.0, stab_force_max = 0.0;  // of the stabilized increments
+  // The stabilized increment whose force carried the largest share of the forces in play.
+  struct {
+    PetscInt step = -1;
+    double share = 0.0;
+    StabilizingForce force;
+  } worst_stabilized;
   bool strain_warned = false;  // -load_plastic_strain_limit passed (warned once)
   // Progress lines: cut-backs shown so far, pair lift-offs since the last line.
   PetscInt cutbacks_printed = 0, lifted_since_print = 0;
@@ -73,9 +81,10 @@ struct Increment {
   SNESConvergedReason reason = SNES_CONVERGED_ITERATING;
   PetscInt its = 0;
   PetscReal fnorm = 0.0;
-  // Stabilized (-load_stabilize_when): the stabilizing force's work and largest nodal size.
-  bool stabilized = false;
-  double stab_work = 0.0, stab_force = 0.0;
+  // Stabilized (-load_stabilize_when): the stabilizing force at the answer; unbalanced: it carries
+  // more of the forces in play than -load_stabilize_force_max allows (the attempt is refused).
+  bool stabilized = false, unbalanced = false;
+  StabilizingForce stab;
   bool Converged() const { return reason > 0; }
 };
 
@@ -127,6 +136,23 @@ struct IncrementFailure {
   }
 };
 
+// Whether a stabilized increment is an equilibrium (load_stepper_equilibrium.cpp). The
+// stabilizing force f at the answer is the out-of-balance force of the unstabilized equations; its
+// share of the forces in play is the larger of |sum f| / sum |g| and |sum (x - c) x f| /
+// sum |x - c| |g| (g: what the film takes from outside, per node). More than
+// -load_stabilize_force_max: the stabilization carries the load (inc->unbalanced).
+double ForceShare(const StabilizingForce &f);
+void CheckStabilizedIncrement(const LoadStepper &s, Increment *inc);
+// An unbalanced increment is cut back: its line, and once the cut-backs are spent the run's
+// failure, "not in equilibrium", naming the increment, the share, where the force is largest,
+// the likely cause and the ways out.
+PetscErrorCode ReportUnbalancedIncrement(LoadStepper *s, const Increment &inc, bool exhausted);
+// A committed stabilized increment's work and force in the run's accounting.
+void AccountStabilizedIncrement(LoadStepper *s, const Increment &inc);
+// At the run's end: the stabilization summary line and, at the end of the schedule, the run's
+// failure when the stabilizing force did more than -load_stabilize_work_max of the work done on
+// the film (collective).
+PetscErrorCode StabilizationSummary(LoadStepper *s);
 // Why the attempt failed (SNES's reason, the element or node at fault, the way out).
 PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, IncrementFailure *f);
 // A converged increment seen from outside: the progress line (every -load_monitor increments, the

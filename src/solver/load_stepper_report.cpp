@@ -86,10 +86,12 @@ PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const P
   if (P->clock.Active()) std::snprintf(seconds, sizeof seconds, "  time %.6g s", P->clock.Seconds(t));
   char cut[96] = "";
   if (s.res->cutbacks) std::snprintf(cut, sizeof cut, "  cut-backs %lld", (long long)s.res->cutbacks);
-  // A stabilized increment says so, with its force's work against the increment's on the film.
+  // A stabilized increment says so, with its force's work against the increment's on the film and
+  // its share of the forces in play (load_stepper_equilibrium.cpp).
   if (inc.stabilized)
-    std::snprintf(cut + std::strlen(cut), sizeof cut - std::strlen(cut), "  stabilized (%.1e of the work)",
-                  d.increment_work != 0 ? inc.stab_work / std::fabs(d.increment_work) : 0.0);
+    std::snprintf(cut + std::strlen(cut), sizeof cut - std::strlen(cut),
+                  "  stabilized (%.1e of the work, %.1e of the forces)",
+                  d.increment_work != 0 ? inc.stab.work / std::fabs(d.increment_work) : 0.0, ForceShare(inc.stab));
   // With a tangent shift: the increment's work on the film and what the shift would dissipate.
   if (P->TangentShiftAbsolute() > 0) {
     char buf[128];
