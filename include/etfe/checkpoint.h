@@ -37,6 +37,10 @@ struct CheckpointOptions {
 
 // results_stem: the results file without its extension; the default checkpoint goes beside it.
 PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const std::string &results_stem, CheckpointOptions *o);
+// At set-up, before any work: rank 0 makes the checkpoint's directory and writes a test file in
+// it, so that an unwritable directory is refused now (naming -checkpoint_file) rather than at the
+// first checkpoint, after a stage's work. Collective.
+PetscErrorCode CheckpointCheckWritable(MPI_Comm comm, const CheckpointOptions &o);
 // run_id: the load history's identity (OutputRunId), checked against the results file on restart.
 PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const StepperState &state,
                                Vec U_committed, Vec U_previous, const std::string &run_id);

@@ -359,4 +359,16 @@ PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t
   PetscFunctionReturn(0);
 }
 
+namespace {
+bool g_close_failed = false;
+} // namespace
+
+herr_t H5FcloseWritten(hid_t file) {
+  const herr_t r = H5Fclose(file);
+  if (r < 0) g_close_failed = true;
+  return r;
+}
+
+bool H5AnyCloseFailed() { return g_close_failed; }
+
 } // namespace etfe

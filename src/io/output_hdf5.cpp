@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <sstream>
@@ -37,6 +38,7 @@ struct OutputFile {
   std::unique_ptr<NaturalOrder> order;
   PetscInt every = 1;
   std::string run_id;  // the same in the results file and the checkpoints of one load history
+  std::string steps_lost;  // what a restart could not keep (-output_allow_lost_steps); "" if nothing
 };
 
 // The file an error exit must mark as failed (see OutputAbandon).
@@ -136,6 +138,11 @@ PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, Ou
                             o->every, &o->every, nullptr));
   PetscCall(PetscOptionsBool("-output", "Write results at all", "", o->enabled, &o->enabled,
                              nullptr));
+  PetscCall(PetscOptionsBool("-output_allow_lost_steps",
+                             "-restart: continue although the results file is missing or unreadable (the steps up "
+                             "to the checkpoint are then missing, and its status says so instead of complete); "
+                             "without it such a restart is refused",
+                             "", o->allow_lost_steps, &o->allow_lost_steps, nullptr));
   PetscOptionsEnd();
   PetscCheck(o->every >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-output_every %" PetscInt_FMT ": must be at least 1", o->every);
@@ -334,8 +341,10 @@ herr_t CopyAttribute(hid_t from, const char *name, const H5A_info_t *, void *to)
 // left half-written), copied to a new file that then replaces it. HDF5 cannot always delete such
 // groups in place (their headers may be incomplete), and a leftover name would stop the restarted
 // run when it writes that step again. Returns the steps kept that could not be copied (they stay
-// in the file kept under another name); -1 when nothing could be rebuilt.
-int RebuildWithout(const std::string &path, const std::vector<std::string> &keep, std::string *kept_aside) {
+// in the file kept under another name; without allow_lost nothing is changed then); -1 when
+// nothing could be rebuilt.
+int RebuildWithout(const std::string &path, const std::vector<std::string> &keep, bool allow_lost,
+                   std::string *kept_aside) {
   const std::string tmp = path + ".restart.tmp";
   int lost = -1;
   H5E_BEGIN_TRY {
@@ -350,7 +359,7 @@ int RebuildWithout(const std::string &path, const std::vector<std::string> &keep
         if (H5Ocopy(src, ("steps/" + name).c_str(), steps, name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0) ++lost;
       H5Gclose(steps);
     }
-    if (dst >= 0 && H5Fclose(dst) < 0) lost = -1;
+    if (dst >= 0 && H5FcloseWritten(dst) < 0) lost = -1;
     if (src >= 0) H5Fclose(src);
   }
   H5E_END_TRY;
@@ -358,6 +367,10 @@ int RebuildWithout(const std::string &path, const std::vector<std::string> &keep
   if (lost < 0) {
     std::filesystem::remove(tmp, ec);
     return -1;
+  }
+  if (lost > 0 && !allow_lost) {  // refused: the file stays as it was
+    std::filesystem::remove(tmp, ec);
+    return lost;
   }
   if (lost > 0) {
     *kept_aside = FreeName(path + ".before-restart");
@@ -367,29 +380,53 @@ int RebuildWithout(const std::string &path, const std::vector<std::string> &keep
   return ec ? -1 : lost;
 }
 
-// Reopens a results file to continue it after a restart. Returns false (nothing changed) when
-// the file is missing; an unreadable one (cut short by a kill) is moved aside, never
-// overwritten; a file of another scene or another load history (run_id) is refused untouched.
-PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok) {
+// A restart whose results file cannot hold the steps up to the checkpoint: refused (nothing
+// changed) unless -output_allow_lost_steps, and then recorded so that the file's status never
+// claims a complete history.
+PetscErrorCode LostSteps(OutputFile *out, PetscInt restart_step, bool allow, const std::string &what,
+                         const std::string &was) {
+  PetscFunctionBeginUser;
+  PetscCheck(allow, out->problem->comm, PETSC_ERR_FILE_OPEN,
+             "-restart: the results file %s %s: the continued run would hold only the steps after increment "
+             "%" PetscInt_FMT " and claim a complete history, so nothing was changed. Put back the results file of "
+             "the run that wrote the checkpoint, run again from the start (without -restart), or continue without "
+             "those steps with -output_allow_lost_steps (the status then says they are missing)",
+             out->path.c_str(), what.c_str(), restart_step);
+  out->steps_lost = "the steps up to increment " + std::to_string((long long)restart_step) + " (the file " + was +
+                    " when the run was restarted from its checkpoint; continued with -output_allow_lost_steps)";
+  PetscFunctionReturn(0);
+}
+
+// Reopens a results file to continue it after a restart. Returns false when the file is missing
+// (refused unless allow_lost); an unreadable one (cut short by a kill) is refused untouched or,
+// with allow_lost, moved aside, never overwritten; a file of another scene or another load
+// history (run_id) is refused untouched.
+PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool allow_lost, bool *ok) {
   Problem *P = out->problem;
   PetscFunctionBeginUser;
   int exists = P->rank == 0 && std::filesystem::exists(out->path) ? 1 : 0;
   PetscCallMPI(MPI_Bcast(&exists, 1, MPI_INT, 0, P->comm));
   *ok = false;
-  if (!exists) PetscFunctionReturn(0);
+  if (!exists) {
+    PetscCall(LostSteps(out, restart_step, allow_lost, "is missing", "was missing"));
+    PetscFunctionReturn(0);
+  }
   // Probe serially first: a file cut short by a kill may not open.
   int state = 0;  // 0 unreadable, 1 this run's, 2 another scene, 3 another run
-  char other[256] = "", note[512] = "";
+  int unread = 0;  // earlier steps that could not be copied (the file then left as it was)
+  char other[256] = "", note[512] = "", lost_before[512] = "";
   std::vector<std::string> keep;
   size_t drop = 0;
   if (P->rank == 0) {
     H5E_BEGIN_TRY {
       hid_t f = H5Fopen(out->path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
       if (f >= 0) {
-        std::string scene, id;
+        std::string scene, id, lost;
         if (H5Aexists(f, "scene") > 0 && H5ReadString(out->path, f, "scene", &scene) == 0 &&
             H5Lexists(f, "steps", H5P_DEFAULT) > 0) {
           if (H5Aexists(f, "run_id") > 0) H5ReadString(out->path, f, "run_id", &id);
+          if (H5Aexists(f, "steps_lost") > 0 && H5ReadString(out->path, f, "steps_lost", &lost) == 0)
+            std::snprintf(lost_before, sizeof lost_before, "%s", lost.c_str());
           state = scene != P->scene.name ? 2 : id != out->run_id ? 3 : 1;
           std::snprintf(other, sizeof other, "%s", state == 2 ? scene.c_str() : id.empty() ? "(none)" : id.c_str());
           std::vector<StepInfo> steps;
@@ -408,15 +445,23 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
     if (state == 1 && drop > 0) {
       // Steps written after the checkpoint: a new file without them replaces this one.
       std::string aside;
-      const int lost = RebuildWithout(out->path, keep, &aside);
+      const int lost = RebuildWithout(out->path, keep, allow_lost, &aside);
       if (lost < 0) state = 0;
       else if (lost == 0)
         std::snprintf(note, sizeof note, "%zu step(s) written after the checkpoint dropped", drop);
+      else if (!allow_lost)
+        unread = lost;
       else
         std::snprintf(note, sizeof note, "%d of the %zu earlier steps could not be read; the old file is kept as %s",
                       lost, keep.size(), aside.c_str());
     }
   }
+  PetscCallMPI(MPI_Bcast(&unread, 1, MPI_INT, 0, P->comm));
+  PetscCallMPI(MPI_Bcast(lost_before, sizeof lost_before, MPI_CHAR, 0, P->comm));
+  out->steps_lost = lost_before;
+  if (unread > 0)
+    PetscCall(LostSteps(out, restart_step, false,
+                        "has " + std::to_string(unread) + " step(s) up to the checkpoint that cannot be read", ""));
   PetscCallMPI(MPI_Bcast(&state, 1, MPI_INT, 0, P->comm));
   PetscCallMPI(MPI_Bcast(other, sizeof other, MPI_CHAR, 0, P->comm));
   PetscCheck(state != 2, P->comm, PETSC_ERR_FILE_UNEXPECTED,
@@ -429,6 +474,7 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
              "or a new -output_file",
              out->path.c_str(), other, out->run_id.c_str());
   if (state == 0) {
+    PetscCall(LostSteps(out, restart_step, allow_lost, "cannot be read (cut short or damaged)", "could not be read"));
     int moved = 0;
     std::string aside = out->path + ".unreadable";
     if (P->rank == 0) aside = FreeName(aside);
@@ -447,14 +493,19 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
                aside.c_str());
     PetscCall(PetscPrintf(P->comm, "  output: %s was unreadable (cut short?); kept as %s, the restarted run "
                           "starts the results anew\n", out->path.c_str(), aside.c_str()));
+    out->steps_lost += "; the unreadable file is kept as " + aside;
     PetscFunctionReturn(0);
   }
   PetscCallMPI(MPI_Bcast(note, sizeof note, MPI_CHAR, 0, P->comm));
   if (note[0]) PetscCall(PetscPrintf(P->comm, "  output: %s: %s\n", out->path.c_str(), note));
+  if (note[0] && !unread && std::strstr(note, "could not be read"))
+    out->steps_lost = std::string("some of the steps up to increment ") + std::to_string((long long)restart_step) +
+                      " (" + note + "; continued with -output_allow_lost_steps)";
   hid_t fapl = ResultsAccess(P->comm);
   out->file = H5Fopen(out->path.c_str(), H5F_ACC_RDWR, fapl);
   H5Pclose(fapl);
   if (out->file < 0) PetscFunctionReturn(0);
+  g_open_output = out;
   // Rank 0 rebuilt the file without the steps after the checkpoint: what is left is kept.
   std::vector<StepInfo> steps;
   hid_t g = H5Gopen2(out->file, "steps", H5P_DEFAULT);
@@ -465,6 +516,7 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   PetscCall(WriteStatus(out->path, out->file, "running"));
   PetscCall(WriteWriterIdentity(out));
   PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
+  if (!out->steps_lost.empty()) PetscCall(H5WriteString(out->path, out->file, "steps_lost", out->steps_lost));
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
   *ok = true;
@@ -488,14 +540,14 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(ClaimResultsFile(P->comm, out->path));
   if (restart_step >= 0) {
     bool ok = false;
-    PetscCall(ReopenForRestart(out, restart_step, &ok));
+    PetscCall(ReopenForRestart(out, restart_step, o.allow_lost_steps, &ok));
     if (ok) {
       PetscCall(WriteXdmfEverywhere(out));
       *result = g_open_output = out;
       PetscFunctionReturn(0);
     }
-    PetscCall(PetscPrintf(P->comm, "  output: %s missing or unreadable; the restarted run starts it anew\n",
-                          out->path.c_str()));
+    PetscCall(PetscPrintf(P->comm, "  output: %s missing or unreadable; the restarted run starts it anew, without "
+                          "the steps up to the checkpoint (-output_allow_lost_steps)\n", out->path.c_str()));
   }
   if (P->rank == 0) {
     std::error_code ec;
@@ -512,6 +564,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
              "cannot create the results file %s (check -output_file and that its directory is "
              "writable)",
              out->path.c_str());
+  g_open_output = out;  // an error from here on marks the file failed (and closes it)
   PetscCall(H5WriteString(out->path, out->file, "format", "etfe-results-1"));
   PetscCall(H5WriteString(out->path, out->file, "scene", P->scene.name));
   PetscCall(H5WriteString(out->path, out->file, "run_id", out->run_id));
@@ -527,6 +580,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(WriteStatus(out->path, out->file, "running"));
   PetscCall(WriteWriterIdentity(out));
   PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
+  if (!out->steps_lost.empty()) PetscCall(H5WriteString(out->path, out->file, "steps_lost", out->steps_lost));
   for (const auto &[name, values] : P->scene.result_attributes)
     if (!values.empty()) PetscCall(H5WriteArrayAttribute(out->path, out->file, name.c_str(), values));
   long long zero = 0;
@@ -664,6 +718,14 @@ PetscErrorCode OutputAbandon(const std::string &why) {
 
 bool OutputIsOpen() { return g_open_output != nullptr; }
 
+bool OutputLibraryClose() {
+  if (H5AnyCloseFailed()) return false;
+  // H5close closes every identifier still open (a file an error left half made).
+  H5E_BEGIN_TRY { H5close(); }
+  H5E_END_TRY;
+  return true;
+}
+
 std::string OutputNoteFailure(const std::string &why) {
   if (!g_open_output) return "";
   RemoveOpenMpiLocks(g_open_output->path);  // the job is about to be aborted: nobody closes the file
@@ -691,9 +753,14 @@ PetscErrorCode OutputClose(OutputFile **pout, const std::string &status) {
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
   if (out == g_open_output) g_open_output = nullptr;
+  // A history continued over lost results (-output_allow_lost_steps) ran to its end, but the file
+  // does not hold it all.
+  const std::string said = status == "complete" && !out->steps_lost.empty()
+                               ? "incomplete: the load history ran to its end, but this file lacks " + out->steps_lost
+                               : status;
   // Closed and freed whatever the status write gives: the caller may be on its error path.
-  const PetscErrorCode ierr = WriteStatus(out->path, out->file, status);
-  const herr_t closed = H5Fclose(out->file);
+  const PetscErrorCode ierr = WriteStatus(out->path, out->file, said);
+  const herr_t closed = H5FcloseWritten(out->file);
   const std::string path = out->path;
   delete out;
   *pout = nullptr;
