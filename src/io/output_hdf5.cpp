@@ -519,6 +519,9 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool all
   if (!out->steps_lost.empty()) PetscCall(H5WriteString(out->path, out->file, "steps_lost", out->steps_lost));
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
+  // On disk now, as a new file's start is: a kill before the next step's flush must not leave the
+  // steps kept so far behind metadata half written.
+  H5Fflush(out->file, H5F_SCOPE_GLOBAL);
   *ok = true;
   PetscFunctionReturn(0);
 }
@@ -720,10 +723,17 @@ bool OutputIsOpen() { return g_open_output != nullptr; }
 
 bool OutputLibraryClose() {
   if (H5AnyCloseFailed()) return false;
-  // H5close closes every identifier still open (a file an error left half made).
-  H5E_BEGIN_TRY { H5close(); }
+  H5E_BEGIN_TRY {
+    // Files an error left open (a checkpoint half written on a full disk) are closed one by one
+    // first: a close that fails inside H5close crashes this HDF5 as a second close does.
+    const ssize_t n = H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE);
+    std::vector<hid_t> files(n > 0 ? (size_t)n : 0);
+    if (n > 0) H5Fget_obj_ids(H5F_OBJ_ALL, H5F_OBJ_FILE, (size_t)n, files.data());
+    for (hid_t f : files) H5FcloseWritten(f);
+    if (!H5AnyCloseFailed()) H5close();
+  }
   H5E_END_TRY;
-  return true;
+  return !H5AnyCloseFailed();
 }
 
 std::string OutputNoteFailure(const std::string &why) {
