@@ -48,8 +48,11 @@ PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const 
 // is touched, so a refused restart changes nothing. Rank 0 first reads the whole file against its
 // checksum; then scene, mesh, shape, resolved physics and every option other than those that may
 // change on a restart (solver, output, monitors: checkpoint_compare.cpp) must agree, and a
-// refusal lists each differing option with both values. Returns the increment and run id.
-PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id);
+// refusal lists each differing option with both values. Returns the increment and run id and,
+// when results_file is given, the results file of the run that wrote it (its -output_file, or the
+// default results/<scene>/<scene>.h5; as that run gave it, relative to its working directory).
+PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id,
+                                  std::string *results_file = nullptr);
 // Takes the fingerprints a checkpoint compares the scene by from rank 0's global description
 // (the mesh: coordinates, triangles, node and element sets; the physics: schedules, constraints,
 // loads, supports, element data, with the problem's thickness and area ratio) and stores them

@@ -23,6 +23,10 @@ struct OutputOptions {
   // of its steps) continues into a file without those steps (its status then says so) instead of
   // being refused.
   PetscBool allow_lost_steps = PETSC_FALSE;
+  // Set by a restart: the results file of the run that wrote the checkpoint ("" if unknown). A
+  // restart into another file starts it (it lacks the steps up to the checkpoint, and its status
+  // says so); a restart into that one refuses it missing or unreadable, as above.
+  std::string checkpoint_results;
 };
 
 PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, OutputOptions *o);

@@ -134,8 +134,9 @@ PetscErrorCode OpenResults(const Case &c, const OutputOptions &oo, const Checkpo
   // is tried now, not after a stage's work (the results file's is, by its creation below).
   if (!c.formfind && (oo.enabled || cko.every > 0 || cko.every_s > 0))
     PetscCall(CheckpointCheckWritable(c.P->comm, cko));
-  if (cko.restart[0]) PetscCall(CheckpointValidate(c.P, cko.restart, &restart_step, &run_id));
-  if (oo.enabled) PetscCall(OutputOpen(c.P, oo, out, restart_step, run_id));
+  OutputOptions o = oo;
+  if (cko.restart[0]) PetscCall(CheckpointValidate(c.P, cko.restart, &restart_step, &run_id, &o.checkpoint_results));
+  if (oo.enabled) PetscCall(OutputOpen(c.P, o, out, restart_step, run_id));
   if (*out) c.P->observer.results_stem = OutputStem(*out);
   PetscFunctionReturn(0);
 }

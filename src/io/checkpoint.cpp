@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <vector>
 
 #include "checkpoint_compare.h"
@@ -473,16 +474,25 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
 
 } // namespace
 
-PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step, std::string *run_id) {
+PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step, std::string *run_id,
+                                  std::string *results_file) {
   hid_t f = -1;
   long long s = -1;
+  std::string options;
   PetscFunctionBeginUser;
   PetscCall(OpenChecked(P, path, &f));
   PetscErrorCode ierr = H5ReadString(path, f, "run_id", run_id);
   if (!ierr) ierr = H5ReadAttribute(path, f, "step", H5T_NATIVE_LLONG, &s);
+  if (!ierr && results_file) ierr = H5ReadString(path, f, "options", &options);
   H5Fclose(f);
   PetscCall(ierr);
   *step = (PetscInt)s;
+  if (results_file) {  // the options are one "-name value" per line (OptionsAsLines)
+    *results_file = "results/" + P->scene.name + "/" + P->scene.name + ".h5";
+    std::istringstream in(options);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("-output_file ", 0) == 0) *results_file = line.substr(13);
+  }
   PetscFunctionReturn(0);
 }
 

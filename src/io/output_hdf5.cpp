@@ -397,16 +397,35 @@ PetscErrorCode LostSteps(OutputFile *out, PetscInt restart_step, bool allow, con
   PetscFunctionReturn(0);
 }
 
+// Whether path is the results file the checkpoint's run wrote (or that is unknown): then its
+// absence means the steps up to the checkpoint were lost, not that a new file was asked for.
+bool SameResultsFile(const std::string &path, const std::string &checkpoint_results) {
+  if (checkpoint_results.empty()) return true;
+  std::error_code ec;
+  const auto a = std::filesystem::weakly_canonical(path, ec);
+  const auto b = ec ? std::filesystem::path() : std::filesystem::weakly_canonical(checkpoint_results, ec);
+  return ec || a == b;
+}
+
 // Reopens a results file to continue it after a restart. Returns false when the file is missing
-// (refused unless allow_lost); an unreadable one (cut short by a kill) is refused untouched or,
+// (refused unless allow_lost, or when it is a new file: not the checkpoint's run's); an unreadable one (cut short by a kill) is refused untouched or,
 // with allow_lost, moved aside, never overwritten; a file of another scene or another load
 // history (run_id) is refused untouched.
-PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool allow_lost, bool *ok) {
+PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool allow_lost,
+                                const std::string &checkpoint_results, bool *ok) {
   Problem *P = out->problem;
   PetscFunctionBeginUser;
-  int exists = P->rank == 0 && std::filesystem::exists(out->path) ? 1 : 0;
+  int exists = P->rank == 0 && std::filesystem::exists(out->path) ? 1 : 0, same = 1;
+  if (P->rank == 0) same = SameResultsFile(out->path, checkpoint_results) ? 1 : 0;
   PetscCallMPI(MPI_Bcast(&exists, 1, MPI_INT, 0, P->comm));
+  PetscCallMPI(MPI_Bcast(&same, 1, MPI_INT, 0, P->comm));
   *ok = false;
+  if (!exists && !same) {  // a new file asked for: it starts at the checkpoint, and says so
+    out->steps_lost = "the steps up to increment " + std::to_string((long long)restart_step) +
+                      " (a restart from a checkpoint into a new results file; the run that wrote the checkpoint "
+                      "wrote them to " + checkpoint_results + ")";
+    PetscFunctionReturn(0);
+  }
   if (!exists) {
     PetscCall(LostSteps(out, restart_step, allow_lost, "is missing", "was missing"));
     PetscFunctionReturn(0);
@@ -543,14 +562,14 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(ClaimResultsFile(P->comm, out->path));
   if (restart_step >= 0) {
     bool ok = false;
-    PetscCall(ReopenForRestart(out, restart_step, o.allow_lost_steps, &ok));
+    PetscCall(ReopenForRestart(out, restart_step, o.allow_lost_steps, o.checkpoint_results, &ok));
     if (ok) {
       PetscCall(WriteXdmfEverywhere(out));
       *result = g_open_output = out;
       PetscFunctionReturn(0);
     }
-    PetscCall(PetscPrintf(P->comm, "  output: %s missing or unreadable; the restarted run starts it anew, without "
-                          "the steps up to the checkpoint (-output_allow_lost_steps)\n", out->path.c_str()));
+    PetscCall(PetscPrintf(P->comm, "  output: %s starts anew at the checkpoint, without the steps before it (its "
+                          "status will say so)\n", out->path.c_str()));
   }
   if (P->rank == 0) {
     std::error_code ec;

@@ -5,7 +5,7 @@ memory, disk full), 4 internal; an error never exits 75 or 10 (PETSc's own error
 exit status: PETSC_ERR_ARG_INCOMP is 75). Also: a results file that cannot be written (/dev/full)
 ends with its message and status 3, not a crash in MPI_Finalize; a restart whose results file is
 missing or cut short is refused unless -output_allow_lost_steps, and then the status never says
-complete; an unwritable checkpoint directory is refused at set-up, before any increment; the
+complete (nor for a restart into a new results file); an unwritable checkpoint directory is refused at set-up, before any increment; the
 memory check costs a factorization wherever the configured solver has one (GMRES + LU, PC
 redundant on every rank)."""
 import os
@@ -89,6 +89,12 @@ with T.scratch_dir("exitcodes") as tmp:
                                                                              "-output_allow_lost_steps"])
     chk.check(open(out, "rb").read() == before and sorted(os.listdir(d)) == sorted(
         n for n in os.listdir(d) if not n.endswith(".unreadable")), "refused: the cut-short file unchanged, not moved")
+    other = os.path.join(d, "other.h5")
+    rc, log = T.run(etfe, base[:-4] + ["-output_file", other, "-load_monitor", "0", "-restart", ck])
+    rc, st = status_exit(other)
+    chk.check(rc == 1 and st.startswith("incomplete:") and "new results file" in st and out in st,
+              "a restart into a new -output_file runs; its status %r names the file with the earlier steps, "
+              "-results_status exits %d (want 1)" % (st[:100], rc))
     os.remove(out)
     T.run(etfe, base + ["-restart", ck, "-output_allow_lost_steps"])
     rc, st = status_exit(out)
