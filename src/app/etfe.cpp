@@ -130,9 +130,10 @@ PetscErrorCode OpenResults(const Case &c, const OutputOptions &oo, const Checkpo
   std::string run_id;
   PetscFunctionBeginUser;
   *out = nullptr;
-  // Checkpoints are written with results (stage ends, signals) or when asked for: their directory
-  // is tried now, not after a stage's work (the results file's is, by its creation below).
-  if (!c.formfind && (oo.enabled || cko.every > 0 || cko.every_s > 0))
+  // Checkpoints are written with results (stage ends, signals) or when asked for (also by
+  // -load_stop_after): their directory is tried now, not after a stage's work (the results
+  // file's is, by its creation below).
+  if (!c.formfind && (oo.enabled || cko.every > 0 || cko.every_s > 0 || c.lso.stop_after >= 0))
     PetscCall(CheckpointCheckWritable(c.P->comm, cko));
   OutputOptions o = oo;
   if (cko.restart[0]) PetscCall(CheckpointValidate(c.P, cko.restart, &restart_step, &run_id, &o.checkpoint_results));

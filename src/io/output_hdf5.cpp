@@ -407,10 +407,11 @@ bool SameResultsFile(const std::string &path, const std::string &checkpoint_resu
   return ec || a == b;
 }
 
-// Reopens a results file to continue it after a restart. Returns false when the file is missing
-// (refused unless allow_lost, or when it is a new file: not the checkpoint's run's); an unreadable one (cut short by a kill) is refused untouched or,
-// with allow_lost, moved aside, never overwritten; a file of another scene or another load
-// history (run_id) is refused untouched.
+// Reopens a results file to continue it after a restart. Returns false when the file is missing:
+// a new file asked for (not the checkpoint's run's) or, with allow_lost, the lost one (refused
+// otherwise). An unreadable one (cut short by a kill) is refused untouched or, with allow_lost,
+// moved aside, never overwritten; a file of another scene or another load history (run_id) is
+// refused untouched.
 PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool allow_lost,
                                 const std::string &checkpoint_results, bool *ok) {
   Problem *P = out->problem;
