@@ -341,9 +341,9 @@ herr_t CopyAttribute(hid_t from, const char *name, const H5A_info_t *, void *to)
 // left half-written), copied to a new file that then replaces it. HDF5 cannot always delete such
 // groups in place (their headers may be incomplete), and a leftover name would stop the restarted
 // run when it writes that step again. Returns the steps kept that could not be copied (they stay
-// in the file kept under another name; without allow_lost nothing is changed then); -1 when
-// nothing could be rebuilt.
-int RebuildWithout(const std::string &path, const std::vector<std::string> &keep, bool allow_lost,
+// in the file kept under another name; without allow_lost nothing is changed then), counting
+// lost_before steps the caller could not even find; -1 when nothing could be rebuilt.
+int RebuildWithout(const std::string &path, const std::vector<std::string> &keep, bool allow_lost, int lost_before,
                    std::string *kept_aside) {
   const std::string tmp = path + ".restart.tmp";
   int lost = -1;
@@ -354,7 +354,7 @@ int RebuildWithout(const std::string &path, const std::vector<std::string> &keep
                 H5Ocopy(src, "mesh", dst, "mesh", H5P_DEFAULT, H5P_DEFAULT) >= 0;
     hid_t steps = good ? H5Gcreate2(dst, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
     if (steps >= 0) {
-      lost = 0;
+      lost = lost_before;
       for (const std::string &name : keep)
         if (H5Ocopy(src, ("steps/" + name).c_str(), steps, name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0) ++lost;
       H5Gclose(steps);
@@ -387,8 +387,8 @@ PetscErrorCode LostSteps(OutputFile *out, PetscInt restart_step, bool allow, con
                          const std::string &was) {
   PetscFunctionBeginUser;
   PetscCheck(allow, out->problem->comm, PETSC_ERR_FILE_OPEN,
-             "-restart: the results file %s %s: the continued run would hold only the steps after increment "
-             "%" PetscInt_FMT " and claim a complete history, so nothing was changed. Put back the results file of "
+             "-restart: the results file %s %s: the continued run would lack steps up to increment "
+             "%" PetscInt_FMT " yet claim a complete history, so nothing was changed. Put back the results file of "
              "the run that wrote the checkpoint, run again from the start (without -restart), or continue without "
              "those steps with -output_allow_lost_steps (the status then says they are missing)",
              out->path.c_str(), what.c_str(), restart_step);
@@ -434,6 +434,8 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool all
   // Probe serially first: a file cut short by a kill may not open.
   int state = 0;  // 0 unreadable, 1 this run's, 2 another scene, 3 another run
   int unread = 0;  // earlier steps that could not be copied (the file then left as it was)
+  int not_found = 0;  // earlier steps whose names could not be looked up (salvaged)
+  bool salvaged = false;  // the steps were found by name: the file must be rebuilt
   char other[256] = "", note[512] = "", lost_before[512] = "";
   std::vector<std::string> keep;
   size_t drop = 0;
@@ -451,7 +453,24 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool all
           std::snprintf(other, sizeof other, "%s", state == 2 ? scene.c_str() : id.empty() ? "(none)" : id.c_str());
           std::vector<StepInfo> steps;
           hid_t g = H5Gopen2(f, "steps", H5P_DEFAULT);
-          if (g < 0 || H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectStep, &steps) < 0) state = 0;
+          if (g >= 0 && H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectStep, &steps) < 0) {
+            // The group's index is damaged (a kill while a step was being added, "bad heap free
+            // list"): the steps up to the checkpoint are looked up by their names instead, and
+            // the file is rebuilt from those found; a name whose lookup fails is a lost step.
+            steps.clear();
+            salvaged = true;
+            for (long long k = 0; k <= (long long)restart_step; ++k) {
+              char name[32];
+              std::snprintf(name, sizeof name, "%06lld", k);
+              const htri_t e = H5Lexists(g, name, H5P_DEFAULT);
+              if (e > 0) CollectStep(g, name, nullptr, &steps);
+              if (e < 0 || (e > 0 && steps.back().step < 0)) {
+                if (e > 0) steps.pop_back();
+                ++not_found;
+              }
+            }
+          }
+          if (g < 0) state = 0;
           if (g >= 0) H5Gclose(g);
           for (const StepInfo &st : steps) {
             if (st.step >= 0 && st.step <= restart_step) keep.push_back(st.group);
@@ -462,18 +481,22 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool all
       }
     }
     H5E_END_TRY;
-    if (state == 1 && drop > 0) {
-      // Steps written after the checkpoint: a new file without them replaces this one.
+    if (state == 1 && (drop > 0 || salvaged)) {
+      // Steps written after the checkpoint (or a damaged index): a new file without them
+      // replaces this one.
       std::string aside;
-      const int lost = RebuildWithout(out->path, keep, allow_lost, &aside);
+      const int lost = RebuildWithout(out->path, keep, allow_lost, not_found, &aside);
       if (lost < 0) state = 0;
+      else if (lost == 0 && salvaged)
+        std::snprintf(note, sizeof note, "its list of steps was damaged (a kill while a step was written?); the %zu "
+                      "steps up to the checkpoint were found by name and copied into a new file", keep.size());
       else if (lost == 0)
         std::snprintf(note, sizeof note, "%zu step(s) written after the checkpoint dropped", drop);
       else if (!allow_lost)
         unread = lost;
       else
         std::snprintf(note, sizeof note, "%d of the %zu earlier steps could not be read; the old file is kept as %s",
-                      lost, keep.size(), aside.c_str());
+                      lost, keep.size() + (size_t)not_found, aside.c_str());
     }
   }
   PetscCallMPI(MPI_Bcast(&unread, 1, MPI_INT, 0, P->comm));

@@ -9,6 +9,7 @@ complete (nor for a restart into a new results file); an unwritable checkpoint d
 memory check costs a factorization wherever the configured solver has one (GMRES + LU, PC
 redundant on every rank)."""
 import os
+import struct
 import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ in the repository
@@ -22,6 +23,21 @@ def status_exit(path):
     rc, out = T.run(etfe, ["-results_status", path], expect_fail=None)
     line = next((l for l in out.splitlines() if l.startswith(path + ": ")), "")
     return rc, line[len(path) + 2:]
+
+
+def damaged_steps_heap(data):
+    """The results file's bytes with the local heap of the steps group (the one holding the names
+    000001 and 000002) given a free-list offset past its data segment."""
+    b = bytearray(data)
+    i = b.find(b"HEAP")
+    while i >= 0:
+        size, _, addr = struct.unpack_from("<QQQ", b, i + 8)
+        seg = bytes(b[addr:addr + size])
+        if b"000001\0" in seg and b"000002\0" in seg:
+            struct.pack_into("<Q", b, i + 16, size + 64)
+            return bytes(b)
+        i = b.find(b"HEAP", i + 4)
+    raise T.TestFailure("no local heap with the step names in the results file")
 
 
 def expect(what, args, want, words=(), np=1):
@@ -89,6 +105,15 @@ with T.scratch_dir("exitcodes") as tmp:
                                                                              "-output_allow_lost_steps"])
     chk.check(open(out, "rb").read() == before and sorted(os.listdir(d)) == sorted(
         n for n in os.listdir(d) if not n.endswith(".unreadable")), "refused: the cut-short file unchanged, not moved")
+    # A kill while a step is added can leave the steps group's index unreadable ("bad heap free
+    # list", seen in the fault campaign): here its local heap's free-list offset is pointed past
+    # the heap. Refused too, the file unchanged.
+    with open(out, "wb") as f:
+        f.write(damaged_steps_heap(whole))
+    before = open(out, "rb").read()
+    expect("restart with the results' list of steps damaged", base + ["-restart", ck], 2,
+           [out, "cannot be read", "-output_allow_lost_steps"])
+    chk.check(open(out, "rb").read() == before, "refused: the damaged file unchanged")
     other = os.path.join(d, "other.h5")
     rc, log = T.run(etfe, base[:-4] + ["-output_file", other, "-load_monitor", "0", "-restart", ck])
     rc, st = status_exit(other)
