@@ -37,6 +37,10 @@ struct CheckpointOptions {
 
 // results_stem: the results file without its extension; the default checkpoint goes beside it.
 PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const std::string &results_stem, CheckpointOptions *o);
+// At set-up, before any work: rank 0 makes the checkpoint's directory and writes a test file in
+// it, so that an unwritable directory is refused now (naming -checkpoint_file) rather than at the
+// first checkpoint, after a stage's work. Collective.
+PetscErrorCode CheckpointCheckWritable(MPI_Comm comm, const CheckpointOptions &o);
 // run_id: the load history's identity (OutputRunId), checked against the results file on restart.
 PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const StepperState &state,
                                Vec U_committed, Vec U_previous, const std::string &run_id);
@@ -44,8 +48,11 @@ PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const 
 // is touched, so a refused restart changes nothing. Rank 0 first reads the whole file against its
 // checksum; then scene, mesh, shape, resolved physics and every option other than those that may
 // change on a restart (solver, output, monitors: checkpoint_compare.cpp) must agree, and a
-// refusal lists each differing option with both values. Returns the increment and run id.
-PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id);
+// refusal lists each differing option with both values. Returns the increment and run id and,
+// when results_file is given, the results file of the run that wrote it (its -output_file, or the
+// default results/<scene>/<scene>.h5; as that run gave it, relative to its working directory).
+PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id,
+                                  std::string *results_file = nullptr);
 // Takes the fingerprints a checkpoint compares the scene by from rank 0's global description
 // (the mesh: coordinates, triangles, node and element sets; the physics: schedules, constraints,
 // loads, supports, element data, with the problem's thickness and area ratio) and stores them

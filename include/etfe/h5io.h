@@ -73,4 +73,11 @@ PetscErrorCode H5WriteString(const std::string &file, hid_t obj, const char *nam
 PetscErrorCode H5ReadAttribute(const std::string &file, hid_t obj, const char *name, hid_t type, void *value);
 PetscErrorCode H5ReadString(const std::string &file, hid_t obj, const char *name, std::string *value);
 
+// H5Fclose of a file that was written, noting a failure: after a failed close (a full disk) this
+// HDF5 (1.10) keeps an identifier whose file it has freed, and closing the library (H5close,
+// MPI_Finalize's callback) then crashes on it.
+herr_t H5FcloseWritten(hid_t file);
+// Whether such a close failed in this process (the library must then not be closed).
+bool H5AnyCloseFailed();
+
 } // namespace etfe

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
@@ -60,6 +61,19 @@ void PrintOptionOfBadValue(const char *fun, const char *mess) {
                         names.c_str());
 }
 
+// HDF5's and MPI-IO's messages do not say that the disk is full; the system's error number does.
+bool SystemCause(PetscErrorCode n, int e) {
+  const bool io_code = n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_FILE_READ || n == PETSC_ERR_FILE_WRITE ||
+                       n == PETSC_ERR_FILE_UNEXPECTED || n == PETSC_ERR_LIB || n == PETSC_ERR_PLIB ||
+                       n == PETSC_ERR_SYS;
+  return io_code && (e == ENOSPC || e == EDQUOT || e == EFBIG || e == EIO);
+}
+
+void PrintSystemCause(PetscErrorCode n) {
+  const int e = g_errors.first.sys_errno;
+  if (SystemCause(n, e)) (*PetscErrorPrintf)("  (the system: %s)\n", std::strerror(e));
+}
+
 // A message that names a file an options file requires, and the file is missing: the case
 // starts from a surface another case makes.
 void PrintRequirementHint(const char *mess) {
@@ -91,6 +105,7 @@ PetscErrorCode ConciseErrorHandler(MPI_Comm, int, const char *fun, const char *,
   if (p != PETSC_ERROR_INITIAL) return n;
   RecordError(mess);
   (*PetscErrorPrintf)("%s\n", mess ? mess : "(no message)");
+  PrintSystemCause(n);
   PrintOptionOfBadValue(fun, mess);
   PrintRequirementHint(mess);
   (*PetscErrorPrintf)(
@@ -134,7 +149,48 @@ bool AllRanksFailed(MPI_Comm agree) {
   return done;
 }
 
+int ExitStatusOf(PetscErrorCode ierr, int sys_errno) {
+  // A full disk or a failed device behind an error about a file or a library call (HDF5's
+  // failures come as any of these); errno is not looked at for the other codes, where it may be
+  // left over from an earlier call that did not matter.
+  if (SystemCause(ierr, sys_errno)) return kExitSystem;
+  switch (ierr) {
+  case PETSC_ERR_NOT_CONVERGED:  // the run's own "did not complete" (CheckCompleted) and diverged solves
+  case PETSC_ERR_CONV_FAILED:
+  case PETSC_ERR_MAT_LU_ZRPVT:
+  case PETSC_ERR_MAT_CH_ZRPVT:
+  case PETSC_ERR_LIB:  // a library the run called failed: MUMPS's factorization
+    return kExitRunFailed;
+  case PETSC_ERR_ARG_SIZ:
+  case PETSC_ERR_ARG_IDN:
+  case PETSC_ERR_ARG_WRONG:
+  case PETSC_ERR_ARG_OUTOFRANGE:
+  case PETSC_ERR_ARG_INCOMP:
+  case PETSC_ERR_ARG_NULL:
+  case PETSC_ERR_ARG_UNKNOWN_TYPE:  // -pc_type nonesuch
+  case PETSC_ERR_SUP:               // a combination this code does not offer
+  case PETSC_ERR_FILE_OPEN:         // a mesh, options or checkpoint file missing
+  case PETSC_ERR_FILE_READ:
+  case PETSC_ERR_FILE_UNEXPECTED:  // a corrupt checkpoint, another run's results
+  case PETSC_ERR_MISSING_FACTOR:   // a solver package this PETSc lacks
+  case PETSC_ERR_OPT_OVERWRITE:
+  case PETSC_ERR_WRONG_MPI_SIZE:
+  case PETSC_ERR_USER_INPUT:
+    return kExitInputRefused;
+  case PETSC_ERR_MEM:  // also the memory check's refusal: the run would not fit the node
+  case PETSC_ERR_FILE_WRITE:
+  case PETSC_ERR_SYS:
+  case PETSC_ERR_SUP_SYS:
+  case PETSC_ERR_MPI:
+  case PETSC_ERR_MPI_LIB_INCOMP:
+    return kExitSystem;
+  default:
+    return kExitInternal;
+  }
+}
+
 int ErrorExit(MPI_Comm agree, PetscErrorCode ierr) {
+  const int status = ExitStatusOf(ierr, g_errors.first.sys_errno);
   PetscMPIInt size = 1;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   // A reader must tell a dead run from a live one. Only when all ranks are here: a collective
@@ -164,9 +220,17 @@ int ErrorExit(MPI_Comm agree, PetscErrorCode ierr) {
                         note.empty() ? "the failure of another rank is recorded"
                                      : ("the failure is recorded in " + note).c_str());
   }
-  if (size > 1) MPI_Abort(PETSC_COMM_WORLD, (int)ierr);
+  // Several ranks end in MPI_Abort (no MPI_Finalize, nothing of HDF5's runs); a rank that failed
+  // alone could not close a file collectively anyway. One rank closes HDF5 before MPI_Finalize,
+  // or, when HDF5 cannot be closed (a file's close failed on a full disk), ends here: MPI_Finalize
+  // would run HDF5's closing callback and die of a segmentation fault, after the message.
+  if (size == 1 && !OutputLibraryClose()) {
+    std::fflush(nullptr);
+    _exit(status);
+  }
+  if (size > 1) MPI_Abort(PETSC_COMM_WORLD, status);
   PetscFinalize();
-  return (int)ierr;
+  return status;
 }
 
 } // namespace etfe

@@ -130,8 +130,14 @@ PetscErrorCode OpenResults(const Case &c, const OutputOptions &oo, const Checkpo
   std::string run_id;
   PetscFunctionBeginUser;
   *out = nullptr;
-  if (cko.restart[0]) PetscCall(CheckpointValidate(c.P, cko.restart, &restart_step, &run_id));
-  if (oo.enabled) PetscCall(OutputOpen(c.P, oo, out, restart_step, run_id));
+  // Checkpoints are written with results (stage ends, signals) or when asked for (also by
+  // -load_stop_after): their directory is tried now, not after a stage's work (the results
+  // file's is, by its creation below).
+  if (!c.formfind && (oo.enabled || cko.every > 0 || cko.every_s > 0 || c.lso.stop_after >= 0))
+    PetscCall(CheckpointCheckWritable(c.P->comm, cko));
+  OutputOptions o = oo;
+  if (cko.restart[0]) PetscCall(CheckpointValidate(c.P, cko.restart, &restart_step, &run_id, &o.checkpoint_results));
+  if (oo.enabled) PetscCall(OutputOpen(c.P, o, out, restart_step, run_id));
   if (*out) c.P->observer.results_stem = OutputStem(*out);
   PetscFunctionReturn(0);
 }
@@ -253,7 +259,8 @@ PetscErrorCode Run(int *exit_status) {
     PetscCall(PetscOptionsString("-results_status",
                                  "Print the status of this results file as a reader should believe it (a \"running\" "
                                  "whose writer is gone says so) and exit: 0 complete, 10 running, 75 interrupted or "
-                                 "stopped, 1 otherwise",
+                                 "stopped, 1 otherwise (failed, incomplete, unreadable); a run's own exit status: 0 "
+                                 "complete, 75 interrupted, 1 did not complete, 2 input refused, 3 system, 4 internal",
                                  "", path, path, sizeof path, &given));
     PetscOptionsEnd();
     if (given) {
@@ -331,7 +338,7 @@ int main(int argc, char **argv) {
   if (!ExpandOptionsFiles(args, &expanded, &error, &requirements)) {
     const char *rank = std::getenv("OMPI_COMM_WORLD_RANK");
     if (!rank || std::string(rank) == "0") std::fprintf(stderr, "etfe: %s\n", error.c_str());
-    return 2;
+    return kExitInputRefused;
   }
   // Before MPI starts (heap_policy.h): huge pages for the large blocks -etfe_heap_release maps.
   if (HeapReleaseWanted(expanded)) HeapRestartWithHugePages(argv);
@@ -341,15 +348,17 @@ int main(int argc, char **argv) {
   new_argv.push_back(nullptr);
   argc = (int)expanded.size() + 1;
   argv = new_argv.data();
-  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
-  PetscCall(ErrorHandlersPush(requirements));
+  // PETSc's error codes are not exit statuses (PETSC_ERR_ARG_INCOMP is 75, "resubmit"): every
+  // error exits with ExitStatusOf's (error_handlers.h).
+  if (const PetscErrorCode e = PetscInitialize(&argc, &argv, nullptr, help)) return ExitStatusOf(e, 0);
+  if (const PetscErrorCode e = ErrorHandlersPush(requirements)) return ErrorExit(PETSC_COMM_WORLD, e);
   MPI_Comm agree; // where the ranks meet on an error exit (error_handlers.h)
-  PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &agree));
+  if (MPI_Comm_dup(PETSC_COMM_WORLD, &agree) != MPI_SUCCESS) return ErrorExit(PETSC_COMM_WORLD, PETSC_ERR_MPI);
   int exit_status = 0;
   const PetscErrorCode ierr = Run(&exit_status);
   if (ierr) return ErrorExit(agree, ierr);
-  PetscCallMPI(MPI_Comm_free(&agree));
-  PetscCall(InterruptHoldUntilExit());
-  PetscCall(PetscFinalize());
+  MPI_Comm_free(&agree);
+  if (const PetscErrorCode e = InterruptHoldUntilExit()) return ExitStatusOf(e, 0);
+  if (const PetscErrorCode e = PetscFinalize()) return ExitStatusOf(e, 0);
   return exit_status;
 }

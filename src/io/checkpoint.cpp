@@ -5,8 +5,11 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <sstream>
 #include <vector>
 
 #include "checkpoint_compare.h"
@@ -243,7 +246,7 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
     PetscCall(H5WriteAttribute(tmp, f, "data_checksum", H5T_NATIVE_ULLONG, &stored));
   }
   // Closing writes what HDF5 still holds; on a full disk that fails on some ranks only.
-  int closed = H5Fclose(f) >= 0, all_closed;
+  int closed = H5FcloseWritten(f) >= 0, all_closed;
   PetscCallMPI(MPI_Allreduce(&closed, &all_closed, 1, MPI_INT, MPI_MIN, P->comm));
   PetscCheck(all_closed, P->comm, PETSC_ERR_FILE_WRITE, "cannot write the checkpoint %s (disk full?)", tmp.c_str());
   PetscFunctionReturn(0);
@@ -278,6 +281,37 @@ PetscErrorCode CheckpointOptionsFromCommandLine(MPI_Comm comm, const std::string
              o->every);
   PetscCheck(o->every_s >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-checkpoint_every_s %g: use seconds >= 0 (0: never)",
              (double)o->every_s);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CheckpointCheckWritable(MPI_Comm comm, const CheckpointOptions &o) {
+  PetscMPIInt rank;
+  int err = 0;
+  std::string dir;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    std::error_code ec;
+    const auto parent = std::filesystem::path(o.file).parent_path();
+    dir = parent.empty() ? "." : parent.string();
+    std::filesystem::create_directories(dir, ec);
+    // A file of its own, beside where the checkpoint's .tmp will go; written, synced, removed.
+    const std::string probe = std::string(o.file) + ".writetest." + std::to_string((long long)getpid());
+    const int fd = open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd < 0) err = errno;
+    else {
+      if (write(fd, "x", 1) != 1 || fsync(fd) != 0) err = errno ? errno : EIO;
+      close(fd);
+      unlink(probe.c_str());
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  errno = err;  // the error exit reads it (a full disk is the system's failure, not the input's)
+  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN,
+             "-checkpoint_file %s: cannot write in its directory %s (%s); a checkpoint would fail only after the "
+             "work before it. Give -checkpoint_file in a writable directory (or an -output_file there: the "
+             "checkpoint goes beside it)",
+             o.file, rank == 0 ? dir.c_str() : "(its directory)", std::strerror(err));
   PetscFunctionReturn(0);
 }
 
@@ -440,16 +474,25 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
 
 } // namespace
 
-PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step, std::string *run_id) {
+PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step, std::string *run_id,
+                                  std::string *results_file) {
   hid_t f = -1;
   long long s = -1;
+  std::string options;
   PetscFunctionBeginUser;
   PetscCall(OpenChecked(P, path, &f));
   PetscErrorCode ierr = H5ReadString(path, f, "run_id", run_id);
   if (!ierr) ierr = H5ReadAttribute(path, f, "step", H5T_NATIVE_LLONG, &s);
+  if (!ierr && results_file) ierr = H5ReadString(path, f, "options", &options);
   H5Fclose(f);
   PetscCall(ierr);
   *step = (PetscInt)s;
+  if (results_file) {  // the options are one "-name value" per line (OptionsAsLines)
+    *results_file = "results/" + P->scene.name + "/" + P->scene.name + ".h5";
+    std::istringstream in(options);
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind("-output_file ", 0) == 0) *results_file = line.substr(13);
+  }
   PetscFunctionReturn(0);
 }
 

@@ -1,6 +1,7 @@
 // Parallel HDF5 helpers (see h5io.h).
 #include "etfe/h5io.h"
 
+#include <cerrno>
 #include <cstring>
 #include <vector>
 
@@ -149,7 +150,8 @@ PetscErrorCode SelectRows(const std::string &file, hid_t fspace, hid_t mspace, h
 
 // A collective write can fail on some ranks only (a full disk): every rank of the file learns it,
 // so that all stop together (and can mark the results failed) instead of waiting for each other.
-PetscErrorCode AgreeOnWrite(const std::string &file, hid_t obj, const char *name, bool written) {
+// write_errno: errno right after the write (a full disk says so only there).
+PetscErrorCode AgreeOnWrite(const std::string &file, hid_t obj, const char *name, bool written, int write_errno) {
   int ok = written, all = ok;
   PetscFunctionBeginUser;
   hid_t fid = H5Iget_file_id(obj), fapl = fid >= 0 ? H5Fget_access_plist(fid) : -1;
@@ -164,6 +166,7 @@ PetscErrorCode AgreeOnWrite(const std::string &file, hid_t obj, const char *name
   }
   if (fapl >= 0) H5Pclose(fapl);
   if (fid >= 0) H5Fclose(fid);
+  if (!ok) errno = write_errno;  // for the error exit's message and status
   PetscCheck(all, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: writing %s failed in %s%s", name, file.c_str(),
              ok ? " (on another rank)" : "");
   PetscFunctionReturn(0);
@@ -183,12 +186,14 @@ PetscErrorCode H5WriteRows(const std::string &file, hid_t group, const char *nam
   PetscCall(SelectRows(file, fspace, mspace, row0, nrows, cols));
   hid_t dxpl = H5Pcreate(H5P_DATASET_XFER);
   H5Pset_dxpl_mpio(dxpl, H5FD_MPIO_COLLECTIVE);
+  errno = 0;
   const herr_t written = H5Dwrite(dset, type, mspace, fspace, dxpl, data);
+  const int write_errno = errno;
   H5Pclose(dxpl);
   H5Sclose(mspace);
   H5Sclose(fspace);
   H5Dclose(dset);
-  PetscCall(AgreeOnWrite(file, group, name, written >= 0));
+  PetscCall(AgreeOnWrite(file, group, name, written >= 0, write_errno));
   PetscFunctionReturn(0);
 }
 
@@ -358,5 +363,17 @@ PetscErrorCode H5ReadNatural(const std::string &file, NaturalOrder &order, hid_t
   PetscCall(order.FromNatural(layout, ncomp, rows.data(), owned));
   PetscFunctionReturn(0);
 }
+
+namespace {
+bool g_close_failed = false;
+} // namespace
+
+herr_t H5FcloseWritten(hid_t file) {
+  const herr_t r = H5Fclose(file);
+  if (r < 0) g_close_failed = true;
+  return r;
+}
+
+bool H5AnyCloseFailed() { return g_close_failed; }
 
 } // namespace etfe

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <random>
 #include <sstream>
@@ -37,6 +38,7 @@ struct OutputFile {
   std::unique_ptr<NaturalOrder> order;
   PetscInt every = 1;
   std::string run_id;  // the same in the results file and the checkpoints of one load history
+  std::string steps_lost;  // what a restart could not keep (-output_allow_lost_steps); "" if nothing
 };
 
 // The file an error exit must mark as failed (see OutputAbandon).
@@ -136,6 +138,11 @@ PetscErrorCode OutputOptionsFromCommandLine(MPI_Comm comm, const char *scene, Ou
                             o->every, &o->every, nullptr));
   PetscCall(PetscOptionsBool("-output", "Write results at all", "", o->enabled, &o->enabled,
                              nullptr));
+  PetscCall(PetscOptionsBool("-output_allow_lost_steps",
+                             "-restart: continue although the results file is missing or unreadable (the steps up "
+                             "to the checkpoint are then missing, and its status says so instead of complete); "
+                             "without it such a restart is refused",
+                             "", o->allow_lost_steps, &o->allow_lost_steps, nullptr));
   PetscOptionsEnd();
   PetscCheck(o->every >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-output_every %" PetscInt_FMT ": must be at least 1", o->every);
@@ -334,8 +341,10 @@ herr_t CopyAttribute(hid_t from, const char *name, const H5A_info_t *, void *to)
 // left half-written), copied to a new file that then replaces it. HDF5 cannot always delete such
 // groups in place (their headers may be incomplete), and a leftover name would stop the restarted
 // run when it writes that step again. Returns the steps kept that could not be copied (they stay
-// in the file kept under another name); -1 when nothing could be rebuilt.
-int RebuildWithout(const std::string &path, const std::vector<std::string> &keep, std::string *kept_aside) {
+// in the file kept under another name; without allow_lost nothing is changed then), counting
+// lost_before steps the caller could not even find; -1 when nothing could be rebuilt.
+int RebuildWithout(const std::string &path, const std::vector<std::string> &keep, bool allow_lost, int lost_before,
+                   std::string *kept_aside) {
   const std::string tmp = path + ".restart.tmp";
   int lost = -1;
   H5E_BEGIN_TRY {
@@ -345,12 +354,12 @@ int RebuildWithout(const std::string &path, const std::vector<std::string> &keep
                 H5Ocopy(src, "mesh", dst, "mesh", H5P_DEFAULT, H5P_DEFAULT) >= 0;
     hid_t steps = good ? H5Gcreate2(dst, "steps", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT) : -1;
     if (steps >= 0) {
-      lost = 0;
+      lost = lost_before;
       for (const std::string &name : keep)
         if (H5Ocopy(src, ("steps/" + name).c_str(), steps, name.c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0) ++lost;
       H5Gclose(steps);
     }
-    if (dst >= 0 && H5Fclose(dst) < 0) lost = -1;
+    if (dst >= 0 && H5FcloseWritten(dst) < 0) lost = -1;
     if (src >= 0) H5Fclose(src);
   }
   H5E_END_TRY;
@@ -358,6 +367,10 @@ int RebuildWithout(const std::string &path, const std::vector<std::string> &keep
   if (lost < 0) {
     std::filesystem::remove(tmp, ec);
     return -1;
+  }
+  if (lost > 0 && !allow_lost) {  // refused: the file stays as it was
+    std::filesystem::remove(tmp, ec);
+    return lost;
   }
   if (lost > 0) {
     *kept_aside = FreeName(path + ".before-restart");
@@ -367,34 +380,97 @@ int RebuildWithout(const std::string &path, const std::vector<std::string> &keep
   return ec ? -1 : lost;
 }
 
-// Reopens a results file to continue it after a restart. Returns false (nothing changed) when
-// the file is missing; an unreadable one (cut short by a kill) is moved aside, never
-// overwritten; a file of another scene or another load history (run_id) is refused untouched.
-PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok) {
+// A restart whose results file cannot hold the steps up to the checkpoint: refused (nothing
+// changed) unless -output_allow_lost_steps, and then recorded so that the file's status never
+// claims a complete history.
+PetscErrorCode LostSteps(OutputFile *out, PetscInt restart_step, bool allow, const std::string &what,
+                         const std::string &was) {
+  PetscFunctionBeginUser;
+  PetscCheck(allow, out->problem->comm, PETSC_ERR_FILE_OPEN,
+             "-restart: the results file %s %s: the continued run would lack steps up to increment "
+             "%" PetscInt_FMT " yet claim a complete history, so nothing was changed. Put back the results file of "
+             "the run that wrote the checkpoint, run again from the start (without -restart), or continue without "
+             "those steps with -output_allow_lost_steps (the status then says they are missing)",
+             out->path.c_str(), what.c_str(), restart_step);
+  out->steps_lost = "the steps up to increment " + std::to_string((long long)restart_step) + " (the file " + was +
+                    " when the run was restarted from its checkpoint; continued with -output_allow_lost_steps)";
+  PetscFunctionReturn(0);
+}
+
+// Whether path is the results file the checkpoint's run wrote (or that is unknown): then its
+// absence means the steps up to the checkpoint were lost, not that a new file was asked for.
+bool SameResultsFile(const std::string &path, const std::string &checkpoint_results) {
+  if (checkpoint_results.empty()) return true;
+  std::error_code ec;
+  const auto a = std::filesystem::weakly_canonical(path, ec);
+  const auto b = ec ? std::filesystem::path() : std::filesystem::weakly_canonical(checkpoint_results, ec);
+  return ec || a == b;
+}
+
+// Reopens a results file to continue it after a restart. Returns false when the file is missing:
+// a new file asked for (not the checkpoint's run's) or, with allow_lost, the lost one (refused
+// otherwise). An unreadable one (cut short by a kill) is refused untouched or, with allow_lost,
+// moved aside, never overwritten; a file of another scene or another load history (run_id) is
+// refused untouched.
+PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool allow_lost,
+                                const std::string &checkpoint_results, bool *ok) {
   Problem *P = out->problem;
   PetscFunctionBeginUser;
-  int exists = P->rank == 0 && std::filesystem::exists(out->path) ? 1 : 0;
+  int exists = P->rank == 0 && std::filesystem::exists(out->path) ? 1 : 0, same = 1;
+  if (P->rank == 0) same = SameResultsFile(out->path, checkpoint_results) ? 1 : 0;
   PetscCallMPI(MPI_Bcast(&exists, 1, MPI_INT, 0, P->comm));
+  PetscCallMPI(MPI_Bcast(&same, 1, MPI_INT, 0, P->comm));
   *ok = false;
-  if (!exists) PetscFunctionReturn(0);
+  if (!exists && !same) {  // a new file asked for: it starts at the checkpoint, and says so
+    out->steps_lost = "the steps up to increment " + std::to_string((long long)restart_step) +
+                      " (a restart from a checkpoint into a new results file; the run that wrote the checkpoint "
+                      "wrote them to " + checkpoint_results + ")";
+    PetscFunctionReturn(0);
+  }
+  if (!exists) {
+    PetscCall(LostSteps(out, restart_step, allow_lost, "is missing", "was missing"));
+    PetscFunctionReturn(0);
+  }
   // Probe serially first: a file cut short by a kill may not open.
   int state = 0;  // 0 unreadable, 1 this run's, 2 another scene, 3 another run
-  char other[256] = "", note[512] = "";
+  int unread = 0;  // earlier steps that could not be copied (the file then left as it was)
+  int not_found = 0;  // earlier steps whose names could not be looked up (salvaged)
+  bool salvaged = false;  // the steps were found by name: the file must be rebuilt
+  char other[256] = "", note[512] = "", lost_before[512] = "";
   std::vector<std::string> keep;
   size_t drop = 0;
   if (P->rank == 0) {
     H5E_BEGIN_TRY {
       hid_t f = H5Fopen(out->path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
       if (f >= 0) {
-        std::string scene, id;
+        std::string scene, id, lost;
         if (H5Aexists(f, "scene") > 0 && H5ReadString(out->path, f, "scene", &scene) == 0 &&
             H5Lexists(f, "steps", H5P_DEFAULT) > 0) {
           if (H5Aexists(f, "run_id") > 0) H5ReadString(out->path, f, "run_id", &id);
+          if (H5Aexists(f, "steps_lost") > 0 && H5ReadString(out->path, f, "steps_lost", &lost) == 0)
+            std::snprintf(lost_before, sizeof lost_before, "%s", lost.c_str());
           state = scene != P->scene.name ? 2 : id != out->run_id ? 3 : 1;
           std::snprintf(other, sizeof other, "%s", state == 2 ? scene.c_str() : id.empty() ? "(none)" : id.c_str());
           std::vector<StepInfo> steps;
           hid_t g = H5Gopen2(f, "steps", H5P_DEFAULT);
-          if (g < 0 || H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectStep, &steps) < 0) state = 0;
+          if (g >= 0 && H5Literate(g, H5_INDEX_NAME, H5_ITER_INC, nullptr, CollectStep, &steps) < 0) {
+            // The group's index is damaged (a kill while a step was being added, "bad heap free
+            // list"): the steps up to the checkpoint are looked up by their names instead, and
+            // the file is rebuilt from those found; a name whose lookup fails is a lost step.
+            steps.clear();
+            salvaged = true;
+            for (long long k = 0; k <= (long long)restart_step; ++k) {
+              char name[32];
+              std::snprintf(name, sizeof name, "%06lld", k);
+              const htri_t e = H5Lexists(g, name, H5P_DEFAULT);
+              if (e > 0) CollectStep(g, name, nullptr, &steps);
+              if (e < 0 || (e > 0 && steps.back().step < 0)) {
+                if (e > 0) steps.pop_back();
+                ++not_found;
+              }
+            }
+          }
+          if (g < 0) state = 0;
           if (g >= 0) H5Gclose(g);
           for (const StepInfo &st : steps) {
             if (st.step >= 0 && st.step <= restart_step) keep.push_back(st.group);
@@ -405,18 +481,30 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
       }
     }
     H5E_END_TRY;
-    if (state == 1 && drop > 0) {
-      // Steps written after the checkpoint: a new file without them replaces this one.
+    if (state == 1 && (drop > 0 || salvaged)) {
+      // Steps written after the checkpoint (or a damaged index): a new file without them
+      // replaces this one.
       std::string aside;
-      const int lost = RebuildWithout(out->path, keep, &aside);
+      const int lost = RebuildWithout(out->path, keep, allow_lost, not_found, &aside);
       if (lost < 0) state = 0;
+      else if (lost == 0 && salvaged)
+        std::snprintf(note, sizeof note, "its list of steps was damaged (a kill while a step was written?); the %zu "
+                      "steps up to the checkpoint were found by name and copied into a new file", keep.size());
       else if (lost == 0)
         std::snprintf(note, sizeof note, "%zu step(s) written after the checkpoint dropped", drop);
+      else if (!allow_lost)
+        unread = lost;
       else
         std::snprintf(note, sizeof note, "%d of the %zu earlier steps could not be read; the old file is kept as %s",
-                      lost, keep.size(), aside.c_str());
+                      lost, keep.size() + (size_t)not_found, aside.c_str());
     }
   }
+  PetscCallMPI(MPI_Bcast(&unread, 1, MPI_INT, 0, P->comm));
+  PetscCallMPI(MPI_Bcast(lost_before, sizeof lost_before, MPI_CHAR, 0, P->comm));
+  out->steps_lost = lost_before;
+  if (unread > 0)
+    PetscCall(LostSteps(out, restart_step, false,
+                        "has " + std::to_string(unread) + " step(s) up to the checkpoint that cannot be read", ""));
   PetscCallMPI(MPI_Bcast(&state, 1, MPI_INT, 0, P->comm));
   PetscCallMPI(MPI_Bcast(other, sizeof other, MPI_CHAR, 0, P->comm));
   PetscCheck(state != 2, P->comm, PETSC_ERR_FILE_UNEXPECTED,
@@ -429,6 +517,7 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
              "or a new -output_file",
              out->path.c_str(), other, out->run_id.c_str());
   if (state == 0) {
+    PetscCall(LostSteps(out, restart_step, allow_lost, "cannot be read (cut short or damaged)", "could not be read"));
     int moved = 0;
     std::string aside = out->path + ".unreadable";
     if (P->rank == 0) aside = FreeName(aside);
@@ -447,14 +536,19 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
                aside.c_str());
     PetscCall(PetscPrintf(P->comm, "  output: %s was unreadable (cut short?); kept as %s, the restarted run "
                           "starts the results anew\n", out->path.c_str(), aside.c_str()));
+    out->steps_lost += "; the unreadable file is kept as " + aside;
     PetscFunctionReturn(0);
   }
   PetscCallMPI(MPI_Bcast(note, sizeof note, MPI_CHAR, 0, P->comm));
   if (note[0]) PetscCall(PetscPrintf(P->comm, "  output: %s: %s\n", out->path.c_str(), note));
+  if (note[0] && !unread && std::strstr(note, "could not be read"))
+    out->steps_lost = std::string("some of the steps up to increment ") + std::to_string((long long)restart_step) +
+                      " (" + note + "; continued with -output_allow_lost_steps)";
   hid_t fapl = ResultsAccess(P->comm);
   out->file = H5Fopen(out->path.c_str(), H5F_ACC_RDWR, fapl);
   H5Pclose(fapl);
   if (out->file < 0) PetscFunctionReturn(0);
+  g_open_output = out;
   // Rank 0 rebuilt the file without the steps after the checkpoint: what is left is kept.
   std::vector<StepInfo> steps;
   hid_t g = H5Gopen2(out->file, "steps", H5P_DEFAULT);
@@ -465,8 +559,12 @@ PetscErrorCode ReopenForRestart(OutputFile *out, PetscInt restart_step, bool *ok
   PetscCall(WriteStatus(out->path, out->file, "running"));
   PetscCall(WriteWriterIdentity(out));
   PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
+  if (!out->steps_lost.empty()) PetscCall(H5WriteString(out->path, out->file, "steps_lost", out->steps_lost));
   long long count = (long long)out->steps.size();
   PetscCall(H5WriteAttribute(out->path, out->file, "steps_written", H5T_NATIVE_LLONG, &count));
+  // On disk now, as a new file's start is: a kill before the next step's flush must not leave the
+  // steps kept so far behind metadata half written.
+  H5Fflush(out->file, H5F_SCOPE_GLOBAL);
   *ok = true;
   PetscFunctionReturn(0);
 }
@@ -488,14 +586,14 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(ClaimResultsFile(P->comm, out->path));
   if (restart_step >= 0) {
     bool ok = false;
-    PetscCall(ReopenForRestart(out, restart_step, &ok));
+    PetscCall(ReopenForRestart(out, restart_step, o.allow_lost_steps, o.checkpoint_results, &ok));
     if (ok) {
       PetscCall(WriteXdmfEverywhere(out));
       *result = g_open_output = out;
       PetscFunctionReturn(0);
     }
-    PetscCall(PetscPrintf(P->comm, "  output: %s missing or unreadable; the restarted run starts it anew\n",
-                          out->path.c_str()));
+    PetscCall(PetscPrintf(P->comm, "  output: %s starts anew at the checkpoint, without the steps before it (its "
+                          "status will say so)\n", out->path.c_str()));
   }
   if (P->rank == 0) {
     std::error_code ec;
@@ -512,6 +610,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
              "cannot create the results file %s (check -output_file and that its directory is "
              "writable)",
              out->path.c_str());
+  g_open_output = out;  // an error from here on marks the file failed (and closes it)
   PetscCall(H5WriteString(out->path, out->file, "format", "etfe-results-1"));
   PetscCall(H5WriteString(out->path, out->file, "scene", P->scene.name));
   PetscCall(H5WriteString(out->path, out->file, "run_id", out->run_id));
@@ -527,6 +626,7 @@ PetscErrorCode OutputOpen(Problem *P, const OutputOptions &o, OutputFile **resul
   PetscCall(WriteStatus(out->path, out->file, "running"));
   PetscCall(WriteWriterIdentity(out));
   PetscCall(H5WriteString(out->path, out->file, "field_table", FieldTableText()));
+  if (!out->steps_lost.empty()) PetscCall(H5WriteString(out->path, out->file, "steps_lost", out->steps_lost));
   for (const auto &[name, values] : P->scene.result_attributes)
     if (!values.empty()) PetscCall(H5WriteArrayAttribute(out->path, out->file, name.c_str(), values));
   long long zero = 0;
@@ -664,6 +764,21 @@ PetscErrorCode OutputAbandon(const std::string &why) {
 
 bool OutputIsOpen() { return g_open_output != nullptr; }
 
+bool OutputLibraryClose() {
+  if (H5AnyCloseFailed()) return false;
+  H5E_BEGIN_TRY {
+    // Files an error left open (a checkpoint half written on a full disk) are closed one by one
+    // first: a close that fails inside H5close crashes this HDF5 as a second close does.
+    const ssize_t n = H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_FILE);
+    std::vector<hid_t> files(n > 0 ? (size_t)n : 0);
+    if (n > 0) H5Fget_obj_ids(H5F_OBJ_ALL, H5F_OBJ_FILE, (size_t)n, files.data());
+    for (hid_t f : files) H5FcloseWritten(f);
+    if (!H5AnyCloseFailed()) H5close();
+  }
+  H5E_END_TRY;
+  return !H5AnyCloseFailed();
+}
+
 std::string OutputNoteFailure(const std::string &why) {
   if (!g_open_output) return "";
   RemoveOpenMpiLocks(g_open_output->path);  // the job is about to be aborted: nobody closes the file
@@ -691,9 +806,14 @@ PetscErrorCode OutputClose(OutputFile **pout, const std::string &status) {
   PetscFunctionBeginUser;
   if (!out) PetscFunctionReturn(0);
   if (out == g_open_output) g_open_output = nullptr;
+  // A history continued over lost results (-output_allow_lost_steps) ran to its end, but the file
+  // does not hold it all.
+  const std::string said = status == "complete" && !out->steps_lost.empty()
+                               ? "incomplete: the load history ran to its end, but this file lacks " + out->steps_lost
+                               : status;
   // Closed and freed whatever the status write gives: the caller may be on its error path.
-  const PetscErrorCode ierr = WriteStatus(out->path, out->file, status);
-  const herr_t closed = H5Fclose(out->file);
+  const PetscErrorCode ierr = WriteStatus(out->path, out->file, said);
+  const herr_t closed = H5FcloseWritten(out->file);
   const std::string path = out->path;
   delete out;
   *pout = nullptr;
