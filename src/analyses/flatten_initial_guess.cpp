@@ -89,6 +89,22 @@ void AlignPrincipal(std::vector<double> *xy) {
   }
 }
 
+// Twice the strip's vector area: the sum of its triangles' normals, which orients a plane fitted
+// to it the way its triangles face.
+static void SummedNormal(const MeshData &m, double N[3]) {
+  N[0] = N[1] = N[2] = 0.0;
+  for (int e = 0; e < m.NumElements(); ++e) {
+    const double *a = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e]];
+    const double *b = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 1]];
+    const double *d = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 2]];
+    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
+    N[0] += u[1] * v[2] - u[2] * v[1];
+    N[1] += u[2] * v[0] - u[0] * v[2];
+    N[2] += u[0] * v[1] - u[1] * v[0];
+  }
+}
+
 // Projection onto the best-fit plane, its normal turned towards the area-weighted mean normal
 // of the triangles (by node order) so consistently oriented triangles come out counter-clockwise.
 void ProjectionGuess(const MeshData &m, std::vector<double> *xy) {
@@ -105,17 +121,8 @@ void ProjectionGuess(const MeshData &m, std::vector<double> *xy) {
   }
   double vals[3], V[9];
   SymEigen3(C, vals, V);
-  double N[3] = {0, 0, 0};
-  for (int e = 0; e < m.NumElements(); ++e) {
-    const double *a = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e]];
-    const double *b = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 1]];
-    const double *d = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 2]];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-    N[0] += u[1] * v[2] - u[2] * v[1];
-    N[1] += u[2] * v[0] - u[0] * v[2];
-    N[2] += u[0] * v[1] - u[1] * v[0];
-  }
+  double N[3];
+  SummedNormal(m, N);
   double e1[3] = {V[0], V[3], V[6]}, e3[3] = {V[2], V[5], V[8]};
   if (e3[0] * N[0] + e3[1] * N[1] + e3[2] * N[2] < 0)
     for (double &v : e3) v = -v;
@@ -224,17 +231,8 @@ bool OutlinePlaneLayout(const MeshData &m, const Topology &t, double rtol, std::
     const double *X = &m.coords[3 * (size_t)i];
     if (std::fabs((X[0] - c[0]) * e3[0] + (X[1] - c[1]) * e3[1] + (X[2] - c[2]) * e3[2]) > rtol * reach) return false;
   }
-  double N[3] = {0, 0, 0};
-  for (int e = 0; e < m.NumElements(); ++e) {
-    const double *a = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e]];
-    const double *b = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 1]];
-    const double *d = &m.coords[3 * (size_t)m.triangles[3 * (size_t)e + 2]];
-    const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
-    const double v[3] = {d[0] - a[0], d[1] - a[1], d[2] - a[2]};
-    N[0] += u[1] * v[2] - u[2] * v[1];
-    N[1] += u[2] * v[0] - u[0] * v[2];
-    N[2] += u[0] * v[1] - u[1] * v[0];
-  }
+  double N[3];
+  SummedNormal(m, N);
   if (e3[0] * N[0] + e3[1] * N[1] + e3[2] * N[2] < 0)
     for (double &v : e3) v = -v;
   const double e2[3] = {e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2],

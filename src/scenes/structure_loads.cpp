@@ -216,10 +216,8 @@ PetscErrorCode FitRigidCurve(MPI_Comm comm, const MeshData &m, const RigidInput 
 
 } // namespace
 
-// Rank 0: a chamber's volume is exact only if it is closed: every edge of its boundary surface that
-// only one of its triangles has must stay on a plane through the origin (a clamped rim, a symmetry
-// plane). Returns "" or a message naming the first edge that can move off it.
-std::string ChamberOpenEdge(const MeshData &m, const ChamberInput &c, const std::vector<int> &held_mask) {
+// How many of a chamber's triangles share each edge (node pair, smaller first): 1 on its open edges.
+static std::map<std::pair<int, int>, int> ChamberEdgeUses(const MeshData &m, const ChamberInput &c) {
   std::map<std::pair<int, int>, int> uses;
   for (const std::string &g : c.groups)
     for (int e : m.element_sets.at(g))
@@ -227,6 +225,14 @@ std::string ChamberOpenEdge(const MeshData &m, const ChamberInput &c, const std:
         const int a = m.triangles[3 * e + k], b = m.triangles[3 * e + (k + 1) % 3];
         uses[{std::min(a, b), std::max(a, b)}]++;
       }
+  return uses;
+}
+
+// Rank 0: a chamber's volume is exact only if it is closed: every edge of its boundary surface that
+// only one of its triangles has must stay on a plane through the origin (a clamped rim, a symmetry
+// plane). Returns "" or a message naming the first edge that can move off it.
+std::string ChamberOpenEdge(const MeshData &m, const ChamberInput &c, const std::vector<int> &held_mask) {
+  const std::map<std::pair<int, int>, int> uses = ChamberEdgeUses(m, c);
   for (const auto &kv : uses) {
     if (kv.second != 1) continue;
     const double *a = &m.coords[3 * kv.first.first], *b = &m.coords[3 * kv.first.second];
@@ -259,13 +265,7 @@ std::string ChamberOpenEdge(const MeshData &m, const ChamberInput &c, const std:
 // "flip the signs" would not be the way out). Returns "" or the message; a rim that is not flat
 // (symmetry planes meeting, a warped clamped edge) is left to the other checks.
 std::string ChamberOriginOffRim(const MeshData &m, const ChamberInput &c) {
-  std::map<std::pair<int, int>, int> uses;
-  for (const std::string &g : c.groups)
-    for (int e : m.element_sets.at(g))
-      for (int k = 0; k < 3; ++k) {
-        const int a = m.triangles[3 * e + k], b = m.triangles[3 * e + (k + 1) % 3];
-        uses[{std::min(a, b), std::max(a, b)}]++;
-      }
+  const std::map<std::pair<int, int>, int> uses = ChamberEdgeUses(m, c);
   std::set<int> rim;
   for (const auto &kv : uses)
     if (kv.second == 1) rim.insert(kv.first.first), rim.insert(kv.first.second);
