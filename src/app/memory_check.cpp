@@ -1,9 +1,11 @@
 // Whether the chosen linear solver fits the nodes' memory (memory_check.h).
 #include "memory_check.h"
 
+
 #include <petscksp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -191,6 +193,9 @@ PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
                              "limit where its control group sets one)",
                              "", node_gb, &node_gb, nullptr));
   PetscOptionsEnd();
+  // A NaN or a negative size would silently switch the check off (every comparison false).
+  PetscCheck(std::isfinite(node_gb) && node_gb >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-etfe_memory_node_gb %g: give a node's memory in GB (> 0), or 0 for the node's own", (double)node_gb);
   PetscBool help = PETSC_FALSE;  // -help runs nothing (and would list the solver's options twice)
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-help", &help));
   if (!check || help) PetscFunctionReturn(0);

@@ -136,6 +136,9 @@ def test_not_finite(etfe, chk, tmp):
     refused(etfe, chk, tmp, STRIP, ["-material_temperature", "inf"],
             ["-material_temperature inf: not a finite number; give the temperature in deg C"],
             "-material_temperature inf")
+    for v in ("nan", "-5"):
+        refused(etfe, chk, tmp, SQUARE, ["-etfe_memory_node_gb", v], ["-etfe_memory_node_gb", "give a node's memory in GB"],
+                "-etfe_memory_node_gb %s" % v)
 
 
 def test_units(etfe, chk, tmp):
