@@ -413,10 +413,9 @@ bool MeshOrient(MeshData *mesh, std::string *err) {
     for (size_t k = 0; k < notes.size() && k < 3; ++k) which += (k ? "; " : "") + notes[k];
     if (notes.size() > 3) which += "; and " + Id(notes.size() - 3) + " more pieces";
     mesh->notes.push_back("flipped " + Id(flipped) + " of " + Id(ne) +
-                          " triangles to the orientation of their neighbours (the majority of " +
-                          (pieces > 1 ? "each of the " + Id(pieces) + " connected pieces" :
-                                        std::string("the surface")) + ": " + which +
-                          "); if those were the right way, reverse the others in the mesh generator");
+                          " triangles to the orientation of the majority of their connected piece (" +
+                          Id(pieces) + (pieces > 1 ? " pieces" : " piece") + "): " + which +
+                          "; if the flipped ones were the right way, reverse the others in the mesh generator");
   }
   return true;
 }

@@ -87,6 +87,19 @@ bool MeshCheckIntersections(const MeshData &mesh, std::string *err) {
     for (int k = 0; k < 3; ++k) extent = std::max(extent, box[6 * e + 3 + k] - lo[k]);
   cell = std::max(cell, extent / 1.0e6);
   auto index = [&](double x, int k) { return (uint64_t)std::max(0.0, std::floor((x - lo[k]) / cell)); };
+  // A few triangles much larger than the mean (a graded mesh) would fill many cells each: the
+  // cells grow until the entries stay within 16 per triangle.
+  for (;;) {
+    double entries = 0;
+    for (size_t e = 0; e < ne; ++e) {
+      double n = 1;
+      for (int k = 0; k < 3; ++k)
+        n *= (double)(index(box[6 * e + 3 + k] + tol, k) - index(box[6 * e + k] - tol, k) + 1);
+      entries += n;
+    }
+    if (entries <= 16.0 * (double)ne + 1e6) break;
+    cell *= 2;
+  }
   std::vector<std::pair<uint64_t, int>> keyed;
   keyed.reserve(2 * ne);
   for (size_t e = 0; e < ne; ++e) {

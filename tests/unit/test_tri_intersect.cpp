@@ -4,7 +4,8 @@
 // triangle, coplanar and apart are not crossing; coplanar overlap is reported as such. On meshes:
 // a strip folded through itself is refused naming its two file tags; a wavy grid, two coplanar
 // layers in different groups and a closed lens of two foils sharing the rim pass; coplanar layers
-// in one group are refused. ETFE_TIME_N=n times the check on a 2 n^2 triangle wavy grid.
+// in one group are refused; a triangle 1000 times the grid's, above it, passes, and through it
+// is refused. ETFE_TIME_N=n times the check on a 2 n^2 triangle wavy grid.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -88,9 +89,9 @@ int main() {
     MeshData m;
     m.source = "fold.msh";
     Grid(&m, 4, Flat);
-    const int ne = m.NumElements(), nn = m.NumNodes();
+    const int nn = m.NumNodes();
     Grid(&m, 4, Flat);
-    for (int i = nn; i < m.NumNodes(); ++i) {  // rotate the copy 90 degrees about the line y = 2, z = 0
+    for (int i = nn; i < m.NumNodes(); ++i) {  // rotate the copy 90 degrees about the line y = 2, z = 0 and shift it (no node on the crossing line)
       const double y = m.coords[3 * i + 1], z = m.coords[3 * i + 2];
       m.coords[3 * i + 1] = 2.0 - z + 0.5;
       m.coords[3 * i + 2] = y - 2.3;
@@ -100,12 +101,19 @@ int main() {
     CHECK(Contains(err, "fold.msh: element") && Contains(err, "(tag 1") && Contains(err, "cross each other at") &&
               Contains(err, "-mesh_check_intersections false"),
           "message: %s", err.c_str());
-    (void)ne;
   }
-  {  // a wavy grid passes
+  {  // a wavy grid passes; with a huge tilted triangle over it too (cells grow, no blow-up), and
+     // with that triangle lowered through the grid it is refused
     MeshData m;
     Grid(&m, 30, Wavy);
     CHECK(etfe::MeshCheckIntersections(m, &err), "wavy grid: %s", err.c_str());
+    const int base = m.NumNodes();
+    m.coords.insert(m.coords.end(), {-500, -500, 5, 1500, -500, 300, -500, 1500, 600});
+    m.triangles.insert(m.triangles.end(), {base, base + 1, base + 2});
+    CHECK(etfe::MeshCheckIntersections(m, &err), "wavy grid and a large triangle above: %s", err.c_str());
+    for (int k = 0; k < 3; ++k) m.coords[3 * (size_t)(base + k) + 2] -= 234;  // its plane through the grid's middle
+    CHECK(!etfe::MeshCheckIntersections(m, &err) && Contains(err, "and element 1800 cross"),
+          "a large triangle through the grid: %s", err.c_str());
   }
   {  // two flat layers on each other: different groups pass, one group is refused
     MeshData m;
