@@ -8,7 +8,8 @@ points to the real problem:
     turning one foil inside out; a cushion of 3:1 foils is still repaired, the note naming the group;
   * garbage CAD files (random bytes as .igs/.step/.brep, text renamed .step/.brep, an IGES-like
     line without the section letter): refused naming the file, what was expected and what was found.
-A lens cushion with the foils oriented out of it, and the same flat (foils on each other, two
+A real IGES file (OpenCASCADE's sample hammer.iges, if installed) is meshed, not refused with
+Gmsh's "Could not set OpenCASCADE target unit". A lens cushion with the foils oriented out of it, and the same flat (foils on each other, two
 groups), pass the read."""
 import os
 import random
@@ -19,6 +20,7 @@ import etfe_testlib as T  # noqa: E402
 import pattern_meshes as PM  # noqa: E402
 
 PATCH = os.path.join("options", "patch.opts")
+HAMMER = "/usr/share/opencascade/data/iges/hammer.iges"
 
 
 def folded_strip(nx=10, width=200.0):
@@ -156,6 +158,15 @@ def main_test(etfe, chk):
                 continue
             refused(chk, name, rc, out, p, expected, found)
             chk.check("target unit" not in out, "%s: not Gmsh's words about a target unit" % name)
+
+        # A real IGES file (OpenCASCADE's sample, when installed): Gmsh 4.8 refused every IGES file
+        # with "Could not set OpenCASCADE target unit". Now it is meshed, and then refused by the
+        # mesh checks for what the model is, a solid, not a film (its faces cross at 200 and 827 mm,
+        # its shells meet at 400 mm with opposite orientations): a message naming its elements.
+        if os.path.exists(HAMMER) and "no Gmsh API" not in out:
+            rc, out = run_read(etfe, HAMMER, tmp, ["-mesh_cad_size", "400"])
+            chk.check("target unit" not in out and "(tag " in T.error_message(out),
+                      "hammer.iges: meshed, then refused naming its elements (%s)" % T.error_message(out)[:200])
 
 
 if __name__ == "__main__":
