@@ -58,7 +58,13 @@ std::string Format(const char *fmt, double a, double b = 0.0) {
 // Imports the file and fuses coincident entities; returns the surface names by their new tags.
 std::map<int, std::string> ImportFused(const std::string &path, std::vector<std::string> *notes) {
   gmsh::option::setNumber("Geometry.OCCImportLabels", 1);
-  gmsh::option::setString("Geometry.OCCTargetUnit", "MM");
+  // Gmsh 4.8 sets the target unit before OpenCASCADE's IGES reader has declared that setting, so
+  // every IGES file then fails with "Could not set OpenCASCADE target unit"; left unset, the IGES
+  // reader converts to OpenCASCADE's default unit, mm (xstep.cascade.unit), all the same.
+  const size_t dot = path.find_last_of('.');
+  std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+  for (char &c : ext) c = (char)std::tolower((unsigned char)c);
+  gmsh::option::setString("Geometry.OCCTargetUnit", ext == "iges" || ext == "igs" ? "" : "MM");
   gmsh::vectorpair imported, fused;
   std::vector<gmsh::vectorpair> map;
   gmsh::model::occ::importShapes(path, imported, false);
@@ -237,7 +243,18 @@ extern "C" int etfe_cad_mesh(const char *path, double size, etfe::MeshData *mesh
     } catch (...) {
       std::string last;
       gmsh::logger::getLastError(last);
-      *err = file + ": Gmsh could not read or mesh it: " + (last.empty() ? std::string("no reason given") : last);
+      // OpenCASCADE's words for a file it found nothing in ("Could not set OpenCASCADE target
+      // unit", "Empty bounding box", "Could not read file") say nothing about the file itself.
+      const bool unreadable = last.find("target unit") != std::string::npos ||
+                              last.find("Empty bounding box") != std::string::npos ||
+                              last.find("Could not read file") != std::string::npos;
+      *err = file + (unreadable ? ": Gmsh (OpenCASCADE) found no readable geometry in it (Gmsh said: "
+                                : ": Gmsh could not read or mesh it (Gmsh said: ") +
+             (last.empty() ? std::string("no reason given") : last) +
+             (unreadable ? "): check that it is a complete STEP, IGES or BREP file as its name says (re-export it "
+                           "from the CAD program), or mesh it yourself (gmsh -2 file -o file.msh) and give the .msh"
+                         : "): mesh it yourself (gmsh -2 file -o file.msh) and give the .msh, or try another "
+                           "-mesh_cad_size");
       return 0;
     }
   } catch (...) {

@@ -234,6 +234,28 @@ bool CheckSets(const MeshData &mesh, const std::map<std::string, std::vector<int
   return true;
 }
 
+// " (all in group bottom)" / " (in groups a, b)": the element groups of the piece's triangles
+// whose flip mark is `which`, so a message points to the surface of the file that is the wrong way.
+std::string GroupsOf(const MeshData &mesh, const std::vector<int> &piece, const std::vector<int> &flip, int which) {
+  std::vector<int> sel;
+  for (int e : piece)
+    if (flip[(size_t)e] == which) sel.push_back(e);
+  std::sort(sel.begin(), sel.end());
+  std::string names;
+  bool all = true;
+  size_t in_any = 0;
+  for (const auto &kv : mesh.element_sets) {
+    size_t hit = 0;
+    for (int e : sel) hit += std::binary_search(kv.second.begin(), kv.second.end(), e) ? 1 : 0;
+    if (hit == 0) continue;
+    in_any += hit;
+    all = all && hit == kv.second.size();
+    names += (names.empty() ? "" : ", ") + kv.first;
+  }
+  if (names.empty()) return "";
+  return std::string(" (those ") + (all && in_any == sel.size() ? "are all of group " : "lie in group ") + names + ")";
+}
+
 } // namespace
 
 bool MeshCheck(const MeshData &mesh, double min_area, std::string *err) {
@@ -336,6 +358,7 @@ bool MeshOrient(MeshData *mesh, std::string *err) {
   std::vector<int> flip(ne, -1);
   std::vector<int> piece, stack;
   size_t flipped = 0, pieces = 0;
+  std::vector<std::string> notes;  // per piece with flips: how many and of which groups
   for (size_t seed = 0; seed < ne; ++seed) {
     if (flip[seed] >= 0) continue;
     ++pieces;
@@ -361,7 +384,24 @@ bool MeshOrient(MeshData *mesh, std::string *err) {
     }
     size_t against = 0;
     for (int e : piece) against += (size_t)flip[(size_t)e];
-    const int minority = 2 * against > piece.size() ? 0 : 1;  // ties keep the seed's way
+    if (against == 0) continue;
+    if (2 * against == piece.size()) {
+      // An even split gives no majority, and the first triangle's way is no better a guess: a
+      // cushion whose two foils both face up splits exactly so, and keeping either foil's way
+      // turns the other inside out. Only the user knows which normals are meant.
+      return Fail(*mesh, err, "the connected surface through " + ElementName(*mesh, seed) + " has " +
+                                  Id(piece.size() - against) + " triangles oriented like that one" +
+                                  GroupsOf(*mesh, piece, flip, 0) + " and " + Id(against) + " the other way" +
+                                  GroupsOf(*mesh, piece, flip, 1) +
+                                  ": the orientations split evenly, so which way the normals should point "
+                                  "cannot be told; orient the surface consistently in the mesh generator (Gmsh: "
+                                  "Reverse Surface on the surfaces whose normals point the wrong way; a cushion's "
+                                  "top and bottom normals point out of the cushion)");
+    }
+    const int minority = 2 * against > piece.size() ? 0 : 1;
+    const size_t nflip = minority ? against : piece.size() - against;
+    notes.push_back(Id(nflip) + " of " + Id(piece.size()) + " in the piece through " + ElementName(*mesh, seed) +
+                    GroupsOf(*mesh, piece, flip, minority));
     for (int e : piece) {
       if (flip[(size_t)e] != minority) continue;
       std::swap(mesh->triangles[3 * (size_t)e + 1], mesh->triangles[3 * (size_t)e + 2]);
@@ -369,10 +409,13 @@ bool MeshOrient(MeshData *mesh, std::string *err) {
     }
   }
   if (flipped > 0) {
+    std::string which;
+    for (size_t k = 0; k < notes.size() && k < 3; ++k) which += (k ? "; " : "") + notes[k];
+    if (notes.size() > 3) which += "; and " + Id(notes.size() - 3) + " more pieces";
     mesh->notes.push_back("flipped " + Id(flipped) + " of " + Id(ne) +
-                          " triangles to the orientation of their neighbours (the majority of " +
-                          (pieces > 1 ? "each of the " + Id(pieces) + " connected pieces" :
-                                        std::string("the surface")) + ")");
+                          " triangles to the orientation of the majority of their connected piece (" +
+                          Id(pieces) + (pieces > 1 ? " pieces" : " piece") + "): " + which +
+                          "; if the flipped ones were the right way, reverse the others in the mesh generator");
   }
   return true;
 }

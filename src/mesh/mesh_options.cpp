@@ -5,6 +5,7 @@
 #include <string>
 
 #include "etfe/mesh/cad_reader.h"
+#include "etfe/mesh/self_intersection.h"
 
 namespace etfe {
 
@@ -78,8 +79,17 @@ PetscErrorCode MeshOptionsFromCommandLine(MPI_Comm comm, const char *owner, Mesh
 
 PetscErrorCode MeshCadSizeFromOptions(MPI_Comm comm, const char path[], double *size) {
   PetscBool help = PETSC_FALSE;
+  PetscBool check = MeshIntersectionCheck() ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   *size = 0.0;
+  PetscOptionsBegin(comm, nullptr, "Mesh file checks", "Mesh");
+  PetscCall(PetscOptionsBool("-mesh_check_intersections",
+                             "Refuse a mesh file whose surface passes through itself (two triangles without a "
+                             "common node crossing); false skips the check (it takes about a second per 10^6 "
+                             "triangles)",
+                             "", check, &check, nullptr));
+  PetscOptionsEnd();
+  SetMeshIntersectionCheck(check == PETSC_TRUE);
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (!IsCadFile(path) && !help) PetscFunctionReturn(0);
   PetscOptionsBegin(comm, nullptr, "CAD surface of -mesh_file, meshed by Gmsh", "Mesh");

@@ -578,6 +578,13 @@ void TestTopology() {
     std::swap(majority.triangles[3 * e + 1], majority.triangles[3 * e + 2]);
   CHECK(etfe::MeshOrient(&majority, &err) && Contains(majority.notes.at(0), "flipped 3 of 8"),
         "orient: the majority decides");
+  MeshData tie = Grid();  // four of eight clockwise: no majority, refused (nothing flipped)
+  for (int e : {0, 2, 5, 7}) std::swap(tie.triangles[3 * e + 1], tie.triangles[3 * e + 2]);
+  const std::vector<int> tied = tie.triangles;
+  CHECK(!etfe::MeshOrient(&tie, &err) && Contains(err, "4 triangles oriented like that one") &&
+            Contains(err, "4 the other way") && Contains(err, "split evenly") && Contains(err, "Reverse Surface"),
+        "orient: an even split is refused: %s", err.c_str());
+  CHECK(tie.triangles == tied && tie.notes.empty(), "orient: an even split is left as it was");
   MeshData same = Grid();
   CHECK(etfe::MeshOrient(&same, &err) && same.notes.empty(), "orient: nothing to do, no note");
   // A Moebius strip: a band of 4 quads (8 triangles) closed with a half twist.

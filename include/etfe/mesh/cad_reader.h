@@ -42,6 +42,12 @@ bool CadMeshingBuiltIn();
 // The refusal of a CAD file by a build without the Gmsh API: names the file and the way out.
 std::string CadUnavailableMessage(const std::string &path);
 
+// Whether `head`, the first bytes of the file `path`, looks like what the name says (.step/.stp:
+// "ISO-10303-21;"; .iges/.igs: 80-column records with the section letter in column 73; .brep:
+// "DBRep_DrawableShape" or "CASCADE Topology"): "" if so, else a message naming the file, what
+// was expected and what was found. ReadCadFile refuses such a file before Gmsh sees it.
+std::string CadContentProblem(const std::string &path, const std::string &head);
+
 // Meshes the CAD file at the target element size (mm; <= 0: the default above). Returns false
 // with a message naming the file on failure (no Gmsh API in this build, the module not found,
 // a file Gmsh cannot read, no surface in it). Gmsh is initialized and finalized within the call
@@ -49,7 +55,8 @@ std::string CadUnavailableMessage(const std::string &path);
 bool ReadCadFile(const std::string &path, double size, MeshData *mesh, std::string *err);
 
 // Reads a mesh file by its name: a CAD file through ReadCadFile at cad_size, anything else
-// through ReadGmshFile.
+// through ReadGmshFile; then, unless -mesh_check_intersections false, MeshCheckIntersections
+// (etfe/mesh/self_intersection.h) refuses a surface that passes through itself.
 bool ReadMeshFile(const std::string &path, double cad_size, MeshData *mesh, std::string *err);
 
 } // namespace etfe

@@ -38,9 +38,11 @@ struct MeshData {
 bool MeshCheck(const MeshData &mesh, double min_area, std::string *err);
 
 // Makes the orientation of the triangles agree across every shared edge: in each connected
-// piece the triangles that disagree with the majority (ties: with the lowest-numbered triangle)
-// are flipped, and a sentence saying how many goes into mesh->notes. Returns false with a
-// message when no consistent orientation exists (a Moebius-like surface). Leaves meshes with
+// piece the triangles that disagree with the majority are flipped, and a sentence saying how
+// many, in which piece and of which element groups goes into mesh->notes. Returns false with a
+// message when no consistent orientation exists (a Moebius-like surface) or when a piece splits
+// evenly (no majority: which way is meant cannot be told; a two-layer cushion's foils share the
+// rim, so the count is over the whole closed surface, not per group). Leaves meshes with
 // bad ids or non-manifold edges alone: MeshCheck refuses those with their own message.
 bool MeshOrient(MeshData *mesh, std::string *err);
 

@@ -42,6 +42,7 @@ PetscErrorCode MeshOptionsFromCommandLine(MPI_Comm comm, const char *owner, Mesh
 // -mesh_cad_size (mm): the target element size when the mesh file `path` is a CAD surface
 // (etfe/mesh/cad_reader.h), which Gmsh meshes; 0 (the default) leaves it to the reader (1/50 of
 // the model's extent). Read only for a CAD file (and listed by -help), so a .msh leaves it unused.
+// Also reads -mesh_check_intersections (any mesh file) into SetMeshIntersectionCheck.
 PetscErrorCode MeshCadSizeFromOptions(MPI_Comm comm, const char path[], double *size);
 
 } // namespace etfe
