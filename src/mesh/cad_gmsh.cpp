@@ -9,6 +9,8 @@
 #include <clocale>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <exception>
 #include <map>
 #include <set>
 #include <string>
@@ -120,7 +122,22 @@ bool MeshModel(const std::string &path, double size, const std::map<int, std::st
   gmsh::option::setNumber("Mesh.RecombineAll", 0);
   gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 0);
   gmsh::option::setNumber("General.NumThreads", 1);  // the same triangles on every run
+  // Gmsh 4.8 throws from inside its OpenMP face-meshing loop on some CAD models (OpenCASCADE's
+  // sample bearing.iges): no catch can reach that, the C++ runtime terminates. Say which file
+  // and the way out before the process ends, instead of a bare abort and a stack trace.
+  static std::string meshing;
+  meshing = path;
+  const std::terminate_handler previous = std::set_terminate([] {
+    std::fprintf(stderr,
+                 "etfe: Gmsh failed inside its face meshing of %s and ended the process (an error it cannot "
+                 "report back: Gmsh 4.8, some IGES/STEP models). Way out: mesh the file with Gmsh itself "
+                 "(gmsh -2 %s -o surface.msh, any Gmsh version) and give -mesh_file surface.msh\n",
+                 meshing.c_str(), meshing.c_str());
+    std::fflush(stderr);
+    std::_Exit(2);
+  });
   gmsh::model::mesh::generate(2);
+  std::set_terminate(previous);
 
   std::vector<std::size_t> tags;
   std::vector<double> xyz, param;
