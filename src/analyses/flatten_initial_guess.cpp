@@ -105,6 +105,28 @@ static void SummedNormal(const MeshData &m, double N[3]) {
   }
 }
 
+// Every node projected onto the plane through c spanned by the first and last eigenvectors of V
+// (columns; e3 the normal), e3 turned towards the triangles' summed normal so that consistently
+// oriented triangles come out counter-clockwise.
+static void ProjectOntoPlane(const MeshData &m, const double c[3], const double V[9], std::vector<double> *xy) {
+  double N[3];
+  SummedNormal(m, N);
+  const double e1[3] = {V[0], V[3], V[6]};
+  double e3[3] = {V[2], V[5], V[8]};
+  if (e3[0] * N[0] + e3[1] * N[1] + e3[2] * N[2] < 0)
+    for (double &v : e3) v = -v;
+  const double e2[3] = {e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2],
+                        e3[0] * e1[1] - e3[1] * e1[0]};
+  const int nn = m.NumNodes();
+  xy->assign(2 * (size_t)nn, 0.0);
+  for (int i = 0; i < nn; ++i) {
+    const double d[3] = {m.coords[3 * (size_t)i] - c[0], m.coords[3 * (size_t)i + 1] - c[1],
+                         m.coords[3 * (size_t)i + 2] - c[2]};
+    (*xy)[2 * (size_t)i] = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
+    (*xy)[2 * (size_t)i + 1] = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
+  }
+}
+
 // Projection onto the best-fit plane, its normal turned towards the area-weighted mean normal
 // of the triangles (by node order) so consistently oriented triangles come out counter-clockwise.
 void ProjectionGuess(const MeshData &m, std::vector<double> *xy) {
@@ -121,20 +143,7 @@ void ProjectionGuess(const MeshData &m, std::vector<double> *xy) {
   }
   double vals[3], V[9];
   SymEigen3(C, vals, V);
-  double N[3];
-  SummedNormal(m, N);
-  double e1[3] = {V[0], V[3], V[6]}, e3[3] = {V[2], V[5], V[8]};
-  if (e3[0] * N[0] + e3[1] * N[1] + e3[2] * N[2] < 0)
-    for (double &v : e3) v = -v;
-  const double e2[3] = {e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2],
-                        e3[0] * e1[1] - e3[1] * e1[0]};
-  xy->assign(2 * (size_t)nn, 0.0);
-  for (int i = 0; i < nn; ++i) {
-    const double d[3] = {m.coords[3 * (size_t)i] - c[0], m.coords[3 * (size_t)i + 1] - c[1],
-                         m.coords[3 * (size_t)i + 2] - c[2]};
-    (*xy)[2 * (size_t)i] = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
-    (*xy)[2 * (size_t)i + 1] = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
-  }
+  ProjectOntoPlane(m, c, V, xy);
 }
 
 // Triangle-by-triangle unfolding from the triangle nearest the centroid: the new node w of a
@@ -225,25 +234,13 @@ bool OutlinePlaneLayout(const MeshData &m, const Topology &t, double rtol, std::
   double vals[3], V[9];
   SymEigen3(C, vals, V);
   if (!(reach > 0) || !(vals[1] > 1e-12 * vals[0])) return false;  // a straight outline spans no plane
-  double e1[3] = {V[0], V[3], V[6]}, e3[3] = {V[2], V[5], V[8]};
+  const double e3[3] = {V[2], V[5], V[8]};
   for (int i = 0; i < nn; ++i) {
     if (!(*on_outline)[i]) continue;
     const double *X = &m.coords[3 * (size_t)i];
     if (std::fabs((X[0] - c[0]) * e3[0] + (X[1] - c[1]) * e3[1] + (X[2] - c[2]) * e3[2]) > rtol * reach) return false;
   }
-  double N[3];
-  SummedNormal(m, N);
-  if (e3[0] * N[0] + e3[1] * N[1] + e3[2] * N[2] < 0)
-    for (double &v : e3) v = -v;
-  const double e2[3] = {e3[1] * e1[2] - e3[2] * e1[1], e3[2] * e1[0] - e3[0] * e1[2],
-                        e3[0] * e1[1] - e3[1] * e1[0]};
-  xy->assign(2 * (size_t)nn, 0.0);
-  for (int i = 0; i < nn; ++i) {
-    const double d[3] = {m.coords[3 * (size_t)i] - c[0], m.coords[3 * (size_t)i + 1] - c[1],
-                         m.coords[3 * (size_t)i + 2] - c[2]};
-    (*xy)[2 * (size_t)i] = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
-    (*xy)[2 * (size_t)i + 1] = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
-  }
+  ProjectOntoPlane(m, c, V, xy);
   // Every triangle on one side (counter-clockwise, seen from e3): no fold, no sliver.
   for (int e = 0; e < m.NumElements(); ++e) {
     const int *v = &m.triangles[3 * (size_t)e];
