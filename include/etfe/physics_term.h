@@ -1,0 +1,103 @@
+// A physics term: one thing besides the membrane elements that adds forces and stiffness to the
+// problem and may keep state of its own (rigid contact, gas chambers, layer contact, follower
+// pressure, stabilization, cables, ...). Problem holds the terms a scene needs in one list
+// (Problem::terms); the residual, the Jacobian, the commit, the checkpoint, the progress lines,
+// the results file and the solver set-up each visit that list in one loop, so a new term is one
+// file plus one line in the registry that creates the terms (MakePhysicsTerms). A scene that does
+// not use a term never creates it: nothing of it runs or allocates.
+//
+// Every method has a default that does nothing, so a term implements only what it has. All of
+// them are collective on the problem's communicator unless they say otherwise.
+#pragma once
+#include <petscmat.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "etfe/h5io.h"
+
+namespace etfe {
+
+struct Problem;
+
+// A block of a term's committed state for the checkpoint (or of its values for the results
+// file): rows per owned node / element / contact pair in PETSc order (written in the scene's
+// order), or with `replicated` the same values on every rank (written once).
+struct TermData {
+  std::string name;  // dataset name, unique among the terms ("chamber_state", "cable_force", ...)
+  Layout layout = Layout::Nodes;
+  bool replicated = false;
+  int components = 1;
+  std::vector<double> values;  // rows x components (replicated: any length, components = 1)
+  const char *units = "1";     // for result fields
+  const char *description = "";
+};
+
+// What a term asks of the linear solver.
+struct TermSolverNeeds {
+  // The term's tangent is not in the assembled matrix alone (a rank-one or low-rank part, a
+  // sliding cable's or a sealed chamber's): the outer solve must be a Krylov method around the
+  // assembled part's preconditioner.
+  bool krylov_outer = false;
+  // Penalties that delay pivots: MUMPS needs more workspace than its default.
+  bool penalty = false;
+};
+
+// A progress column (the load stepper's increment lines and the history CSV).
+struct TermColumn {
+  std::string name, unit;
+  double value = 0.0;
+};
+
+class PhysicsTerm {
+public:
+  virtual ~PhysicsTerm() = default;
+  virtual const char *Name() const = 0;
+
+  // After ProblemCreate has distributed the mesh and the constraints: allocate what the term
+  // needs on this problem.
+  virtual PetscErrorCode SetUp(Problem &) { return 0; }
+
+  // Before the element loop of each residual and Jacobian, with the local (ghosted) displacement
+  // u (3 per local node): what other terms and the pressure loads read (chamber volumes).
+  virtual PetscErrorCode Prepare(Problem &, const PetscScalar * /*u*/) { return 0; }
+
+  // Residual, local part: forces added into the local (ghosted) array f, 3 per local node, before
+  // the ghosts are summed into their owners. *status: the worst KernelStatus met (kernels.h);
+  // *external2: add the squares of external loads the term applies (the force scale).
+  virtual PetscErrorCode AddLocalForces(Problem &, const PetscScalar * /*u*/, PetscScalar * /*f*/, int * /*status*/,
+                                        double * /*external2*/) {
+    return 0;
+  }
+  // Residual, global part: after the ghost sum, into the global residual F at the state U.
+  virtual PetscErrorCode AddGlobalForces(Problem &, Vec /*U*/, Vec /*F*/) { return 0; }
+
+  // Jacobian into the matrix A before its final assembly (MatSetValues*Local or blocked global
+  // ids, ADD_VALUES), rows and columns of constrained DOFs left out. u: local displacement.
+  virtual PetscErrorCode AddTangent(Problem &, Vec /*U*/, const PetscScalar * /*u*/, Mat /*A*/) { return 0; }
+  // After A's final assembly (a diagonal added with MatDiagonalSet, a low-rank update).
+  virtual PetscErrorCode AddAssembledTangent(Problem &, Mat /*A*/) { return 0; }
+
+  // The load stepper: an increment begins from the committed state (t0 -> t1); a converged
+  // increment is committed at time t.
+  virtual PetscErrorCode BeginIncrement(Problem &, double /*t0*/, double /*t1*/) { return 0; }
+  virtual PetscErrorCode Commit(Problem &, double /*t*/) { return 0; }
+
+  // Committed state for the checkpoint; Restore gets back the blocks State gave (same names,
+  // layouts and sizes) and sets the term as it was at the commit.
+  virtual PetscErrorCode State(const Problem &, std::vector<TermData> * /*blocks*/) const { return 0; }
+  virtual PetscErrorCode Restore(Problem &, const std::vector<TermData> & /*blocks*/) { return 0; }
+
+  // What a run reports of the term: columns of the increment lines and the history CSV, fields
+  // of the results file (per step), and the lines of the end-of-run report.
+  virtual PetscErrorCode Columns(const Problem &, std::vector<TermColumn> * /*columns*/) const { return 0; }
+  virtual PetscErrorCode Fields(const Problem &, std::vector<TermData> * /*fields*/) const { return 0; }
+  virtual PetscErrorCode Report(const Problem &, std::vector<std::string> * /*lines*/) const { return 0; }
+
+  virtual TermSolverNeeds SolverNeeds() const { return {}; }
+};
+
+using PhysicsTermList = std::vector<std::unique_ptr<PhysicsTerm>>;
+
+} // namespace etfe
