@@ -1,4 +1,4 @@
-// Cutting patterns of a surface (SPEC §7): the surface is split into strips (element
+// Cutting patterns of a surface (docs/theory.md §9): the surface is split into strips (element
 // sets: the saddle's "middle" and "corner" parts, split at the cutting line X = 0 and the weld
 // line over the arch), each strip is flattened by least squares of its link lengths
 // (flatten_strip.h) and written as DXF, SVG and a Gmsh .msh (the 2D mesh for a stretch

@@ -1,4 +1,5 @@
-// Cutting patterns: flattening of one strip of the form-found surface (SPEC §7, thesis §2.3).
+// Cutting patterns: flattening of one strip of the form-found surface (docs/theory.md §9.1, thesis
+// §2.3).
 //
 // Every mesh edge is a "link" whose plane length l_i should equal its 3D length L_i. The plane
 // node positions x minimise S(x) = sum_i w_i (l_i(x) - L_i)^2 (thesis eq. 2.23) by Gauss-Newton:

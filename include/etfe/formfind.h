@@ -1,5 +1,5 @@
-// Form finding (SPEC §6, thesis §2.2): the equilibrium shape of a film carrying a prescribed
-// membrane stress (isotropic, or MD:TD = s) inside prescribed boundaries.
+// Form finding (docs/theory.md §8, thesis §2.2): the equilibrium shape of a film carrying a
+// prescribed membrane stress (isotropic, or MD:TD = s) inside prescribed boundaries.
 //
 // Method: updated reference strategy (Bletzinger & Ramm) in its force-density limit. Each
 // iteration takes the current shape as the reference and solves for the shape in which the

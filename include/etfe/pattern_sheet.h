@@ -1,5 +1,5 @@
-// Cutting-pattern drawings (SPEC §7: "fabricators cut from DXF (or SVG)"): one drawing model, a
-// Sheet of layered polylines and texts in mm, built once per strip (or per roll nesting) and
+// Cutting-pattern drawings (docs/theory.md §9: fabricators cut from DXF or SVG): one drawing model,
+// a Sheet of layered polylines and texts in mm, built once per strip (or per roll nesting) and
 // written both as DXF for the cutting table and as SVG for people, so the two always agree.
 //
 // Layers: OUTLINE the cut line (the pattern edge plus the seam allowance, when one is given),
@@ -70,12 +70,13 @@ bool WriteSheetDxf(const std::string &path, const Sheet &s, std::string *err);
 bool WriteSheetSvg(const std::string &path, const Sheet &s, std::string *err);
 bool WriteTextFile(const std::string &path, const std::string &text, std::string *err);
 
-// ---- Roll nesting (pattern_nesting.cpp) ----------------------------------------------------------
-// Every strip turned to the orientation of its least width (of its cut outline, the convex hull's
-// narrowest caliper), then placed by first-fit decreasing shelves: strips sorted by length, each
-// into the first shelf (a band along the roll, as long as its first strip) with room across the
-// roll, else a new shelf after the last one; `gap` mm between strips and from the roll's edges
-// along the roll. The roll runs along x, its width along y from 0 to roll_width.
+// ---- Roll nesting (pattern_nesting.cpp)
+// ---------------------------------------------------------- Every strip turned to the orientation
+// of its least width (of its cut outline, the convex hull's narrowest caliper), then placed by
+// first-fit decreasing shelves: strips sorted by length, each into the first shelf (a band along
+// the roll, as long as its first strip) with room across the roll, else a new shelf after the last
+// one; `gap` mm between strips and from the roll's edges along the roll. The roll runs along x, its
+// width along y from 0 to roll_width.
 struct NestItem {
   std::string name;
   const FlattenResult *result;

@@ -23,7 +23,7 @@ namespace {
 
 // The film's first-yield strain S_y1 / E, the limit a fabrication error is warned against: the
 // plastic law's first yield stress, or, for a law without one, -material_yield's first value
-// (the plastic law's default: ETFE's 13.28 MPa, SPEC §4) over its Young's modulus.
+// (the plastic law's default: ETFE's 13.28 MPa, docs/theory.md §3.2) over its Young's modulus.
 PetscErrorCode FirstYieldStrain(MPI_Comm comm, CutPatternOptions *o) {
   std::unique_ptr<Material> m;
   double E = 0, nu = 0;

@@ -1,4 +1,5 @@
-// Least-squares flattening of a cutting strip, SPEC §7 / thesis §2.3.2 (Tabarrok's method).
+// Least-squares flattening of a cutting strip, docs/theory.md §9 / thesis §2.3.2 (Tabarrok's
+// method).
 //
 // Minimise S(x) = sum_i w_i phi_i(x)^2, phi_i = l_i(x) - L_i (eqs. 2.23-2.25) over the plane node
 // positions x = (x_1, y_1, ..., x_n, y_n) (eq. 2.24). Linearising phi_i (eq. 2.26) gives the

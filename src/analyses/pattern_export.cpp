@@ -1,6 +1,6 @@
-// Cutting-pattern export (SPEC §7: "fabricators cut from DXF (or SVG)"; thesis Fig. 2.10 reports
-// each line's length and its expansion against 3D): the strip's drawing (pattern_sheet.cpp) as DXF
-// (pattern_dxf.cpp) and SVG (pattern_svg.cpp), the outline offset by the seam allowance, the
+// Cutting-pattern export (docs/theory.md §9: fabricators cut from DXF or SVG; thesis Fig. 2.10
+// reports each line's length and its expansion against 3D): the strip's drawing (pattern_sheet.cpp)
+// as DXF (pattern_dxf.cpp) and SVG (pattern_svg.cpp), the outline offset by the seam allowance, the
 // pattern's long axis and the table of the named lines' lengths.
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-// Friction contact between film nodes and rigid supports (SPEC §5, thesis §4.2.2): pair
+// Friction contact between film nodes and rigid supports (docs/theory.md §5, thesis §4.2.2): pair
 // creation by distance to the support, evaluation through the pure contact laws of
 // kernels/contact_law.h in the pair's frozen frame, and the commit between load steps.
 #include <petscsys.h>

@@ -1,4 +1,4 @@
-// Node-to-rigid penalty friction contact (SPEC §5, thesis §4.2.2, eqs. 4.25-4.31).
+// Node-to-rigid penalty friction contact (docs/theory.md §5, thesis §4.2.2, eqs. 4.25-4.31).
 //
 // The pair's local gap is g = (u_g, v_g, w_g) = R (u_S - u_M); w < 0 is penetration. The force f
 // is the spring force in the same frame, so f_z = kn w < 0 in compression and the normal

@@ -1,4 +1,4 @@
-// Plane-stress St. Venant-Kirchhoff law of the membrane (SPEC §3-4, thesis §4.2.1 elastic
+// Plane-stress St. Venant-Kirchhoff law of the membrane (docs/theory.md §3.1, thesis §4.2.1 elastic
 // part of eqs. 4.14-4.21): S = D E in the element's local frame,
 //   D = E/(1-nu^2) [[1, nu, 0], [nu, 1, 0], [0, 0, (1-nu)/2]].
 // The shear entry is (1-nu)/2 = G (1-nu^2)/E because the strain vector carries the engineering

@@ -1,8 +1,8 @@
-// One link of the least-squares flattening, SPEC §7 / thesis eqs. 2.25, 2.32, 2.33: the residual
-// phi = l - L of a mesh edge (2D length l = |q - p|, 3D length L) and its gradient, the row A_i
-// of the Gauss-Newton matrix A. The link behaves like a truss bar whose "stiffness" w A^T A has
-// only the axial part: Gauss-Newton drops the geometric term w phi d2l/dx2, which vanishes at an
-// exact development (phi = 0), so convergence is quadratic there and linear otherwise. With a
+// One link of the least-squares flattening, docs/theory.md §9 / thesis eqs. 2.25, 2.32, 2.33: the
+// residual phi = l - L of a mesh edge (2D length l = |q - p|, 3D length L) and its gradient, the
+// row A_i of the Gauss-Newton matrix A. The link behaves like a truss bar whose "stiffness" w A^T A
+// has only the axial part: Gauss-Newton drops the geometric term w phi d2l/dx2, which vanishes at
+// an exact development (phi = 0), so convergence is quadratic there and linear otherwise. With a
 // large weight w the product w phi stays finite (it is the force that keeps a boundary link at
 // its length), so the dropped term matters; FlattenLinkSystem can add it for a Newton step.
 #include "etfe/kernels/flatten_link.h"

@@ -1,6 +1,6 @@
-// Three-node total-Lagrangian membrane (CST) element, SPEC §3 / thesis §4.2.1 (eqs. 4.4-4.13).
-// Reference data: an orthonormal frame (e1 = MD axis projected on the element, e3 = normal) and
-// the constant shape-function gradients dN/dxi = [eta23, eta31, eta12]/(2A0),
+// Three-node total-Lagrangian membrane (CST) element, docs/theory.md §2 / thesis §4.2.1 (eqs.
+// 4.4-4.13). Reference data: an orthonormal frame (e1 = MD axis projected on the element, e3 =
+// normal) and the constant shape-function gradients dN/dxi = [eta23, eta31, eta12]/(2A0),
 // dN/deta = [xi32, xi13, xi21]/(2A0). Kinematics F = sum_a x_a (x) gradN_a (3x2),
 // E = 1/2 (F^T F - I) (Voigt, engineering shear) -- the thesis's a2..a9 form of eq. 4.6 written
 // without rotating the displacements. Force f_a = h0 A0 F S gradN_a and tangent

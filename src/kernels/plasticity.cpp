@@ -1,5 +1,6 @@
 // ETFE elasto-plasticity: plane-stress von Mises return map with piecewise-linear isotropic
-// hardening (SPEC §4; thesis §4.2.1, eqs. 4.9-4.21, Table 4.2). Pure C++17, no allocation.
+// hardening (docs/theory.md §3.2; thesis §4.2.1, eqs. 4.9-4.21, Table 4.2). Pure C++17, no
+// allocation.
 //
 // Formulation
 //  * Strain-driven, small strain on top of large displacement: the Green-Lagrange strain

@@ -1,6 +1,6 @@
-// Follower pressure on a three-node membrane, SPEC §3 / thesis §5.4: the consistent nodal load
-// of a uniform pressure on a flat triangle, f_a = p/3 * (area vector) = p/6 (x2-x1)x(x3-x1) for
-// every node. With c = x1 x x2 + x2 x x3 + x3 x x1 (the same vector) the derivative is cyclic:
+// Follower pressure on a three-node membrane, docs/theory.md §4 / thesis §5.4: the consistent nodal
+// load of a uniform pressure on a flat triangle, f_a = p/3 * (area vector) = p/6 (x2-x1)x(x3-x1)
+// for every node. With c = x1 x x2 + x2 x x3 + x3 x x1 (the same vector) the derivative is cyclic:
 // dc/dx_k = [x_{k+2} - x_{k+1}]_x (indices mod 3), so L_ab = p/6 [x_{b+2} - x_{b+1}]_x for
 // every row block a. L is not symmetric (a follower load is not conservative on an open
 // surface); the assembler adds -L to the tangent.

@@ -1,6 +1,6 @@
 // Material registry (-material_type) and the two laws: plane-stress St. Venant-Kirchhoff and the
-// ETFE elasto-plastic law (SPEC §4); the viscoelastic-plastic law is in viscoelastic_plastic.cpp.
-// Parameters come from -material_* options.
+// ETFE elasto-plastic law (docs/theory.md §3.2); the viscoelastic-plastic law is in
+// viscoelastic_plastic.cpp. Parameters come from -material_* options.
 #include <petscsys.h>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
-// Capstan (rolling friction) test, SPEC §9 / thesis §5.2: a film strip laid over a fixed pipe
-// around a wrap angle theta. Stage 1 applies the tension T1 (a dead load) on end A with end B
-// held; stage 2 pulls end B along its tangent (displacement control, so the run passes through
-// gross slip without a limit point) while T1 stays. T2 is the reaction at end B; once every
+// Capstan (rolling friction) test, docs/theory.md §5.6 / thesis §5.2: a film strip laid over a
+// fixed pipe around a wrap angle theta. Stage 1 applies the tension T1 (a dead load) on end A with
+// end B held; stage 2 pulls end B along its tangent (displacement control, so the run passes
+// through gross slip without a limit point) while T1 stays. T2 is the reaction at end B; once every
 // contact pair slips, Euler's belt formula predicts T2 = T1 exp(mu theta). The scene prints
 // T2 at slip onset and mu_eff = ln(T2/T1)/theta.
 #include <petscsys.h>

@@ -1,4 +1,4 @@
-// Hencky's problem (SPEC §3 check): a flat circular membrane clamped at its rim under uniform
+// Hencky's problem (docs/theory.md §13): a flat circular membrane clamped at its rim under uniform
 // follower pressure. The closed form (Foppl theory, coefficients by a shooting solve) gives the
 // centre deflection and centre stress; the scene prints both with the relative errors.
 //

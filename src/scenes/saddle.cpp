@@ -1,5 +1,5 @@
-// The saddle structure of the thesis (SPEC §8), quarter model X in [0, 2000], Y in [0, 1000]:
-// outside frame at z = 0 (X = 2000 and Y = 1000), symmetry on X = 0 (u_X = 0) and Y = 0
+// The saddle structure of the thesis (docs/theory.md §13), quarter model X in [0, 2000], Y in [0,
+// 1000]: outside frame at z = 0 (X = 2000 and Y = 1000), symmetry on X = 0 (u_X = 0) and Y = 0
 // (u_Y = 0), the arch at X = 1000: a circular arc through (Y = +-1000, z = 0) and (0, H).
 // Middle part X < 1000 (centre at X = 0), corner part X > 1000.
 //
@@ -8,7 +8,7 @@
 // initial shape is the arch extruded along X in the middle and ruled from the arch down to the
 // frame in the corners (the PD specimens' shape). The report gives the saddle heights h1 (middle
 // part centre) and h2 (corner part centre), the sag and curvature of the middle part's centre
-// line (SPEC §6: kappa = 8h/(L^2 + 4h^2)) and the middle cutting line length (X = 0).
+// line (docs/theory.md §8: kappa = 8h/(L^2 + 4h^2)) and the middle cutting line length (X = 0).
 #include <petscsys.h>
 
 #include <algorithm>

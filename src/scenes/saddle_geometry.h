@@ -1,4 +1,5 @@
-// Geometry of the thesis's saddle (SPEC §8), shared by its form-finding and stretch set-ups.
+// Geometry of the thesis's saddle (docs/theory.md §13), shared by its form-finding and stretch
+// set-ups.
 #pragma once
 #include <algorithm>
 #include <cmath>

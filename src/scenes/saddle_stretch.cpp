@@ -1,5 +1,5 @@
-// Stretch fabrication of the saddle (SPEC §8, thesis ch. 4-5): the film, stress free on its
-// initial shape, rests on the arch (friction contact) and its frame edges are drawn outward at
+// Stretch fabrication of the saddle (docs/theory.md §13, thesis ch. 4-5): the film, stress free on
+// its initial shape, rests on the arch (friction contact) and its frame edges are drawn outward at
 // a (X = 2000, Y = 0; in X), b (the corner; in X and Y), c (Y = 1000, X = 1000; in Y) and
 // d (Y = 1000, X = 0; in Y), linearly interpolated in between (thesis Fig. 3.4), stage by stage;
 // optionally followed by an internal-pressure cycle (§5.4). Probes: parts A and B (mean GL
@@ -165,7 +165,8 @@ PetscErrorCode MisesDistribution(Problem *P, const CellFields &f, double first_y
   for (int r = 1; r < P->size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
   const int N = P->rank == 0 ? displs[P->size - 1] + counts[P->size - 1] : 0;
   std::vector<double> all(N);
-  // PK2 Mises (the yield table's measure) and the true (Cauchy) Mises that gauges and other codes report.
+  // PK2 Mises (the yield table's measure) and the true (Cauchy) Mises that gauges and other codes
+  // report.
   for (int k = 0; k < 2; ++k) {
     const std::vector<double> &mine = k == 0 ? f.mises : f.cauchy_mises;
     PetscCallMPI(MPI_Gatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, 0,

@@ -1,9 +1,9 @@
 // Hencky's problem (clamped circular membrane under uniform pressure, Foppl theory): the
 // similarity coefficients C_w, C_s of w0 = C_w a (p a/(E h))^(1/3) and
 // sigma0 = C_s (E p^2 a^2/h^2)^(1/3), used as a closed-form check of the membrane element and the
-// pressure load (SPEC §3, thesis §5.4 pressurization). Hencky's 1915 numbers contain an error
-// (corrected by Chien 1948, Alekseev 1951) and published tables differ in the third digit, so the
-// coefficients are computed here rather than copied. This solve gives C_w(0.3) = 0.653443,
+// pressure load (docs/theory.md §4, §13; thesis §5.4 pressurization). Hencky's 1915 numbers contain
+// an error (corrected by Chien 1948, Alekseev 1951) and published tables differ in the third digit,
+// so the coefficients are computed here rather than copied. This solve gives C_w(0.3) = 0.653443,
 // C_s(0.3) = 0.431101 (b0 = 4 C_s = 1.7244 in the normalisation of Hencky's series), confirmed to
 // ~1e-13 by an independent power-series solution in tests/unit/test_hencky_closed_form.cpp.
 // C_s = 0.423/0.424, quoted in places, matches the approximate energy solution (Timoshenko), not

@@ -1,4 +1,4 @@
-"""Capstan check of the friction contact (SPEC §9): a film strip over a fixed pipe.
+"""Capstan check of the friction contact (docs/theory.md §5.6): a film strip over a fixed pipe.
 
 * mu_eff = ln(T2/T1)/theta within 3 % of mu = 0.3 at theta = 180 deg and the documented density
   (options/capstan.opts, 64 cells along the wrap), and the error shrinks as the wrap is

@@ -1,4 +1,4 @@
-"""Cutting patterns of the form-found saddle (SPEC §7): the middle and corner strips are
+"""Cutting patterns of the form-found saddle (docs/theory.md §9): the middle and corner strips are
 flattened and written as DXF, SVG and Gmsh; with the thesis's weights (boundary 1e12) the
 boundary and cutting lines keep their 3D length; with uniform weights the doubly curved strips
 come out shorter in 2D along the weld line over the arch, by more as the rise grows; compensated

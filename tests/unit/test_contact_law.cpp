@@ -1,4 +1,4 @@
-// Unit tests of the node-to-rigid friction contact laws (SPEC §5, thesis eqs. 4.25-4.31).
+// Unit tests of the node-to-rigid friction contact laws (docs/theory.md §5, thesis eqs. 4.25-4.31).
 #include "etfe/kernels/contact_law.h"
 
 #include "check.h"

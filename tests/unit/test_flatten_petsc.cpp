@@ -1,5 +1,5 @@
-// Cutting-pattern flattening (SPEC §7, thesis §2.3, eqs. 2.23-2.33) and its DXF/SVG/CSV export.
-// Needs PETSc (FlattenStrip solves K dx = R on PETSC_COMM_SELF): link with etfe_core.
+// Cutting-pattern flattening (docs/theory.md §9, thesis §2.3, eqs. 2.23-2.33) and its DXF/SVG/CSV
+// export. Needs PETSc (FlattenStrip solves K dx = R on PETSC_COMM_SELF): link with etfe_core.
 //  * kernel: the link gradient (eq. 2.33) against central differences; zero length and NaN guards;
 //  * developable strips (polyhedral cylinder and cone) flatten isometrically: every link to
 //    1e-8 relative, the rectangle / the sector angle of the exact development;

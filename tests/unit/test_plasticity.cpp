@@ -1,6 +1,6 @@
-// Unit tests of the ETFE elasto-plasticity kernel (SPEC §4, thesis eqs. 4.13-4.21, Table 4.2):
-// the consistent tangent against finite differences of the return map, closed-form uniaxial,
-// equibiaxial and pure-shear curves (with increments that straddle the hardening kinks),
+// Unit tests of the ETFE elasto-plasticity kernel (docs/theory.md §3.2, thesis eqs. 4.13-4.21,
+// Table 4.2): the consistent tangent against finite differences of the return map, closed-form
+// uniaxial, equibiaxial and pure-shear curves (with increments that straddle the hardening kinks),
 // load-unload-reload cycles, non-finite input and material checks. The closed forms below use
 // their own hardening routine so that they do not share code with the kernel.
 #include "etfe/kernels/plasticity.h"
@@ -17,7 +17,7 @@ using namespace etfe;
 
 namespace {
 
-PlasticMaterial EtfeMaterial() {  // thesis Table 4.2, nu from SPEC §4
+PlasticMaterial EtfeMaterial() {  // thesis Table 4.2, nu: docs/theory.md §3
   PlasticMaterial m{};
   m.young = 800.0;
   m.nu = 0.43;
@@ -306,7 +306,7 @@ bool UniaxialStep(const PlasticMaterial &m, MaterialPoint *p, double exx, int *i
   return false;
 }
 
-// SPEC §4: slope E to yield[0], then E H_k/(E+H_k) on segment k (monotone loading).
+// docs/theory.md §3.2: slope E to yield[0], then E H_k/(E+H_k) on segment k (monotone loading).
 double UniaxialMonotone(const PlasticMaterial &m, double exx) {
   const double E = m.young;
   if (exx <= m.yield[0] / E) return E * exx;

@@ -1,4 +1,4 @@
-// The gas in a chamber of membrane surfaces (SPEC: pneumatic cushions). PETSc-free.
+// The gas in a chamber of membrane surfaces (docs/theory.md §6). PETSc-free.
 //
 // A chamber is bounded by triangles whose normals n = (x2-x1)x(x3-x1) point out of it (a group
 // whose triangles point in enters with sign -1), closed by nodes that do not move (a clamped rim)

@@ -1,4 +1,5 @@
-// The local frame of a node-to-support contact pair (SPEC §5, thesis §4.2.2). PETSc-free.
+// The local frame of a node-to-support contact pair (docs/theory.md §5.1, thesis §4.2.2).
+// PETSc-free.
 //
 // A support is a circular cylinder (an arch is the same surface: only its extent differs, which
 // the scene's candidate selection handles): centre c, axis a (any length), radius r. For a point

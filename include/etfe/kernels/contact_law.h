@@ -1,4 +1,5 @@
-// Node-to-rigid penalty friction contact (SPEC §5, thesis §4.2.2, eqs. 4.25-4.31). PETSc-free.
+// Node-to-rigid penalty friction contact (docs/theory.md §5, thesis §4.2.2, eqs. 4.25-4.31).
+// PETSc-free.
 //
 // A contact pair joins a film node S to a point M of a rigid support. Its local frame R (rows
 // x0, y0, z0; z0 the outward normal of the support) maps global vectors to local ones. The gap

@@ -1,5 +1,5 @@
-// One link (mesh edge) of the least-squares flattening of a cutting strip (SPEC §7, thesis §2.3.2,
-// eqs. 2.25, 2.32, 2.33). PETSc-free.
+// One link (mesh edge) of the least-squares flattening of a cutting strip (docs/theory.md §9,
+// thesis §2.3.2, eqs. 2.25, 2.32, 2.33). PETSc-free.
 //   c = |q - p| - L                        (phi_i, eq. 2.25: 2D length minus 3D length)
 //   A_i = dc/d(px,py,qx,qy) = [-e, e]      (eq. 2.33a, e = (q - p)/|q - p|)
 //   K_i = w A_i^T A_i,  R_i = -w c A_i^T   (eq. 2.32, assembled like a truss into K dx = R)

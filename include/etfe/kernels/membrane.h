@@ -1,4 +1,4 @@
-// Three-node total-Lagrangian membrane element (SPEC §3, thesis §4.2.1). PETSc-free.
+// Three-node total-Lagrangian membrane element (docs/theory.md §2, thesis §4.2.1). PETSc-free.
 //
 // Conventions shared by every kernel:
 //  * nodal arrays are node-major: X[3*a + i] is component i of node a (a = 0,1,2);
@@ -46,7 +46,7 @@ void MembraneForce(const MembraneReference &ref, double thickness, const double 
 // Current area ratio a/A0 and unit normal n (may be nullptr) of the triangle x.
 double MembraneAreaRatio(const MembraneReference &ref, const double x[9], double n[3]);
 
-// Output measures of a membrane stress/strain state (SPEC §3).
+// Output measures of a membrane stress/strain state (docs/theory.md §2).
 double MisesPlaneStress(const double S[3]);          // sqrt(Sxx^2+Syy^2-SxxSyy+3Sxy^2)
 double MinPrincipalStress(const double S[3]);        // (Sxx+Syy)/2 - sqrt(((Sxx-Syy)/2)^2+Sxy^2)
 double MinPrincipalStrain(const double E[3]);        // E uses engineering shear: tensor shear E[2]/2

@@ -1,4 +1,4 @@
-// ETFE elasto-plasticity (SPEC §4, thesis §4.2.1 eqs. 4.13-4.21). PETSc-free.
+// ETFE elasto-plasticity (docs/theory.md §3.2, thesis §4.2.1 eqs. 4.13-4.21). PETSc-free.
 //
 // Plane stress, von Mises yield, associated flow, isotropic hardening, additive split of the
 // Green-Lagrange strain E = Ee + Ep (large displacement, small strain). Voigt vectors as in

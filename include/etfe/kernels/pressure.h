@@ -1,4 +1,4 @@
-// Follower pressure on a three-node membrane (SPEC §3, thesis §5.4). PETSc-free.
+// Follower pressure on a three-node membrane (docs/theory.md §4, thesis §5.4). PETSc-free.
 // The load acts along the current normal n = (x2-x1)x(x3-x1)/|..| (positive p pushes along n):
 //   f_a = p/6 (x2-x1)x(x3-x1)   for each node a
 // Its derivative L = df/dx (9x9 row-major, not symmetric) is the load stiffness; the assembler
