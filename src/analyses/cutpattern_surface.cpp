@@ -334,7 +334,7 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
              "-analysis cutpattern needs the surface: -mesh_file surface.msh (Gmsh; its physical surfaces are the "
              "strips)");
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  // The pattern files go beside the results path: <dir>/<stem>_<strip>.{dxf,svg,msh}, <stem>_lines.csv.
+  // The pattern files go beside the results path: <dir>/<stem>_<strip>.{dxf,svg,pdf,msh}, <stem>_lines.csv.
   const std::filesystem::path out(o.results_path);
   const std::string dir = out.parent_path().empty() ? "." : out.parent_path().string();
   // With geodesic strips the cut 3D surface (strips as physical surfaces, cutting lines as point

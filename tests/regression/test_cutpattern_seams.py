@@ -13,6 +13,8 @@
     flattened strip with the allowance on both sides fits the roll (measured from the pattern
     meshes), and the nesting places them all; the uncut foil's largest link error is printed
     beside the strips';
+  * the PDF sheets of a strip and of the nesting: valid cross-reference table, the page the SVG's
+    size at 1:1;
   * the form-found DD1511 saddle (corner and middle surfaces) cut directly on a 600 mm roll: every
     strip fits.
 """
@@ -155,6 +157,25 @@ with scratch_dir() as tmp:
     chk.check(nest is not None, "cushion: the nesting places every strip on the roll")
     chk.check(whole and errs and max(errs.values()) < max(whole.values()),
               "cushion: the strips' largest link error is below the uncut foil's")
+
+    # The PDF sheets: one per strip and the nesting; the page is the SVG's size at 1:1 (an 8 m strip
+    # is longer than PDF's 5.08 m page limit: /UserUnit 2), the cross-reference table points at
+    # every object.
+    for base in ("cush_top_01", "cush_nesting"):
+        pdf = open(os.path.join(tmp, base + ".pdf"), "rb").read().decode("latin-1")
+        svg = open(os.path.join(tmp, base + ".svg")).read()
+        sw, sh = (float(x) for x in re.search(r'width="%smm" height="%smm"' % (NUM, NUM), svg).groups())
+        box = [float(x) for x in re.search(r"/MediaBox \[0 0 %s %s\]" % (NUM, NUM), pdf).groups()]
+        unit = float(re.search(r"/UserUnit (\d+)", pdf).group(1)) if "/UserUnit" in pdf else 1.0
+        xref = int(re.search(r"startxref\n(\d+)", pdf).group(1))
+        offsets = [int(l[:10]) for l in pdf[xref:].split("\n")[3:] if re.match(r"\d{10} 00000 n", l)]
+        objs_ok = all(re.match(r"%d 0 obj" % (k + 1), pdf[o:]) for k, o in enumerate(offsets))
+        size_ok = abs(box[0] * unit * 25.4 / 72 - sw) < 1e-2 and abs(box[1] * unit * 25.4 / 72 - sh) < 1e-2
+        print("%s.pdf: %d objects, page %.1f x %.1f mm (UserUnit %g), SVG %.1f x %.1f mm" % (
+            base, len(offsets), box[0] * unit * 25.4 / 72, box[1] * unit * 25.4 / 72, unit, sw, sh))
+        chk.check(pdf.startswith("%PDF-1.6") and pdf.rstrip().endswith("%%EOF") and objs_ok and len(offsets) == 6,
+                  "%s.pdf: a PDF whose cross-reference table points at its 6 objects" % base)
+        chk.check(size_ok, "%s.pdf: the page is the drawing at 1:1 (the SVG's size, 0.01 mm)" % base)
 
     # 4. The form-found DD1511 saddle (physical surfaces corner and middle) cut on a 600 mm roll.
     msh = form_found_saddle(etfe, tmp)
