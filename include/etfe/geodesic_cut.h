@@ -1,6 +1,6 @@
-// Strips of a given width cut by geodesic lines (-cutpattern_strip_width): the surface
-// (its one physical surface, or all its triangles when it has none) is cut by straightest
-// geodesics (etfe/kernels/geodesic.h) into strips, which -analysis cutpattern then flattens.
+// Strips of a given width cut by seams (-cutpattern_strip_width): each physical surface (or all
+// the triangles when there is none) is cut by straightest geodesics (etfe/kernels/geodesic.h)
+// or plane sections (layout 1) into strips, which -analysis cutpattern then flattens.
 //
 // The lines: a transverse geodesic is traced through the surface's middle (the interior node
 // nearest its area centroid) across the strip direction, both ways to the boundary; the first
@@ -10,8 +10,11 @@
 // surface. So the strips are W wide on the transverse geodesic (the two edge strips take what is
 // left: W/4 to 5W/4); away from it they widen or narrow as the surface's curvature makes
 // geodesics part or meet (Gaussian curvature K < 0 or > 0; exactly W on a developable surface).
-// The lines are inserted into the mesh (edge splits, snapped to a node within `snap` of an
-// edge's length), the pieces between them are the strips <name>_01, <name>_02, ... in order
+// With `equal`, n lines instead split the transverse geodesic into n + 1 equal parts at most W.
+// Plane sections (layout 1) pass through the same points, normal to the transverse direction at
+// the middle. The lines are inserted into the mesh as conforming seams (edge splits at the
+// crossings, nodes within `snap` of an edge's length moved onto them: etfe/kernels/geodesic.h),
+// the pieces between them are the strips <name>_01, <name>_02, ... in order
 // across, and the edges two strips share become cut_<a>_<b> in CutPatternPrepareSurface.
 #pragma once
 #include <string>

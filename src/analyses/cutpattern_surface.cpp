@@ -210,7 +210,8 @@ namespace {
 // -cutpattern_strip_fit_roll: cuts a copy of *mesh at the width W, flattens every strip and
 // measures its least width; while the widest one is wider than the roll's usable width (roll
 // width less the seam allowance on both sides), W shrinks by their ratio (and 2 % more) and
-// the surface is cut again. Notes say each try.
+// the surface is cut again; a strip that folds over when flattened (too strongly curved for one
+// piece) shrinks W by 0.8. Notes say each try.
 bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::vector<std::string> *notes,
                   std::string *err) {
   const double usable = o.cutpattern.roll_width - 2 * o.cutpattern.seam_allowance;
@@ -227,16 +228,29 @@ bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::vector
       return false;
     }
     double widest = 0;
-    std::string which;
+    std::string which, folded;
     for (const auto &kv : m.element_sets) {
       FlattenResult r;
       const MeshData strip = ExtractStrip(m, kv.second, kv.first);
       if (!FlattenStrip(strip, o.cutpattern.flatten, &r, err)) {
+        // A strip too strongly curved to lie flat in one piece: narrower strips may.
+        if (err->find("folds over") != std::string::npos) {
+          folded = kv.first;
+          break;
+        }
         *err = "-cutpattern_strip_fit_roll: strip " + kv.first + ": " + *err;
         return false;
       }
       const double w = PatternLeastWidth(r.xy);
       if (w > widest) widest = w, which = kv.first;
+    }
+    if (!folded.empty()) {
+      std::snprintf(line, sizeof line,
+                    "roll fit, try %d: strip width %.1f mm, %zu strips, strip %s folds over when flattened: "
+                    "narrower strips (0.8 x)", attempt, g.width, m.element_sets.size(), folded.c_str());
+      notes->push_back(line);
+      g.width *= 0.8;
+      continue;
     }
     std::snprintf(line, sizeof line,
                   "roll fit, try %d: strip width %.1f mm, %zu strips, the widest flattened strip %s %.1f mm across "
@@ -267,9 +281,9 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
   PetscCall(MeshOptionsFromCommandLine(comm, "surface (-analysis cutpattern)", &mesh));
   PetscOptionsBegin(comm, nullptr, "Cutting patterns of a surface mesh (-analysis cutpattern)", "CutPattern");
   PetscCall(PetscOptionsReal("-cutpattern_strip_width",
-                             "Cut the surface (its one physical surface, or all of it) into strips this wide (mm) "
-                             "by geodesic cutting lines, the first through its middle (default: the physical "
-                             "surfaces are the strips)",
+                             "Cut each physical surface (or the whole mesh when it has none) into strips this wide "
+                             "(mm) by seams (-cutpattern_strip_layout), the first through its middle (default: the "
+                             "physical surfaces are the strips)",
                              "", o->geodesic.width, &o->geodesic.width, &width_set));
   static const char *const axes[] = {"x", "y", "z"};
   PetscInt axis = o->geodesic.direction;
