@@ -1,7 +1,8 @@
-// Strips of width W cut by geodesics (see etfe/geodesic_cut.h): the middle, the transverse
-// geodesic, the cutting lines traced and inserted one after another (each traced on the mesh as
-// the lines before it left it: the split triangles lie in their parents' planes, so the geometry
-// is the same), then the strips by flood fill, named in order across.
+// Strips of width W cut by seams (see etfe/geodesic_cut.h), per physical surface: the middle, the
+// transverse geodesic, the seams (geodesics or plane sections) traced and inserted one after
+// another (each traced on the mesh as the seams before it left it: split triangles lie in their
+// parents' planes; nodes moved onto a seam change the surface near it by at most the move times
+// the angle between their triangles), then the strips by flood fill, named in order across.
 #include "etfe/geodesic_cut.h"
 
 #include <algorithm>
@@ -374,8 +375,6 @@ double SmallestQuality(const std::vector<double> &coords, const std::vector<int>
     q = std::min(q, TriangleQuality(&coords[3 * tris[3 * e]], &coords[3 * tris[3 * e + 1]], &coords[3 * tris[3 * e + 2]]));
   return q;
 }
-
-const char *const kLayout[] = {"geodesic", "parallel"};
 
 // Cuts one surface (sub: its triangles as a mesh of their own; fixed: its nodes that must not
 // move) into strips <base>_NN: *s the cut surface, *strips the triangles of s per strip.
