@@ -36,7 +36,7 @@ struct GeodesicCutOptions {
   double snap = 0.2;
   double tol = -1.0;          // mm: crossings this near a node go to it (< 0: 1e-3 x the mean edge)
   double keep_quality = 0.5;  // a moved node's triangles keep this fraction of their smallest quality
-  int layout = 0;             // 0: geodesics, 1: plane sections parallel to the strip direction
+  int layout = 0;  // 0: geodesics, 1: plane sections parallel to the strip direction, 2: radial gores
   bool whole_if_narrow = false;  // a surface not wider than `width` is one strip (else refused)
   // Strips of equal width on the transverse geodesic, as few as keep them at most `width` wide
   // (else: a line through the middle, then W apart, the edge strips taking what is left).

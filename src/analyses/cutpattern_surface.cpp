@@ -298,13 +298,14 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
                              "triangles keep about this fraction of their parent's quality); a node that cannot "
                              "move (boundary corner, named line) takes the seam to it instead",
                              "", o->geodesic.snap, &o->geodesic.snap, &snap_set));
-  static const char *const layouts[] = {"geodesic", "parallel"};
+  static const char *const layouts[] = {"geodesic", "parallel", "radial"};
   PetscInt layout = o->geodesic.layout;
   PetscCall(PetscOptionsEList("-cutpattern_strip_layout",
                               "The seams of -cutpattern_strip_width: geodesic (straightest lines started across the "
-                              "surface's middle) or parallel (sections by planes parallel to the strip direction "
-                              "and the surface normal at the middle, W apart along the surface)",
-                              "", layouts, 2, layouts[layout], &layout, &layout_set));
+                              "surface's middle), parallel (sections by planes parallel to the strip direction "
+                              "and the surface normal at the middle, W apart along the surface) or radial (gores: "
+                              "sections by planes through the middle along its normal, rim arcs at most W)",
+                              "", layouts, 3, layouts[layout], &layout, &layout_set));
   o->geodesic.layout = (int)layout;
   PetscCall(PetscOptionsBool("-cutpattern_strip_fit_roll",
                              "Choose the strip width so that every flattened strip plus the seam allowance on both "

@@ -376,6 +376,106 @@ double SmallestQuality(const std::vector<double> &coords, const std::vector<int>
   return q;
 }
 
+// Radial seams (layout 2): the surface's sections by planes through the middle node along its
+// normal there, n/2 planes at equal angles giving n gores (n even, at least 4, the fewest whose
+// rim arcs, the boundary's length / n, are at most W), named in order round the middle.
+bool RadialStrips(const MeshData &sub, const std::string &base, const Transverse &t, LineInsertOptions io,
+                  const GeodesicCutOptions &o, const std::string &opt, TriSurface *s,
+                  std::vector<std::pair<std::string, std::vector<int>>> *strips, std::vector<std::string> *notes,
+                  std::string *err) {
+  const auto t0 = std::chrono::steady_clock::now();
+  double rim = 0;
+  for (int e = 0; e < s->NumTris(); ++e)
+    for (int k = 0; k < 3; ++k)
+      if (s->nbr[3 * e + k] < 0) {
+        const double *a = &s->coords[3 * (size_t)s->tris[3 * e + k]], *b = &s->coords[3 * (size_t)s->tris[3 * e + (k + 1) % 3]];
+        rim += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+      }
+  int n = std::max(4, (int)std::ceil(rim / o.width - 1e-9));
+  n += n % 2;
+  // The frame at the middle: the normal (its triangles' normals summed), e1 across the strips, e2.
+  double nv[3] = {0, 0, 0};
+  for (int e = 0; e < s->NumTris(); ++e)
+    if (s->tris[3 * e] == t.vmid || s->tris[3 * e + 1] == t.vmid || s->tris[3 * e + 2] == t.vmid) {
+      double ne[3];
+      SurfaceTriangleNormal(*s, e, ne);
+      for (int i = 0; i < 3; ++i) nv[i] += ne[i];
+    }
+  const double ln = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+  for (int i = 0; i < 3; ++i) nv[i] /= ln;
+  const double *e1 = t.dir;
+  const double e2[3] = {nv[1] * e1[2] - nv[2] * e1[1], nv[2] * e1[0] - nv[0] * e1[2], nv[0] * e1[1] - nv[1] * e1[0]};
+  io.shared_node = t.vmid;
+  SeamStats seams;
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < n / 2; ++k) {
+    const double th = 2 * pi * k / n, d[3] = {std::cos(th) * e1[0] + std::sin(th) * e2[0],
+                                              std::cos(th) * e1[1] + std::sin(th) * e2[1],
+                                              std::cos(th) * e1[2] + std::sin(th) * e2[2]};
+    const double pn[3] = {nv[1] * d[2] - nv[2] * d[1], nv[2] * d[0] - nv[0] * d[2], nv[0] * d[1] - nv[1] * d[0]};
+    const double *c = &s->coords[3 * (size_t)t.vmid];
+    const double level = pn[0] * c[0] + pn[1] * c[1] + pn[2] * c[2];
+    int loops = 0;
+    const auto lines = SurfacePlaneSection(*s, pn, level, &loops);
+    const std::string where = "the radial cut at " + Fmt("%.1f", th * 180 / pi) + " deg";
+    if (lines.size() != 1 || loops > 0) {
+      *err = opt + ": " + where + " through the middle " + Fmt("(%.1f, %.1f, %.1f) mm", c[0], c[1], c[2]) +
+             " crosses the surface in " + std::to_string(lines.size()) + " pieces and " + std::to_string(loops) +
+             " loops, not one line: radial seams need a surface round its middle (a round foil)";
+      return false;
+    }
+    std::vector<int> verts;
+    LineInsertStats st;
+    std::string why;
+    if (!SurfaceInsertLine(s, lines[0], io, &verts, &st, &why)) {
+      *err = opt + ": " + where + ": " + why;
+      return false;
+    }
+    const double turn = PolylineMaxTurn(*s, verts);
+    seams.Add(st, turn);
+    notes->push_back("radial line at " + Fmt("%.1f", th * 180 / pi) + " deg: " + std::to_string(verts.size()) +
+                     " nodes, " + std::to_string(st.relocated) + " mesh nodes moved onto it (" +
+                     Fmt("%.3f", st.relocated_max) + " mm at most), largest turn between seam segments " +
+                     Fmt("%.3f", turn * kDeg) + " deg");
+  }
+  std::vector<int> label;
+  const int count = SurfaceComponents(*s, &label);
+  if (count != n) {
+    *err = opt + ": " + std::to_string(n / 2) + " radial cuts left " + std::to_string(count) + " pieces instead of " +
+           std::to_string(n) + " gores; give another width";
+    return false;
+  }
+  // In order round the middle: by the angle of each gore's area centroid.
+  std::vector<double> cx(count, 0), cy(count, 0);
+  const double *c = &s->coords[3 * (size_t)t.vmid];
+  for (int e = 0; e < s->NumTris(); ++e) {
+    const double *x[3] = {&s->coords[3 * s->tris[3 * e]], &s->coords[3 * s->tris[3 * e + 1]], &s->coords[3 * s->tris[3 * e + 2]]};
+    const double A = TriangleArea(x[0], x[1], x[2]);
+    for (int i = 0; i < 3; ++i) {
+      const double r = (x[0][i] + x[1][i] + x[2][i]) / 3 - c[i];
+      cx[label[e]] += A * r * e1[i], cy[label[e]] += A * r * e2[i];
+    }
+  }
+  std::vector<int> order(count);
+  for (int k = 0; k < count; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::atan2(cy[a], cx[a]) < std::atan2(cy[b], cx[b]); });
+  const size_t first_note = notes->size();
+  NameStrips(*s, label, order, {}, t, base, false, strips, notes);
+  const double q0 = SmallestQuality(sub.coords, sub.triangles), q1 = SmallestQuality(s->coords, s->tris);
+  notes->insert(notes->begin() + (long)std::min(first_note, notes->size()),
+                "radial strips of " + base + ": rim " + Fmt("%.1f", rim) + " mm, " + std::to_string(n) +
+                    " gores (rim arcs " + Fmt("%.1f", rim / n) + " mm, width " + Fmt("%g", o.width) +
+                    " mm) round the middle node " + Fmt("(%.1f, %.1f, %.1f) mm", c[0], c[1], c[2]) + "; " +
+                    std::to_string(s->NumNodes() - sub.NumNodes()) + " nodes added, smallest triangle quality " +
+                    Fmt("%.3f", q1) + " (input " + Fmt("%.3f", q0) + "); seams: " + std::to_string(seams.relocated) +
+                    " mesh nodes moved onto them (" + Fmt("%.3f", seams.relocated_max) + " mm at most), " +
+                    std::to_string(seams.snapped) + " crossings taken to a node that could not move, seams within " +
+                    Fmt("%.3f", seams.line_moved) + " mm of the traced lines, largest turn between seam segments " +
+                    Fmt("%.3f", seams.max_turn * kDeg) + " deg; " +
+                    Fmt("%.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()));
+  return true;
+}
+
 // Cuts one surface (sub: its triangles as a mesh of their own; fixed: its nodes that must not
 // move) into strips <base>_NN: *s the cut surface, *strips the triangles of s per strip.
 bool CutOneSurface(const MeshData &sub, const std::string &base, const std::vector<char> &fixed,
@@ -429,18 +529,19 @@ bool CutOneSurface(const MeshData &sub, const std::string &base, const std::vect
     return false;
   }
   const double across = t.fwd.length + t.back.length;
-  if (o.width >= across && o.whole_if_narrow) {
+  if (o.width >= across && o.whole_if_narrow && o.layout != 2) {
     strips->push_back({base + "_01", {}});
     for (int e = 0; e < s->NumTris(); ++e) strips->back().second.push_back(e);
     notes->push_back(base + ": " + Fmt("%.1f", across) + " mm across along the geodesic through its middle, not "
                      "wider than the width " + Fmt("%.1f", o.width) + " mm: one strip " + base + "_01");
     return true;
   }
-  if (o.width >= across) {
+  if (o.width >= across && o.layout != 2) {
     *err = opt + " mm is wider than the surface: " + Fmt("%.1f", across) +
            " mm across along the geodesic through its middle; give a smaller width";
     return false;
   }
+  if (o.layout == 2) return RadialStrips(sub, base, t, io, o, opt, s, strips, notes, err);
   std::vector<double> offsets;
   if (o.equal) {  // n strips of equal width on the transverse geodesic, n the fewest at most W wide
     const int n = (int)std::ceil(across / o.width - 1e-9);

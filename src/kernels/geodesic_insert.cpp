@@ -372,7 +372,7 @@ bool SurfaceInsertLine(TriSurface *s, const std::vector<SurfacePoint> &line0, co
         st.line_moved = std::max(st.line_moved, d);
       }
     }
-    if (on_cut[v]) {
+    if (on_cut[v] && v != o.shared_node) {
       *err = "the line meets another cutting line at " + Where(*s, v);
       return false;
     }

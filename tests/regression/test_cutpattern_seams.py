@@ -13,6 +13,7 @@
     flattened strip with the allowance on both sides fits the roll (measured from the pattern
     meshes), and the nesting places them all; the uncut foil's largest link error is printed
     beside the strips';
+  * a round cushion cut in radial gores (-cutpattern_strip_layout radial): 10 per foil;
   * the PDF sheets of a strip and of the nesting: valid cross-reference table, the page the SVG's
     size at 1:1;
   * the form-found DD1511 saddle (corner and middle surfaces) cut directly on a 600 mm roll: every
@@ -176,6 +177,20 @@ with scratch_dir() as tmp:
         chk.check(pdf.startswith("%PDF-1.6") and pdf.rstrip().endswith("%%EOF") and objs_ok and len(offsets) == 6,
                   "%s.pdf: a PDF whose cross-reference table points at its 6 objects" % base)
         chk.check(size_ok, "%s.pdf: the page is the drawing at 1:1 (the SVG's size, 0.01 mm)" % base)
+
+    # 3b. A round cushion (R 1500 mm, lens 200 mm, 48 sectors) cut in radial gores, W 950 mm: the
+    # rim 9425 mm long gives 10 gores per foil (36 deg: across the mesh's 7.5 deg sectors).
+    path = os.path.join(tmp, "round.msh")
+    subprocess.run([sys.executable, os.path.join(REPO, "scripts", "cushion-mesh"), path, "--circle", "1500",
+                    "--lens", "200mm", "--size", "100"], check=True, capture_output=True)
+    out = cutpattern(tmp, "round", path, ["-cutpattern_strip_width", 950, "-cutpattern_strip_layout", "radial"])
+    errs = link_errors(out)
+    m = re.search(r"radial strips of top: .*", out)
+    print("round cushion, radial gores: %s; link error max %.2e" % (m.group(0) if m else "?",
+                                                                   max(errs.values()) if errs else float("nan")))
+    chk.check(sorted(errs) == sorted(["%s_%02d" % (f, k) for f in ("bottom", "top") for k in range(1, 11)]),
+              "round cushion: radial seams cut each foil into 10 gores")
+    chk.check(errs and max(errs.values()) < 0.01, "round cushion: every gore flattens (link error below 1 %)")
 
     # 4. The form-found DD1511 saddle (physical surfaces corner and middle) cut on a 600 mm roll.
     msh = form_found_saddle(etfe, tmp)

@@ -99,6 +99,7 @@ struct LineInsertOptions {
   double tol = 0.0;           // mm: a crossing this near a node goes to the node
   double keep_quality = 0.5;  // a moved node's triangles keep this fraction of their smallest quality
   double quality_floor = 0.0;  // and stay at least this good (moves one after another add up)
+  int shared_node = -1;        // a node the line may pass although on another line (radial seams' centre)
 };
 struct LineInsertStats {
   double line_moved = 0.0;  // mm: the largest distance from a traced point to the node standing for it
