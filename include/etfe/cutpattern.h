@@ -63,8 +63,15 @@ struct CutPatternSurfaceOptions {
   double cad_size = 0.0;     // -mesh_cad_size: element size when mesh_file is a CAD surface (mm)
   std::string results_path;  // -output_file: the pattern files go beside it, named by its stem
   CutPatternOptions cutpattern;
-  GeodesicCutOptions geodesic;  // -cutpattern_strip_width/_direction: strips cut by geodesics
+  GeodesicCutOptions geodesic;  // -cutpattern_strip_width/_direction/_layout: strips cut by seams
+  // -cutpattern_strip_fit_roll: the strip width chosen so that every flattened strip, with the
+  // seam allowance on both sides, fits -cutpattern_roll_width.
+  PetscBool fit_roll = PETSC_FALSE;
+  bool width_given = false;  // -cutpattern_strip_width given (the fit then starts from it)
 };
+// The least width of a set of plane points (x, y pairs): across the narrowest caliper of their
+// convex hull (mm).
+double PatternLeastWidth(const std::vector<double> &xy);
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o);
 // Reads and checks the mesh on rank 0, then CutPatternRun. Collective.
 PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOptions &o);

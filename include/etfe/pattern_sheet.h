@@ -68,6 +68,9 @@ bool BoxCrossesPolyline(const double box[4], const SheetPolyline &p);
 // bar) of a sheet.
 bool WriteSheetDxf(const std::string &path, const Sheet &s, std::string *err);
 bool WriteSheetSvg(const std::string &path, const Sheet &s, std::string *err);
+// PDF of a sheet (pattern_pdf.cpp): one page, 1:1 in mm up to 5.08 m (beyond, /UserUnit), the
+// SVG's colours and scale bar.
+bool WriteSheetPdf(const std::string &path, const Sheet &s, std::string *err);
 bool WriteTextFile(const std::string &path, const std::string &text, std::string *err);
 
 // ---- Roll nesting (pattern_nesting.cpp)

@@ -88,7 +88,7 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
                              "", o->md_mark, &o->md_mark, nullptr));
   PetscCall(PetscOptionsReal("-cutpattern_roll_width",
                              "Nest all strips on a roll this wide [mm] (each turned to its least width, shelves "
-                             "along the roll): <stem>_nesting.{dxf,svg}, the roll length and waste (0: no nesting)",
+                             "along the roll): <stem>_nesting.{dxf,svg,pdf}, the roll length and waste (0: no nesting)",
                              "", o->roll_width, &o->roll_width, nullptr));
   PetscCall(PetscOptionsReal("-cutpattern_roll_gap", "Gap between the strips nested on the roll [mm]", "", o->roll_gap,
                              &o->roll_gap, nullptr));
@@ -282,14 +282,14 @@ bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const Cut
   return true;
 }
 
-// The pattern's files <base>.dxf, <base>.svg and <base>.msh (the plane layout as a mesh).
+// The pattern's files <base>.dxf, <base>.svg, <base>.pdf and <base>.msh (the plane layout as a mesh).
 bool WriteStripFiles(const std::string &base, const std::string &name, const MeshData &strip, const FlattenResult &r,
                      const PatternDrawing &drawing, std::string *err) {
   MeshData flat = strip;
   for (int n = 0; n < flat.NumNodes(); ++n)
     flat.coords[3 * n] = r.xy[2 * n], flat.coords[3 * n + 1] = r.xy[2 * n + 1], flat.coords[3 * n + 2] = 0.0;
   return WritePatternDxf(base + ".dxf", r, name, drawing, err) && WritePatternSvg(base + ".svg", r, name, drawing, err) &&
-         WriteGmshFile(base + ".msh", flat, err);
+         WriteSheetPdf(base + ".pdf", PatternSheet(r, name, drawing), err) && WriteGmshFile(base + ".msh", flat, err);
 }
 
 // The printed lines of one strip: the fit, the outline, each cutting line and, with compensation
@@ -300,7 +300,7 @@ std::string StripReport(const std::string &name, const std::string &base, const 
   char line[512];
   std::snprintf(line, sizeof line,
                 "cutpattern: strip %s: %d nodes, %d links, %d iterations (%s start), S = %.3e mm^2, link error "
-                "max %.3e rms %.3e; files %s.{dxf,svg,msh}\n",
+                "max %.3e rms %.3e; files %s.{dxf,svg,pdf,msh}\n",
                 name.c_str(), strip.NumNodes(), (int)r.link_length3d.size(), r.iterations, r.initial_guess.c_str(),
                 r.S, r.max_rel_error, r.rms_rel_error, base.c_str());
   report += line;
@@ -374,7 +374,8 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
       Sheet sheet;
       const std::string base = dir + "/" + stem + "_nesting";
       ok = NestOnRoll(items, drawing, o.roll_width, o.roll_gap, &nest, &sheet, &err) &&
-           WriteSheetDxf(base + ".dxf", sheet, &err) && WriteSheetSvg(base + ".svg", sheet, &err);
+           WriteSheetDxf(base + ".dxf", sheet, &err) && WriteSheetSvg(base + ".svg", sheet, &err) &&
+           WriteSheetPdf(base + ".pdf", sheet, &err);
       if (ok) report += NestReport(nest, o.roll_width, base);
     }
   }

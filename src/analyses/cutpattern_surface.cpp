@@ -10,12 +10,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "etfe/cutpattern.h"
+#include "etfe/flatten_strip.h"
 #include "etfe/input_plausibility.h"
 #include "etfe/mesh/cad_reader.h"
 #include "etfe/mesh/gmsh_reader.h"
@@ -172,17 +174,116 @@ bool CutPatternPrepareSurface(MeshData *m, const std::vector<std::string> &only,
   return true;
 }
 
+double PatternLeastWidth(const std::vector<double> &xy) {
+  std::vector<std::pair<double, double>> p, h;
+  for (size_t k = 0; k + 1 < xy.size(); k += 2) p.push_back({xy[k], xy[k + 1]});
+  std::sort(p.begin(), p.end());
+  p.erase(std::unique(p.begin(), p.end()), p.end());
+  if (p.size() < 3) return 0.0;
+  auto cross = [](const std::pair<double, double> &o, const std::pair<double, double> &a,
+                  const std::pair<double, double> &b) {
+    return (a.first - o.first) * (b.second - o.second) - (a.second - o.second) * (b.first - o.first);
+  };
+  for (int pass = 0; pass < 2; ++pass) {  // Andrew's monotone chain: lower, then upper hull
+    const size_t start = h.size();
+    for (size_t i = 0; i < p.size(); ++i) {
+      const auto &q = pass == 0 ? p[i] : p[p.size() - 1 - i];
+      while (h.size() >= start + 2 && cross(h[h.size() - 2], h.back(), q) <= 0) h.pop_back();
+      h.push_back(q);
+    }
+    h.pop_back();
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < h.size(); ++i) {
+    const auto &a = h[i], &b = h[(i + 1) % h.size()];
+    const double L = std::hypot(b.first - a.first, b.second - a.second);
+    if (L <= 0) continue;
+    double far = 0;
+    for (const auto &q : h) far = std::max(far, std::fabs(cross(a, b, q)) / L);
+    best = std::min(best, far);
+  }
+  return best;
+}
+
+namespace {
+
+// -cutpattern_strip_fit_roll: cuts a copy of *mesh at the width W, flattens every strip and
+// measures its least width; while the widest one is wider than the roll's usable width (roll
+// width less the seam allowance on both sides), W shrinks by their ratio (and 2 % more) and
+// the surface is cut again; a strip that folds over when flattened (too strongly curved for one
+// piece) shrinks W by 0.8. Notes say each try.
+bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::vector<std::string> *notes,
+                  std::string *err) {
+  const double usable = o.cutpattern.roll_width - 2 * o.cutpattern.seam_allowance;
+  GeodesicCutOptions g = o.geodesic;
+  g.whole_if_narrow = true;
+  g.equal = true;
+  if (!o.width_given) g.width = usable;
+  char line[400];
+  for (int attempt = 1; attempt <= 8; ++attempt) {
+    MeshData m = *mesh;
+    std::vector<std::string> n;
+    if (!GeodesicCutStrips(&m, g, &n, err)) {
+      *err = "-cutpattern_strip_fit_roll (try " + std::to_string(attempt) + "): " + *err;
+      return false;
+    }
+    double widest = 0;
+    std::string which, folded;
+    for (const auto &kv : m.element_sets) {
+      FlattenResult r;
+      const MeshData strip = ExtractStrip(m, kv.second, kv.first);
+      if (!FlattenStrip(strip, o.cutpattern.flatten, &r, err)) {
+        // A strip too strongly curved to lie flat in one piece: narrower strips may.
+        if (err->find("folds over") != std::string::npos) {
+          folded = kv.first;
+          break;
+        }
+        *err = "-cutpattern_strip_fit_roll: strip " + kv.first + ": " + *err;
+        return false;
+      }
+      const double w = PatternLeastWidth(r.xy);
+      if (w > widest) widest = w, which = kv.first;
+    }
+    if (!folded.empty()) {
+      std::snprintf(line, sizeof line,
+                    "roll fit, try %d: strip width %.1f mm, %zu strips, strip %s folds over when flattened: "
+                    "narrower strips (0.8 x)", attempt, g.width, m.element_sets.size(), folded.c_str());
+      notes->push_back(line);
+      g.width *= 0.8;
+      continue;
+    }
+    std::snprintf(line, sizeof line,
+                  "roll fit, try %d: strip width %.1f mm, %zu strips, the widest flattened strip %s %.1f mm across "
+                  "(usable width of the roll %.1f mm: %.1f mm less twice the seam allowance %.1f mm)",
+                  attempt, g.width, m.element_sets.size(), which.c_str(), widest, usable, o.cutpattern.roll_width,
+                  o.cutpattern.seam_allowance);
+    notes->push_back(line);
+    if (widest <= usable) {
+      notes->insert(notes->end(), n.begin(), n.end());
+      *mesh = m;
+      return true;
+    }
+    g.width *= 0.98 * usable / widest;
+  }
+  *err = "-cutpattern_strip_fit_roll: after 8 tries the widest flattened strip is still wider than the roll's usable "
+         "width (see the notes); give a smaller -cutpattern_strip_width to start from, or a wider roll";
+  for (const auto &n : *notes) *err += "\n  " + n;
+  return false;
+}
+
+} // namespace
+
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o) {
   MeshOptions mesh;
-  PetscBool width_set = PETSC_FALSE, direction_set = PETSC_FALSE, snap_set = PETSC_FALSE;
+  PetscBool width_set = PETSC_FALSE, direction_set = PETSC_FALSE, snap_set = PETSC_FALSE, layout_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   mesh.keys = kMeshFile;
   PetscCall(MeshOptionsFromCommandLine(comm, "surface (-analysis cutpattern)", &mesh));
   PetscOptionsBegin(comm, nullptr, "Cutting patterns of a surface mesh (-analysis cutpattern)", "CutPattern");
   PetscCall(PetscOptionsReal("-cutpattern_strip_width",
-                             "Cut the surface (its one physical surface, or all of it) into strips this wide (mm) "
-                             "by geodesic cutting lines, the first through its middle (default: the physical "
-                             "surfaces are the strips)",
+                             "Cut each physical surface (or the whole mesh when it has none) into strips this wide "
+                             "(mm) by seams (-cutpattern_strip_layout), the first through its middle (default: the "
+                             "physical surfaces are the strips)",
                              "", o->geodesic.width, &o->geodesic.width, &width_set));
   static const char *const axes[] = {"x", "y", "z"};
   PetscInt axis = o->geodesic.direction;
@@ -192,15 +293,32 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
                               "", axes, 3, axes[axis], &axis, &direction_set));
   o->geodesic.direction = (int)axis;
   PetscCall(PetscOptionsReal("-cutpattern_strip_snap",
-                             "With -cutpattern_strip_width: a cutting line crossing an edge within this fraction of "
-                             "its length from a node goes through the node (fewer thin triangles, the line off its "
-                             "geodesic by at most this fraction of an edge)",
+                             "With -cutpattern_strip_width: a mesh node within this fraction of an edge's length "
+                             "from a seam is moved onto it (the seam stays where it was traced; children of split "
+                             "triangles keep about this fraction of their parent's quality); a node that cannot "
+                             "move (boundary corner, named line) takes the seam to it instead",
                              "", o->geodesic.snap, &o->geodesic.snap, &snap_set));
+  static const char *const layouts[] = {"geodesic", "parallel", "radial"};
+  PetscInt layout = o->geodesic.layout;
+  PetscCall(PetscOptionsEList("-cutpattern_strip_layout",
+                              "The seams of -cutpattern_strip_width: geodesic (straightest lines started across the "
+                              "surface's middle), parallel (sections by planes parallel to the strip direction "
+                              "and the surface normal at the middle, W apart along the surface) or radial (gores: "
+                              "sections by planes through the middle along its normal, rim arcs at most W)",
+                              "", layouts, 3, layouts[layout], &layout, &layout_set));
+  o->geodesic.layout = (int)layout;
+  PetscCall(PetscOptionsBool("-cutpattern_strip_fit_roll",
+                             "Choose the strip width so that every flattened strip plus the seam allowance on both "
+                             "sides fits -cutpattern_roll_width (iterated from -cutpattern_strip_width, or from the "
+                             "usable width); every physical surface is cut, one narrower than that is one strip",
+                             "", o->fit_roll, &o->fit_roll, nullptr));
   PetscOptionsEnd();
+  o->width_given = width_set;
   // Without a width nothing is cut: a direction or snap alone would be silently ignored.
-  PetscCheck(width_set || !(direction_set || snap_set), comm, PETSC_ERR_ARG_INCOMP,
+  PetscCheck(width_set || o->fit_roll || !(direction_set || snap_set || layout_set), comm, PETSC_ERR_ARG_INCOMP,
              "%s only shapes geodesic strips: give -cutpattern_strip_width W too, or leave it out to flatten the "
-             "physical surfaces as the strips", direction_set ? "-cutpattern_strip_direction" : "-cutpattern_strip_snap");
+             "physical surfaces as the strips",
+             direction_set ? "-cutpattern_strip_direction" : snap_set ? "-cutpattern_strip_snap" : "-cutpattern_strip_layout");
   PetscCheck(o->geodesic.snap >= 0 && o->geodesic.snap < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_strip_snap %g: give a fraction of an edge's length in [0, 0.5)", (double)o->geodesic.snap);
   PetscCheck(!width_set || (o->geodesic.width > 0 && std::isfinite(o->geodesic.width)), comm,
@@ -208,6 +326,9 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
              "-cutpattern_strip_width %g: a strip width must be a positive length in mm (leave the option out to "
              "flatten the physical surfaces as the strips)", (double)o->geodesic.width);
   PetscCall(CutPatternOptionsFromCommandLine(comm, &o->cutpattern));
+  PetscCheck(!o->fit_roll || o->cutpattern.roll_width > 2 * o->cutpattern.seam_allowance, comm, PETSC_ERR_USER_INPUT,
+             "-cutpattern_strip_fit_roll needs the roll: -cutpattern_roll_width W (mm) wider than twice "
+             "-cutpattern_seam_allowance (%g mm)", o->cutpattern.seam_allowance);
   o->mesh_file = mesh.file;
   PetscCall(MeshCadSizeFromOptions(comm, mesh.file.c_str(), &o->cad_size));
   const std::string stem = mesh.file.empty() ? std::string("surface") : std::filesystem::path(mesh.file).stem().string();
@@ -228,25 +349,27 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
              "-analysis cutpattern needs the surface: -mesh_file surface.msh (Gmsh; its physical surfaces are the "
              "strips)");
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  // The pattern files go beside the results path: <dir>/<stem>_<strip>.{dxf,svg,msh}, <stem>_lines.csv.
+  // The pattern files go beside the results path: <dir>/<stem>_<strip>.{dxf,svg,pdf,msh}, <stem>_lines.csv.
   const std::filesystem::path out(o.results_path);
   const std::string dir = out.parent_path().empty() ? "." : out.parent_path().string();
   // With geodesic strips the cut 3D surface (strips as physical surfaces, cutting lines as point
   // groups) is written as <stem>_cut.msh, to see the lines on the surface.
   const std::string cut_file = dir + "/" + out.stem().string() + "_cut.msh";
+  const bool cutting = o.geodesic.width > 0 || o.fit_roll;
   if (rank == 0) {
     std::error_code ec;
-    if (o.geodesic.width > 0) std::filesystem::create_directories(dir, ec);
+    if (cutting) std::filesystem::create_directories(dir, ec);
     ok = ReadMeshFile(o.mesh_file, o.cad_size, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
-         (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err)) &&
+         (o.fit_roll ? CutToFitRoll(&mesh, o, &notes, &err)
+                     : (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err))) &&
          CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err) &&
-         (o.geodesic.width <= 0 || WriteGmshFile(cut_file, mesh, &err));
+         (!cutting || WriteGmshFile(cut_file, mesh, &err));
   }
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &n : mesh.notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", o.mesh_file.c_str(), n.c_str()));
   if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(mesh, o.mesh_file)));
   for (const std::string &n : notes) PetscCall(PetscPrintf(comm, "cutpattern: %s\n", n.c_str()));
-  if (o.geodesic.width > 0) PetscCall(PetscPrintf(comm, "cutpattern: the cut surface: %s\n", cut_file.c_str()));
+  if (cutting) PetscCall(PetscPrintf(comm, "cutpattern: the cut surface: %s\n", cut_file.c_str()));
   PetscCall(CutPatternRun(comm, mesh, o.cutpattern, dir, out.stem().string()));
   PetscFunctionReturn(0);
 }

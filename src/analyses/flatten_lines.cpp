@@ -187,6 +187,15 @@ bool Report(const MeshData &m, const Topology &t, const FlattenOptions &opt, con
       return Fail(m, err, "line set '" + name + "' is not a node set of the strip (it has " +
                               std::to_string(m.node_sets.size()) + " node sets)");
     }
+    // A cutting or weld line found by its prefix that only touches this strip at separate nodes
+    // (where three strips meet: two surfaces cut into strips each) is no line of this strip.
+    if (std::find(opt.line_sets.begin(), opt.line_sets.end(), name) == opt.line_sets.end()) {
+      std::vector<char> in(m.NumNodes(), 0);
+      for (int v : it->second) in[v] = 1;
+      bool any = false;
+      for (int i = 0; i < t.NumLinks() && !any; ++i) any = in[t.links[2 * i]] && in[t.links[2 * i + 1]];
+      if (!any) continue;
+    }
     PatternLine line;
     if (!MeasureLine(m, t, x, name, it->second, &line, err)) return false;
     out->lines.push_back(std::move(line));

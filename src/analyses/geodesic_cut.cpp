@@ -1,7 +1,8 @@
-// Strips of width W cut by geodesics (see etfe/geodesic_cut.h): the middle, the transverse
-// geodesic, the cutting lines traced and inserted one after another (each traced on the mesh as
-// the lines before it left it: the split triangles lie in their parents' planes, so the geometry
-// is the same), then the strips by flood fill, named in order across.
+// Strips of width W cut by seams (see etfe/geodesic_cut.h), per physical surface: the middle, the
+// transverse geodesic, the seams (geodesics or plane sections) traced and inserted one after
+// another (each traced on the mesh as the seams before it left it: split triangles lie in their
+// parents' planes; nodes moved onto a seam change the surface near it by at most the move times
+// the angle between their triangles), then the strips by flood fill, named in order across.
 #include "etfe/geodesic_cut.h"
 
 #include <algorithm>
@@ -125,42 +126,6 @@ bool TraceBothWays(const TriSurface &s, int v, int parent, const double q[3], co
   return true;
 }
 
-// The surface to cut: the mesh's one physical surface (or all its triangles) as a TriSurface.
-struct CutSurface {
-  std::string base = "strip";  // the strips' names are <base>_01, <base>_02, ...
-  MeshData sub;                // the input triangles, before any line is inserted
-  TriSurface s;                // the surface the lines are inserted into
-};
-
-bool SurfaceToCut(const MeshData &mesh, const std::string &opt, CutSurface *c, std::vector<std::string> *notes,
-                  std::string *err) {
-  if (mesh.element_sets.size() > 1) {
-    std::string names;
-    for (const auto &kv : mesh.element_sets) names += (names.empty() ? "" : ", ") + kv.first;
-    *err = opt + " cuts one surface into strips, but " + mesh.source + " has " +
-           std::to_string(mesh.element_sets.size()) + " physical surfaces (" + names +
-           "): give a mesh with one physical surface (or none), or leave out -cutpattern_strip_width to flatten "
-           "those groups as the strips";
-    return false;
-  }
-  std::vector<int> elems;
-  if (mesh.element_sets.size() == 1) {
-    c->base = mesh.element_sets.begin()->first;
-    elems = mesh.element_sets.begin()->second;
-  } else {
-    for (int e = 0; e < mesh.NumElements(); ++e) elems.push_back(e);
-  }
-  if ((int)elems.size() < mesh.NumElements())
-    notes->push_back(std::to_string(mesh.NumElements() - (int)elems.size()) +
-                     " triangles outside the physical surface " + c->base + " are left out");
-  c->sub = ExtractStrip(mesh, elems, c->base);
-  if (!SurfaceFromArrays(c->sub.coords, c->sub.triangles, &c->s, err)) {
-    *err = mesh.source + ": " + *err;
-    return false;
-  }
-  return true;
-}
-
 // The mean edge length h (each edge once) and the area centroid of s.
 void MeanEdgeAndCentroid(const TriSurface &s, double *h, double centroid[3]) {
   double area = 0;
@@ -267,9 +232,21 @@ void CuttingLineStart(const TriSurface &s, const Transverse &t, double off, doub
     for (int i = 0; i < 3; ++i) c[i] = -c[i];
 }
 
+// What the insertion of the lines did, over all lines of a surface.
+struct SeamStats {
+  double line_moved = 0, relocated_max = 0, max_turn = 0;
+  int relocated = 0, snapped = 0;
+  void Add(const LineInsertStats &st, double turn) {
+    line_moved = std::max(line_moved, st.line_moved), relocated_max = std::max(relocated_max, st.relocated_max);
+    relocated += st.relocated, snapped += st.snapped, max_turn = std::max(max_turn, turn);
+  }
+};
+
+const double kDeg = 180.0 / 3.14159265358979323846;
+
 // Traces the cutting line `off` mm from the middle both ways and inserts it into s, with a note.
-bool InsertCuttingLine(TriSurface *s, const Transverse &t, double off, double snap, const std::string &opt,
-                       std::vector<std::string> *notes, std::string *err) {
+bool InsertCuttingLine(TriSurface *s, const Transverse &t, double off, const LineInsertOptions &io,
+                       const std::string &opt, SeamStats *seams, std::vector<std::string> *notes, std::string *err) {
   Trace line;
   std::string why;
   int parent = -1;
@@ -280,9 +257,9 @@ bool InsertCuttingLine(TriSurface *s, const Transverse &t, double off, double sn
     CuttingLineStart(*s, t, off, q, c, &parent);
   }
   std::vector<int> verts;
-  double moved = 0;
+  LineInsertStats st;
   if (!TraceBothWays(*s, off == 0 ? t.vmid : -1, parent, q, c, t.max_steps, &line, &why) || !line.ok ||
-      !SurfaceInsertLine(s, line.line, snap, &verts, &moved, &why)) {
+      !SurfaceInsertLine(s, line.line, io, &verts, &st, &why)) {
     if (why.empty()) why = "it does not reach the boundary within " + std::to_string(t.max_steps) + " crossings (it winds on the surface)";
     const bool meets = why.find("another cutting line") != std::string::npos;
     *err = opt + ": the cutting line " + Fmt("%+.1f", off) + " mm from the middle " +
@@ -293,9 +270,60 @@ bool InsertCuttingLine(TriSurface *s, const Transverse &t, double off, double sn
                   : "; give a larger width or another -cutpattern_strip_direction");
     return false;
   }
+  const double turn = PolylineMaxTurn(*s, verts);
+  seams->Add(st, turn);
   notes->push_back("geodesic line " + Fmt("%+.1f", off) + " mm from the middle: " + Fmt("%.3f", line.length) +
                    " mm long, " + std::to_string(verts.size()) + " nodes, " + std::to_string(line.vertices) +
-                   " mesh nodes passed, inserted within " + Fmt("%.3f", moved) + " mm of the traced geodesic");
+                   " mesh nodes passed, inserted within " + Fmt("%.3f", st.line_moved) +
+                   " mm of the traced geodesic, " + std::to_string(st.relocated) + " mesh nodes moved onto it (" +
+                   Fmt("%.3f", st.relocated_max) + " mm at most), largest turn between seam segments " +
+                   Fmt("%.3f", turn * kDeg) + " deg");
+  return true;
+}
+
+// The plane section through the point q of the transverse geodesic, normal to the strips
+// (normal t.dir): inserted into s, each piece (a section may leave and re-enter the surface) a
+// line, with a note.
+bool InsertPlaneLine(TriSurface *s, const Transverse &t, double off, const LineInsertOptions &io,
+                     const std::string &opt, SeamStats *seams, std::vector<std::string> *notes, std::string *err) {
+  double q[3], c[3];
+  int parent = -1;
+  if (off == 0) {
+    for (int i = 0; i < 3; ++i) q[i] = t.mid[i];
+  } else {
+    CuttingLineStart(*s, t, off, q, c, &parent);
+  }
+  const double level = t.dir[0] * q[0] + t.dir[1] * q[1] + t.dir[2] * q[2];
+  int loops = 0;
+  const std::vector<std::vector<SurfacePoint>> lines = SurfacePlaneSection(*s, t.dir, level, &loops);
+  const std::string where = "the planar cut " + Fmt("%+.1f", off) + " mm from the middle " +
+                            Fmt("(%.1f, %.1f, %.1f) mm", q[0], q[1], q[2]);
+  if (lines.empty() || loops > 0) {
+    *err = opt + ": " + where + (lines.empty() ? " does not cross the surface" : " closes on itself") +
+           "; give another width or direction, or -cutpattern_strip_layout geodesic";
+    return false;
+  }
+  for (const auto &line : lines) {
+    std::vector<int> verts;
+    LineInsertStats st;
+    std::string why;
+    if (!SurfaceInsertLine(s, line, io, &verts, &st, &why)) {
+      *err = opt + ": " + where + ": " + why + "; give another width or direction";
+      return false;
+    }
+    double length = 0;
+    for (size_t i = 1; i < verts.size(); ++i) {
+      const double *x = &s->coords[3 * (size_t)verts[i - 1]], *y = &s->coords[3 * (size_t)verts[i]];
+      length += std::sqrt((x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]));
+    }
+    const double turn = PolylineMaxTurn(*s, verts);
+    seams->Add(st, turn);
+    notes->push_back("planar line " + Fmt("%+.1f", off) + " mm from the middle: " + Fmt("%.3f", length) +
+                     " mm long, " + std::to_string(verts.size()) + " nodes, inserted within " +
+                     Fmt("%.3f", st.line_moved) + " mm of the plane section, " + std::to_string(st.relocated) +
+                     " mesh nodes moved onto it (" + Fmt("%.3f", st.relocated_max) +
+                     " mm at most), largest turn between seam segments " + Fmt("%.3f", turn * kDeg) + " deg");
+  }
   return true;
 }
 
@@ -315,37 +343,29 @@ std::vector<int> PiecesAcross(const TriSurface &s, const std::vector<int> &label
   return order;
 }
 
-// One element set <base>_NN per piece, in order across, each with a note of its width on the
-// transverse geodesic (offsets sorted).
+// One strip per piece, in order across: its name <base>_NN and triangles (ids of s), with a
+// note of its width on the transverse geodesic (offsets sorted; geodesic layout).
 void NameStrips(const TriSurface &s, const std::vector<int> &label, const std::vector<int> &order,
-                const std::vector<double> &offsets, const Transverse &t, const std::string &base, MeshData *out,
-                std::vector<std::string> *notes) {
+                const std::vector<double> &offsets, const Transverse &t, const std::string &base, bool widths,
+                std::vector<std::pair<std::string, std::vector<int>>> *strips, std::vector<std::string> *notes) {
   const int count = (int)order.size();
+  std::vector<int> rank(count);
+  for (int k = 0; k < count; ++k) rank[order[k]] = k;
   for (int k = 0; k < count; ++k) {
-    char name[64];
+    char name[96];
     std::snprintf(name, sizeof name, "%s_%02d", base.c_str(), k + 1);
-    auto &set = out->element_sets[name];
-    for (int e = 0; e < s.NumTris(); ++e)
-      if (label[e] == order[k]) set.push_back(e);
-    const double lo = k == 0 ? -t.back.length : offsets[k - 1], hi = k == count - 1 ? t.fwd.length : offsets[k];
-    notes->push_back(std::string("geodesic strip ") + name + ": " + std::to_string(set.size()) +
-                     " triangles, width on the transverse geodesic " + Fmt("%.3f", hi - lo) + " mm");
+    strips->push_back({name, {}});
   }
-}
-
-// Node sets of the file (named curves) keep their lines: a node put on an edge of a set joins it.
-void CarryNodeSets(const MeshData &sub, const TriSurface &s, MeshData *out) {
-  const int n0 = sub.NumNodes();
-  for (const auto &kv : sub.node_sets) {
-    std::vector<char> in(s.NumNodes(), 0);
-    for (int n : kv.second) in[n] = 1;
-    for (int p = n0; p < s.NumNodes(); ++p) {
-      const auto &ab = s.new_node_edge[p - n0];
-      if (in[ab.first] && in[ab.second]) in[p] = 1;
+  const size_t first = strips->size() - count;
+  for (int e = 0; e < s.NumTris(); ++e) (*strips)[first + rank[label[e]]].second.push_back(e);
+  for (int k = 0; k < count; ++k) {
+    std::string note = "strip " + (*strips)[first + k].first + ": " + std::to_string((*strips)[first + k].second.size()) +
+                       " triangles";
+    if (widths) {
+      const double lo = k == 0 ? -t.back.length : offsets[k - 1], hi = k == count - 1 ? t.fwd.length : offsets[k];
+      note = "geodesic " + note + ", width on the transverse geodesic " + Fmt("%.3f", hi - lo) + " mm";
     }
-    auto &v = out->node_sets[kv.first];
-    for (int n = 0; n < s.NumNodes(); ++n)
-      if (in[n]) v.push_back(n);
+    notes->push_back(note);
   }
 }
 
@@ -356,41 +376,148 @@ double SmallestQuality(const std::vector<double> &coords, const std::vector<int>
   return q;
 }
 
-} // namespace
-
-bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
-                       std::string *err) {
-  const std::string opt = "-cutpattern_strip_width " + Fmt("%g", o.width);
+// Radial seams (layout 2): the surface's sections by planes through the middle node along its
+// normal there, n/2 planes at equal angles giving n gores (n even, at least 4, the fewest whose
+// rim arcs, the boundary's length / n, are at most W), named in order round the middle.
+bool RadialStrips(const MeshData &sub, const std::string &base, const Transverse &t, LineInsertOptions io,
+                  const GeodesicCutOptions &o, const std::string &opt, TriSurface *s,
+                  std::vector<std::pair<std::string, std::vector<int>>> *strips, std::vector<std::string> *notes,
+                  std::string *err) {
   const auto t0 = std::chrono::steady_clock::now();
-  // 1. The surface: its one physical surface, or every triangle.
-  CutSurface cut;
-  if (!SurfaceToCut(*mesh, opt, &cut, notes, err)) return false;
-  TriSurface &s = cut.s;
+  double rim = 0;
+  for (int e = 0; e < s->NumTris(); ++e)
+    for (int k = 0; k < 3; ++k)
+      if (s->nbr[3 * e + k] < 0) {
+        const double *a = &s->coords[3 * (size_t)s->tris[3 * e + k]], *b = &s->coords[3 * (size_t)s->tris[3 * e + (k + 1) % 3]];
+        rim += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+      }
+  int n = std::max(4, (int)std::ceil(rim / o.width - 1e-9));
+  n += n % 2;
+  // The frame at the middle: the normal (its triangles' normals summed), e1 across the strips, e2.
+  double nv[3] = {0, 0, 0};
+  for (int e = 0; e < s->NumTris(); ++e)
+    if (s->tris[3 * e] == t.vmid || s->tris[3 * e + 1] == t.vmid || s->tris[3 * e + 2] == t.vmid) {
+      double ne[3];
+      SurfaceTriangleNormal(*s, e, ne);
+      for (int i = 0; i < 3; ++i) nv[i] += ne[i];
+    }
+  const double ln = std::sqrt(nv[0] * nv[0] + nv[1] * nv[1] + nv[2] * nv[2]);
+  for (int i = 0; i < 3; ++i) nv[i] /= ln;
+  const double *e1 = t.dir;
+  const double e2[3] = {nv[1] * e1[2] - nv[2] * e1[1], nv[2] * e1[0] - nv[0] * e1[2], nv[0] * e1[1] - nv[1] * e1[0]};
+  io.shared_node = t.vmid;
+  SeamStats seams;
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < n / 2; ++k) {
+    const double th = 2 * pi * k / n, d[3] = {std::cos(th) * e1[0] + std::sin(th) * e2[0],
+                                              std::cos(th) * e1[1] + std::sin(th) * e2[1],
+                                              std::cos(th) * e1[2] + std::sin(th) * e2[2]};
+    const double pn[3] = {nv[1] * d[2] - nv[2] * d[1], nv[2] * d[0] - nv[0] * d[2], nv[0] * d[1] - nv[1] * d[0]};
+    const double *c = &s->coords[3 * (size_t)t.vmid];
+    const double level = pn[0] * c[0] + pn[1] * c[1] + pn[2] * c[2];
+    int loops = 0;
+    const auto lines = SurfacePlaneSection(*s, pn, level, &loops);
+    const std::string where = "the radial cut at " + Fmt("%.1f", th * 180 / pi) + " deg";
+    if (lines.size() != 1 || loops > 0) {
+      *err = opt + ": " + where + " through the middle " + Fmt("(%.1f, %.1f, %.1f) mm", c[0], c[1], c[2]) +
+             " crosses the surface in " + std::to_string(lines.size()) + " pieces and " + std::to_string(loops) +
+             " loops, not one line: radial seams need a surface round its middle (a round foil)";
+      return false;
+    }
+    std::vector<int> verts;
+    LineInsertStats st;
+    std::string why;
+    if (!SurfaceInsertLine(s, lines[0], io, &verts, &st, &why)) {
+      *err = opt + ": " + where + ": " + why;
+      return false;
+    }
+    const double turn = PolylineMaxTurn(*s, verts);
+    seams.Add(st, turn);
+    notes->push_back("radial line at " + Fmt("%.1f", th * 180 / pi) + " deg: " + std::to_string(verts.size()) +
+                     " nodes, " + std::to_string(st.relocated) + " mesh nodes moved onto it (" +
+                     Fmt("%.3f", st.relocated_max) + " mm at most), largest turn between seam segments " +
+                     Fmt("%.3f", turn * kDeg) + " deg");
+  }
+  std::vector<int> label;
+  const int count = SurfaceComponents(*s, &label);
+  if (count != n) {
+    *err = opt + ": " + std::to_string(n / 2) + " radial cuts left " + std::to_string(count) + " pieces instead of " +
+           std::to_string(n) + " gores; give another width";
+    return false;
+  }
+  // In order round the middle: by the angle of each gore's area centroid.
+  std::vector<double> cx(count, 0), cy(count, 0);
+  const double *c = &s->coords[3 * (size_t)t.vmid];
+  for (int e = 0; e < s->NumTris(); ++e) {
+    const double *x[3] = {&s->coords[3 * s->tris[3 * e]], &s->coords[3 * s->tris[3 * e + 1]], &s->coords[3 * s->tris[3 * e + 2]]};
+    const double A = TriangleArea(x[0], x[1], x[2]);
+    for (int i = 0; i < 3; ++i) {
+      const double r = (x[0][i] + x[1][i] + x[2][i]) / 3 - c[i];
+      cx[label[e]] += A * r * e1[i], cy[label[e]] += A * r * e2[i];
+    }
+  }
+  std::vector<int> order(count);
+  for (int k = 0; k < count; ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::atan2(cy[a], cx[a]) < std::atan2(cy[b], cx[b]); });
+  const size_t first_note = notes->size();
+  NameStrips(*s, label, order, {}, t, base, false, strips, notes);
+  const double q0 = SmallestQuality(sub.coords, sub.triangles), q1 = SmallestQuality(s->coords, s->tris);
+  notes->insert(notes->begin() + (long)std::min(first_note, notes->size()),
+                "radial strips of " + base + ": rim " + Fmt("%.1f", rim) + " mm, " + std::to_string(n) +
+                    " gores (rim arcs " + Fmt("%.1f", rim / n) + " mm, width " + Fmt("%g", o.width) +
+                    " mm) round the middle node " + Fmt("(%.1f, %.1f, %.1f) mm", c[0], c[1], c[2]) + "; " +
+                    std::to_string(s->NumNodes() - sub.NumNodes()) + " nodes added, smallest triangle quality " +
+                    Fmt("%.3f", q1) + " (input " + Fmt("%.3f", q0) + "); seams: " + std::to_string(seams.relocated) +
+                    " mesh nodes moved onto them (" + Fmt("%.3f", seams.relocated_max) + " mm at most), " +
+                    std::to_string(seams.snapped) + " crossings taken to a node that could not move, seams within " +
+                    Fmt("%.3f", seams.line_moved) + " mm of the traced lines, largest turn between seam segments " +
+                    Fmt("%.3f", seams.max_turn * kDeg) + " deg; " +
+                    Fmt("%.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()));
+  return true;
+}
+
+// Cuts one surface (sub: its triangles as a mesh of their own; fixed: its nodes that must not
+// move) into strips <base>_NN: *s the cut surface, *strips the triangles of s per strip.
+bool CutOneSurface(const MeshData &sub, const std::string &base, const std::vector<char> &fixed,
+                   const GeodesicCutOptions &o, const std::string &opt, TriSurface *s,
+                   std::vector<std::pair<std::string, std::vector<int>>> *strips, std::vector<std::string> *notes,
+                   std::string *err) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!SurfaceFromArrays(sub.coords, sub.triangles, s, err)) {
+    *err = sub.source + ": " + *err;
+    return false;
+  }
+  s->fixed = fixed;
   double h, centroid[3];
-  MeanEdgeAndCentroid(s, &h, centroid);
+  MeanEdgeAndCentroid(*s, &h, centroid);
   if (o.width < h) {
-    *err = opt + " mm is narrower than the elements of " + mesh->source + " (mean edge " + Fmt("%.1f", h) +
+    *err = opt + " mm is narrower than the elements of " + sub.source + " (mean edge " + Fmt("%.1f", h) +
            " mm): a strip needs a few elements across; refine the mesh or give a wider strip";
     return false;
   }
-  // 2. The middle: the interior node nearest the centroid, and the transverse direction there.
+  LineInsertOptions io;
+  io.relocate = o.snap;
+  io.tol = o.tol >= 0 ? o.tol : 1e-3 * h;
+  io.keep_quality = o.keep_quality;
+  io.quality_floor = o.keep_quality * SmallestQuality(sub.coords, sub.triangles);
+  // The middle: the interior node nearest the centroid, and the transverse direction there.
   Transverse t;
-  t.vmid = InteriorNodeNearest(s, centroid);
+  t.vmid = InteriorNodeNearest(*s, centroid);
   if (t.vmid < 0) {
-    *err = opt + ": " + mesh->source + " has no interior node to start the cutting lines from; refine the mesh";
+    *err = opt + ": " + sub.source + " has no interior node to start the cutting lines from; refine the mesh";
     return false;
   }
-  for (int i = 0; i < 3; ++i) t.mid[i] = s.coords[3 * t.vmid + i];
+  for (int i = 0; i < 3; ++i) t.mid[i] = s->coords[3 * t.vmid + i];
   t.axis[o.direction] = 1;
   const std::string at_mid = Fmt("(%.1f, %.1f, %.1f) mm", t.mid[0], t.mid[1], t.mid[2]);
-  if (!TransverseDirection(s, t.vmid, t.axis, t.dir)) {
-    *err = std::string("-cutpattern_strip_direction ") + kAxis[o.direction] +
-           " is (nearly) normal to the surface at its middle " + at_mid + ": choose an axis along the surface";
+  if (!TransverseDirection(*s, t.vmid, t.axis, t.dir)) {
+    *err = std::string("-cutpattern_strip_direction ") + kAxis[o.direction] + " is (nearly) normal to " + sub.source +
+           " at its middle " + at_mid + ": choose an axis along the surface";
     return false;
   }
-  // 3. The transverse geodesic (on the uncut mesh) and the offsets of the lines on it.
-  t.max_steps = 4 * s.NumTris() + 100;
-  if (!TraceTransverse(s, &t, err)) {
+  // The transverse geodesic (on the uncut mesh) and the offsets of the lines on it.
+  t.max_steps = 4 * s->NumTris() + 100;
+  if (!TraceTransverse(*s, &t, err)) {
     *err = opt + ": the transverse geodesic through the middle: " + *err;
     return false;
   }
@@ -402,43 +529,164 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
     return false;
   }
   const double across = t.fwd.length + t.back.length;
-  if (o.width >= across) {
+  if (o.width >= across && o.whole_if_narrow && o.layout != 2) {
+    strips->push_back({base + "_01", {}});
+    for (int e = 0; e < s->NumTris(); ++e) strips->back().second.push_back(e);
+    notes->push_back(base + ": " + Fmt("%.1f", across) + " mm across along the geodesic through its middle, not "
+                     "wider than the width " + Fmt("%.1f", o.width) + " mm: one strip " + base + "_01");
+    return true;
+  }
+  if (o.width >= across && o.layout != 2) {
     *err = opt + " mm is wider than the surface: " + Fmt("%.1f", across) +
            " mm across along the geodesic through its middle; give a smaller width";
     return false;
   }
-  std::vector<double> offsets = LineOffsets(o.width, t.fwd.length, t.back.length);
-  // 4. Trace and insert the lines one by one.
+  if (o.layout == 2) return RadialStrips(sub, base, t, io, o, opt, s, strips, notes, err);
+  std::vector<double> offsets;
+  if (o.equal) {  // n strips of equal width on the transverse geodesic, n the fewest at most W wide
+    const int n = (int)std::ceil(across / o.width - 1e-9);
+    for (int k = 1; k < n; ++k) offsets.push_back(-t.back.length + k * across / n);
+  } else {
+    offsets = LineOffsets(o.width, t.fwd.length, t.back.length);
+  }
+  // Trace (or cut by planes) and insert the lines one by one.
+  SeamStats seams;
   for (double off : offsets)
-    if (!InsertCuttingLine(&s, t, off, o.snap, opt, notes, err)) return false;
-  // 5. The strips: the pieces between the lines, in order across.
+    if (!(o.layout == 1 ? InsertPlaneLine(s, t, off, io, opt, &seams, notes, err)
+                        : InsertCuttingLine(s, t, off, io, opt, &seams, notes, err)))
+      return false;
+  // The strips: the pieces between the lines, in order across.
   std::vector<int> label;
-  const int count = SurfaceComponents(s, &label);
-  if (count != (int)offsets.size() + 1) {
+  const int count = SurfaceComponents(*s, &label);
+  if (o.layout == 0 && count != (int)offsets.size() + 1) {
     *err = opt + ": " + std::to_string(offsets.size()) + " cutting lines left " + std::to_string(count) +
            " pieces instead of " + std::to_string(offsets.size() + 1) + "; give another width or direction";
     return false;
   }
-  const std::vector<int> order = PiecesAcross(s, label, count, t);
+  const std::vector<int> order = PiecesAcross(*s, label, count, t);
   std::sort(offsets.begin(), offsets.end());
-  MeshData out;
-  out.source = mesh->source + " cut at " + Fmt("%g", o.width) + " mm";
-  out.coords = s.coords;
-  out.triangles = s.tris;
-  out.notes = mesh->notes;
-  NameStrips(s, label, order, offsets, t, cut.base, &out, notes);
-  CarryNodeSets(cut.sub, s, &out);
-  const double q0 = SmallestQuality(cut.sub.coords, cut.sub.triangles), q1 = SmallestQuality(s.coords, s.tris);
-  notes->insert(notes->begin(),
-                "geodesic strips of " + cut.base + ": width " + Fmt("%g", o.width) + " mm, lines along " +
-                    kAxis[o.direction] + "; the transverse geodesic through the middle node " + at_mid + " is " +
+  const size_t first_note = notes->size();
+  NameStrips(*s, label, order, offsets, t, base, o.layout == 0 && count == (int)offsets.size() + 1, strips, notes);
+  const double q0 = SmallestQuality(sub.coords, sub.triangles), q1 = SmallestQuality(s->coords, s->tris);
+  notes->insert(notes->begin() + (long)std::min(first_note, notes->size()),
+                std::string(o.layout == 1 ? "planar" : "geodesic") + " strips of " + base + ": width " +
+                    Fmt("%g", o.width) + " mm, lines along " + kAxis[o.direction] +
+                    "; the transverse geodesic through the middle node " + at_mid + " is " +
                     Fmt("%.3f mm across (%.3f + %.3f)", across, t.back.length, t.fwd.length) + "; " +
                     std::to_string(offsets.size()) + " lines, " + std::to_string(count) + " strips; " +
-                    std::to_string(s.NumNodes() - cut.sub.NumNodes()) + " nodes added, " +
-                    std::to_string(cut.sub.NumElements()) + " -> " + std::to_string(s.NumTris()) +
-                    " triangles, smallest triangle quality " + Fmt("%.3f", q1) + " (input " + Fmt("%.3f", q0) + "); " +
+                    std::to_string(s->NumNodes() - sub.NumNodes()) + " nodes added, " +
+                    std::to_string(sub.NumElements()) + " -> " + std::to_string(s->NumTris()) +
+                    " triangles, smallest triangle quality " + Fmt("%.3f", q1) + " (input " + Fmt("%.3f", q0) +
+                    "); seams: " + std::to_string(seams.relocated) + " mesh nodes moved onto them (" +
+                    Fmt("%.3f", seams.relocated_max) + " mm at most), " + std::to_string(seams.snapped) +
+                    " crossings taken to a node that could not move, seams within " + Fmt("%.3f", seams.line_moved) +
+                    " mm of the traced lines, largest turn between seam segments " +
+                    Fmt("%.3f", seams.max_turn * kDeg) + " deg; " +
                     Fmt("%.2f s", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()));
-  *mesh = out;
+  return true;
+}
+
+} // namespace
+
+bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
+                       std::string *err) {
+  const std::string opt = "-cutpattern_strip_width " + Fmt("%g", o.width);
+  // The surfaces: each physical surface (but a group "all" of every triangle beside others), or
+  // every triangle when there is none.
+  std::vector<std::pair<std::string, std::vector<int>>> groups;
+  for (const auto &kv : mesh->element_sets)
+    if (!(kv.first == "all" && mesh->element_sets.size() > 1 && (int)kv.second.size() == mesh->NumElements()))
+      groups.push_back(kv);
+  if (groups.empty()) {
+    groups.push_back({"strip", {}});
+    for (int e = 0; e < mesh->NumElements(); ++e) groups[0].second.push_back(e);
+  }
+  const int nn = mesh->NumNodes();
+  std::vector<int> owner(mesh->NumElements(), -1), users(nn, 0);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    std::vector<char> mine(nn, 0);
+    for (int e : groups[g].second) {
+      if (owner[e] >= 0) {
+        *err = opt + ": " + mesh->source + ": triangle " + std::to_string(e) + " is in the physical surfaces " +
+               groups[owner[e]].first + " and " + groups[g].first + ": each triangle must be in one surface to cut";
+        return false;
+      }
+      owner[e] = (int)g;
+      for (int k = 0; k < 3; ++k) mine[mesh->triangles[3 * e + k]] = 1;
+    }
+    for (int n = 0; n < nn; ++n) users[n] += mine[n];
+  }
+  const int loose = (int)std::count(owner.begin(), owner.end(), -1);
+  if (loose)
+    notes->push_back(std::to_string(loose) + " triangles in no physical surface are left out of the strips");
+  // Nodes that must not move onto a seam: those of named lines and those two surfaces share.
+  std::vector<char> fixed(nn, 0);
+  for (int n = 0; n < nn; ++n) fixed[n] = users[n] > 1;
+  // (A node set named like a physical surface is that surface's nodes, which the reader adds: no line.)
+  for (const auto &kv : mesh->node_sets)
+    if (!mesh->element_sets.count(kv.first))
+      for (int n : kv.second) fixed[n] = 1;
+  MeshData out;
+  out.source = mesh->source + " cut at " + Fmt("%g", o.width) + " mm";
+  out.notes = mesh->notes;
+  out.coords = mesh->coords;
+  std::vector<std::vector<char>> in_set;  // per node set of the file, per node of out
+  for (const auto &kv : mesh->node_sets) {
+    in_set.emplace_back(nn, 0);
+    for (int n : kv.second) in_set.back()[n] = 1;
+  }
+  for (const auto &g : groups) {
+    const MeshData sub = ExtractStrip(*mesh, g.second, g.first);
+    // ExtractStrip numbers nodes in order of first use: the same walk gives the global ids.
+    std::vector<int> global;
+    std::vector<char> seen(nn, 0);
+    for (int e : g.second)
+      for (int k = 0; k < 3; ++k) {
+        const int n = mesh->triangles[3 * e + k];
+        if (!seen[n]) seen[n] = 1, global.push_back(n);
+      }
+    std::vector<char> sub_fixed(global.size());
+    for (size_t i = 0; i < global.size(); ++i) sub_fixed[i] = fixed[global[i]];
+    TriSurface s;
+    std::vector<std::pair<std::string, std::vector<int>>> strips;
+    if (!CutOneSurface(sub, g.first, sub_fixed, o, opt, &s, &strips, notes, err)) return false;
+    for (int p = (int)global.size(); p < s.NumNodes(); ++p) {
+      global.push_back(out.NumNodes());
+      for (int i = 0; i < 3; ++i) out.coords.push_back(s.coords[3 * (size_t)p + i]);
+      // A node put on an edge of a named line joins it.
+      const auto &ab = s.new_node_edge[p - sub.NumNodes()];
+      for (auto &in : in_set) in.push_back(in[global[ab.first]] && in[global[ab.second]]);
+    }
+    for (int p = 0; p < sub.NumNodes(); ++p)  // nodes moved onto a seam
+      for (int i = 0; i < 3; ++i) out.coords[3 * (size_t)global[p] + i] = s.coords[3 * (size_t)p + i];
+    const int e0 = out.NumElements();
+    for (int v : s.tris) out.triangles.push_back(global[v]);
+    for (auto &st : strips) {
+      for (int &e : st.second) e += e0;
+      out.element_sets[st.first] = st.second;
+    }
+  }
+  // Only the nodes the strips use, in order.
+  std::vector<int> id(out.NumNodes(), -1);
+  MeshData packed;
+  packed.source = out.source, packed.notes = out.notes, packed.element_sets = out.element_sets;
+  for (int &v : out.triangles) {
+    if (id[v] < 0) {
+      id[v] = packed.NumNodes();
+      for (int i = 0; i < 3; ++i) packed.coords.push_back(out.coords[3 * (size_t)v + i]);
+    }
+    packed.triangles.push_back(id[v]);
+  }
+  size_t k = 0;
+  for (const auto &kv : mesh->node_sets) {
+    std::vector<int> v;
+    for (int n = 0; n < (int)in_set[k].size(); ++n)
+      if (in_set[k][n] && id[n] >= 0) v.push_back(id[n]);
+    std::sort(v.begin(), v.end());
+    packed.node_sets[kv.first] = v;
+    ++k;
+  }
+  *mesh = packed;
   return true;
 }
 

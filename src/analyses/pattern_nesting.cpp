@@ -220,7 +220,7 @@ std::string NestReport(const NestResult &nest, double roll_width, const std::str
   }
   std::snprintf(line, sizeof line,
                 "cutpattern: nesting on a roll %.1f mm wide: roll length %.1f mm, strips %.4g m^2 of %.4g m^2, waste "
-                "%.2f %%; files %s.{dxf,svg}\n",
+                "%.2f %%; files %s.{dxf,svg,pdf}\n",
                 roll_width, nest.roll_length, nest.used_area * 1e-6, roll_width * nest.roll_length * 1e-6,
                 nest.waste_pct, base.c_str());
   return report + line;

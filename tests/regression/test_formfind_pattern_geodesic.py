@@ -9,8 +9,8 @@ surface.msh -cutpattern_strip_width W. Meshes are made here (pattern_meshes.py).
     range is printed); the outline and every cutting line keep their 3D length, and both strips
     of a cutting line measure it alike, as for strips named by physical groups;
   * the cut surface <stem>_cut.msh reads back as physical-group strips with the same lines;
-  * bad input: W <= 0, W wider than the surface, W below the element size, a surface with two
-    physical groups, a tube (the transverse line never ends), a sphere band whose lines meet:
+  * a mesh of two physical surfaces: each is cut into strips of its own;
+  * bad input: W <= 0, W wider than the surface, W below the element size, a tube (the transverse line never ends), a sphere band whose lines meet:
     refused naming the option."""
 import math
 import os
@@ -148,13 +148,21 @@ with scratch_dir() as tmp:
     chk.check(all(abs(e) < 1e-6 for e in outline.values()) and all(abs(l2 - l3) < 1e-6 * l3 for _, _, l3, l2 in lines),
               "saddle: outlines and cutting lines keep their 3D lengths")
 
+    # Two physical surfaces (the cylinder's lower and upper halves) are each cut into strips of
+    # their own (before, such a mesh was refused): a_01..a_04 and b_01..b_04, still developable.
+    half = len(cyl[1]) // 2
+    out, _ = cut(tmp, "two", cyl, {"a": (2, list(range(half))), "b": (2, list(range(half, len(cyl[1]))))}, W, "z")
+    errs2 = report(out)[0]
+    print("two physical surfaces: strips %s" % sorted(errs2))
+    chk.check(sorted(errs2) == ["a_%02d" % k for k in range(1, 5)] + ["b_%02d" % k for k in range(1, 5)],
+              "two physical surfaces: each cut into its own 4 strips")
+    chk.check(errs2 and max(errs2.values()) < 1e-10, "two physical surfaces: every link keeps its length (1e-10)")
+
     # Bad input.
     for name, mesh, groups, width, direction, want in (
             ("zero", hyp, {}, -5, "x", "a strip width must be a positive length"),
             ("wide", hyp, {}, 5000, "x", "is wider than the surface"),
             ("thin", hyp, {}, 10, "x", "is narrower than the elements"),
-            ("two", cyl, {"a": (2, list(range(10))), "b": (2, list(range(10, len(cyl[1]))))}, 100, "z",
-             "has 2 physical surfaces (a, b)"),
             ("tube", pm.tube(n=24, ny=6), {}, 300, "z", "does not reach the boundary"),
             # A sphere band 3400 mm long (R 1000 mm): the lines along it, great circles, meet 1571 mm out.
             ("band", pm.sphere_strip(length=3400.0, width=1000.0, nx=34, ny=10), {}, 250, "y",

@@ -208,6 +208,9 @@ int main() {
       CHECK(std::fabs(TotalArea(s) - A0) <= 1e-12 * A0, "the area is kept to 1e-12");
       CHECK(MinQuality(s) >= 0.25 * snap * q0, "no triangle below 0.25 snap x the mesh's worst quality (%.3f)",
             MinQuality(s));
+      // Nodes near the line are moved onto it (the plane's boundary is straight, so even there):
+      // the inserted line is the traced one.
+      CHECK(off < 1e-9, "every node of the inserted line lies on the traced line (%.2e mm)", off);
       CHECK(off <= moved + 1e-9 && moved <= snap * 130.0,
             "the inserted line is within the reported snap distance %.2f mm (<= snap x the longest edge) of the "
             "traced line", moved);
@@ -221,6 +224,31 @@ int main() {
     CHECK(!ok && (err.find("crosses another cutting line") != std::string::npos ||
                   err.find("meets another cutting line") != std::string::npos),
           "a crossing line is refused: %s", err.c_str());
+  }
+  // 4. Plane sections: the jittered plane cut by the plane x = 333: one line from boundary to
+  // boundary, every crossing on the plane; inserted, every seam node on it and two pieces.
+  {
+    TriSurface s;
+    JitteredPlane(&s);
+    const double n[3] = {1.0, 0.0, 0.0};
+    int loops = -1;
+    const auto lines = SurfacePlaneSection(s, n, 333.0, &loops);
+    CHECK(lines.size() == 1 && loops == 0, "plane x = 333: one open section (%zu lines, %d loops)", lines.size(), loops);
+    double off = 0;
+    for (const SurfacePoint &p : lines[0]) off = std::max(off, std::fabs(p.x[0] - 333.0));
+    CHECK(off < 1e-9, "every crossing on the plane (%.2e mm)", off);
+    std::vector<int> verts;
+    LineInsertOptions io;
+    LineInsertStats st;
+    CHECK(SurfaceInsertLine(&s, lines[0], io, &verts, &st, &err), "%s", err.c_str());
+    double voff = 0;
+    for (int v : verts) voff = std::max(voff, std::fabs(s.coords[3 * v] - 333.0));
+    std::vector<int> label;
+    std::printf("plane section x = 333: %zu crossings, %zu seam nodes, %d nodes moved onto it (%.2f mm at most), "
+                "largest turn %.2e rad, seam nodes off the plane %.2e mm\n",
+                lines[0].size(), verts.size(), st.relocated, st.relocated_max, PolylineMaxTurn(s, verts), voff);
+    CHECK(voff < 1e-9 && PolylineMaxTurn(s, verts) < 1e-9, "the seam is the straight section (%.2e mm)", voff);
+    CHECK(SurfaceComponents(s, &label) == 2, "the section cuts the plane in two");
   }
   TEST_MAIN_END();
 }

@@ -10,13 +10,22 @@
 // flattened image is straight.
 //
 // Insertion: the traced polyline becomes mesh edges by splitting, in order, every edge it crosses
-// (each triangle on that edge into two, joining the new node to the opposite vertex: the children
-// lie in the parent's plane, so the surface and its area do not change). A crossing within
-// `snap` (a fraction of the edge length) of an end of its edge is moved to that vertex instead,
-// so no child is thinner than about snap times its parent; the inserted line then departs from
-// the traced one by at most snap times an edge length, and the departure does not accumulate
-// (the trace is done first, on the unchanged mesh). The polyline's segments are marked as cut
-// edges; the strips are the pieces of the mesh between cut edges (SurfaceComponents).
+// at the crossing itself (each triangle on that edge into two, joining the new node to the
+// opposite vertex: the children lie in the parent's plane, so the surface and its area do not
+// change). So the seam is the traced line, not a path along element edges. Where the line passes
+// close to a node (a crossing within `relocate` of an edge's length from it), splitting alone
+// would leave slivers; the node is then moved onto the line instead, to that crossing (along the
+// edge it lies on, so it stays on the surface), and the line goes through it: its triangles
+// change shape (checked: none turns over and their smallest quality keeps `keep_quality` of what
+// it was) and the surface moves by at most the move times the angle between the node's
+// triangles. A node that may not move (on the boundary where it is not straight, on another
+// cutting line, in a named line: TriSurface::fixed) or whose move fails the check keeps its
+// place and the line is moved to it instead (the old snap: the seam then steps by at most that
+// distance, reported). Where the node's triangles are developable but bent (a cylinder, a cone:
+// angles summing to 2 pi), moving it would make the surface non-developable, so it stays and only
+// crossings within 0.05 of an edge go to it (the seam steps by at most 5 % of an edge there). Crossings within `tol` mm of a node always go to the node. The polyline's
+// segments are marked as cut edges; the strips are the pieces of the mesh between cut edges
+// (SurfaceComponents).
 //
 // Layouts: coords 3 per node (mm); tris 3 node ids per triangle, consistently oriented;
 // nbr 3 per triangle: the triangle across edge k (nodes k, k+1 mod 3), -1 on the boundary.
@@ -37,6 +46,8 @@ struct TriSurface {
   std::set<std::pair<int, int>> cut;  // cut edges, (smaller id, larger id)
   // For every node added by a split: the edge (a, b) it was put on.
   std::vector<std::pair<int, int>> new_node_edge;
+  // Nodes that must not move onto a cutting line (named lines); empty: none. Grown with the mesh.
+  std::vector<char> fixed;
   int NumNodes() const { return (int)(coords.size() / 3); }
   int NumTris() const { return (int)(tris.size() / 3); }
 };
@@ -82,14 +93,40 @@ bool GeodesicOppositeAtVertex(const TriSurface &s, int v, int tri, const double 
 // Total angle of the triangles around v (2 pi on a flat interior vertex).
 double SurfaceVertexAngle(const TriSurface &s, int v);
 
+// How a line is inserted (see the top of this file).
+struct LineInsertOptions {
+  double relocate = 0.2;      // fraction of an edge: a node this near the line is moved onto it
+  double tol = 0.0;           // mm: a crossing this near a node goes to the node
+  double keep_quality = 0.5;  // a moved node's triangles keep this fraction of their smallest quality
+  double quality_floor = 0.0;  // and stay at least this good (moves one after another add up)
+  int shared_node = -1;        // a node the line may pass although on another line (radial seams' centre)
+};
+struct LineInsertStats {
+  double line_moved = 0.0;  // mm: the largest distance from a traced point to the node standing for it
+  int relocated = 0;        // mesh nodes moved onto the line
+  double relocated_max = 0.0;  // mm: the largest such move
+  int snapped = 0;          // crossings moved to a node that could not move (beyond tol)
+};
+
 // Inserts the polyline (consecutive points in one triangle of s, as GeodesicTrace gives them)
-// as cut edges, splitting the edges it crosses (crossings within snap of an edge end moved to
-// that vertex). *vertices: the line as node ids; *moved (may be null): the largest distance, mm,
-// from a traced point to the node that stands for it. False with a message when the line
-// crosses or touches an existing cut line, or crosses one triangle twice (the segment is then
-// no edge).
+// as cut edges (see the top of this file). *vertices: the line as node ids; *stats may be null.
+// False with a message when the line crosses or touches an existing cut line, or crosses one
+// triangle twice (the segment is then no edge).
+bool SurfaceInsertLine(TriSurface *s, const std::vector<SurfacePoint> &line, const LineInsertOptions &o,
+                       std::vector<int> *vertices, LineInsertStats *stats, std::string *err);
+// The same with relocate = snap, tol 0; *moved (may be null): stats.line_moved.
 bool SurfaceInsertLine(TriSurface *s, const std::vector<SurfacePoint> &line, double snap,
                        std::vector<int> *vertices, double *moved, std::string *err);
+
+// The section of s by the plane n . x = c, as lines from boundary to boundary (each a list of
+// crossings in order, as GeodesicTrace gives them; a node on the plane counts on its + side, so
+// the line passes it at a crossing next to it, which the insertion takes to the node). Closed
+// loops of the section are left out and counted in *loops (may be null).
+std::vector<std::vector<SurfacePoint>> SurfacePlaneSection(const TriSurface &s, const double n[3], double c,
+                                                           int *loops);
+
+// Turning angle (rad) between consecutive segments of a polyline of nodes of s: the largest.
+double PolylineMaxTurn(const TriSurface &s, const std::vector<int> &nodes);
 
 // Pieces of the surface between cut edges (flood fill across the other edges): label per
 // triangle, 0..count-1; returns count. Needs the neighbours.
