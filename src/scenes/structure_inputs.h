@@ -19,6 +19,10 @@ namespace etfe {
 struct StageArray {
   std::string option;  // "-film_roof_pressure", for messages
   std::vector<double> values;
+  // 0: the values are in the option's unit (kPa, mm). Non-zero (a built-in scene's own input,
+  // structure_preset.h): the values are multipliers of this coefficient, in the solver's units
+  // (MPa, mm), so the load is coef x schedule exactly as that scene always built it.
+  double coef = 0.0;
   bool Given() const { return !values.empty(); }
 };
 
@@ -32,6 +36,15 @@ struct BcInput {
   std::vector<double> points;   // 3 per control point (empty: the values hold on every node)
   StageArray move[3];           // per component: stages, or points x stages (point-major)
   StageArray force;             // total force on the group, 3 per stage [N]
+  // In-plane displacement gradient at multiplier 1 (du_x/dX, du_x/dY, du_y/dX, du_y/dY): the
+  // group's x and y displacements follow u = G X (a homogeneous stretch or shear of a panel's
+  // edges), times the per-stage multipliers of gradient_stages.
+  std::vector<double> gradient;
+  StageArray gradient_stages;
+  // A rigid turn about the z axis through the origin by `rotation` [rad] at multiplier 1 (a hub),
+  // of the group's position stretched by the gradient, times the multipliers of rotation_stages.
+  double rotation = 0.0;
+  StageArray rotation_stages;
 };
 
 // -film_<group>_*: a surface group's loads and form-finding ratio.
@@ -75,8 +88,32 @@ struct RegionInput {
   std::vector<double> box;  // x0, y0, x1, y1
 };
 
+// -structure_mesh_generator: a generated mesh instead of -mesh_file (structure_mesh.cpp).
+struct MeshGenInput {
+  std::string name;                   // "" (a mesh file), disc, annulus or rectangle
+  double radius = 500.0;              // disc [mm]
+  std::vector<double> radii = {100.0, 500.0};  // annulus hub a, outer b [mm]
+  std::vector<double> size = {1000.0, 500.0};  // rectangle lx, ly [mm]
+};
+
+// -structure_check: a closed-form check printed after the report (structure_checks.cpp).
+struct CheckInput {
+  std::string name;          // "", hencky, patch, annulus or strip
+  // Filled by the check from the other inputs, or by a built-in scene that knows them exactly.
+  double radius = 0.0, pressure = 0.0;      // hencky: a [mm], p [MPa] (0: from the mesh and the film's pressure)
+  double ex = 0.0, ey = 0.0, factor = 1.0;  // patch: strains at multiplier 1, the last multiplier
+  std::string mode;                         // patch: uniaxial, biaxial, pureshear, shear ("": from the supports)
+  double a = 0.0, b = 0.0, eps0 = 0.0, phi = 0.0;  // annulus: radii, pretension strain, hub rotation
+  std::string test, history;                // strip: relaxation or creep; its CSV ("": <results>_strip.csv)
+  bool given = false;                       // the values above are set
+};
+
 struct StructureInputs {
   std::vector<std::string> node_groups, element_groups;  // the mesh's, on every rank
+  MeshGenInput generator;
+  CheckInput check;
+  std::vector<double> bulge_centre = {0.0, 0.0};          // -structure_initial_bulge_centre
+  double bulge_radius = 0.0;                              // > 0: a paraboloid over this radius
   PetscInt stages = 0;                                    // -structure_stages (0: the longest array)
   double md[3] = {1.0, 0.0, 0.0};
   PetscInt reference = 0;                                 // 0 mesh, 1 pattern
@@ -118,7 +155,33 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
 // Rigid supports and their candidate nodes (node set "structure_contact").
 PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
 
-// The observer: per-group report at the end and the history CSV per increment.
-PetscErrorCode StructureObserverCreate(const StructureInputs &in, SceneObserver *observer);
+// The observer: per-group report at the end and the history CSV per increment, then the
+// closed-form check of -structure_check.
+struct StructureCheckFns {
+  PetscErrorCode (*report)(Problem *P, const CheckInput &check) = nullptr;  // after the structure report
+  // Per increment, before the history row (a lab test's state line and CSV); may be null.
+  PetscErrorCode (*step)(Problem *P, const CheckInput &check, PetscInt step, double t, PetscInt print_every) = nullptr;
+};
+using StructureCheckFn = StructureCheckFns;
+PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer);
+
+// -structure_mesh_generator: reads it and its size options; on rank 0 generates scene->mesh
+// (false in *generated: no generator, read -mesh_file).
+PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, SceneSpec *scene, bool *generated);
+// A disc or rectangle with the -mesh_* keys of that generator (read here, checked, on rank 0 made).
+PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const MeshGenInput &gen, MeshData *mesh);
+
+// -structure_check: completes in->check from the inputs (after the supports and loads are known)
+// and gives the hooks that print it (none when no check is asked for).
+PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, StructureInputs *in,
+                                     StructureCheckFn *fn);
+
+// The general scene built with `preset` (may be null) applied to the options' inputs: a built-in
+// scene (-scene hencky, -scene patch) is the general scene with its supports, loads, mesh and
+// check given here instead of by options (structure_preset.h). scene->mesh is already made when
+// mesh_given.
+using StructurePresetFn = PetscErrorCode (*)(MPI_Comm comm, StructureInputs *in, void *ctx);
+PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer, bool mesh_given,
+                              StructurePresetFn preset, void *ctx);
 
 } // namespace etfe

@@ -27,6 +27,8 @@ struct StructureContext {
   std::vector<std::string> supports;            // node groups with a prescribed component
   std::vector<double> probe_element_at, probe_node_at;
   std::string history;
+  StructureCheckFn check;                       // -structure_check: its step line and report
+  CheckInput check_input;
   // Found in setup on the distributed problem:
   std::vector<std::vector<char>> in_item;       // per item, per local element
   std::vector<std::vector<char>> in_support;    // per support group, per local node
@@ -220,11 +222,12 @@ std::string Header(const Problem *P, const StructureContext *c, bool contact) {
   return h + ",work,shift_work";
 }
 
-PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
+PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt print_every) {
   auto *c = (StructureContext *)vctx;
   CellFields f;
   Figures v;
   PetscFunctionBeginUser;
+  if (c->check.step) PetscCall(c->check.step(P, c->check_input, step, t, print_every));
   const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_history.csv");
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f));
@@ -319,21 +322,25 @@ PetscErrorCode Report(Problem *P, void *vctx) {
                           X[2], c->probe_node_groups[k].c_str(), v.probe_n[5 * k], v.probe_n[5 * k + 1],
                           v.probe_n[5 * k + 2], slide));
   }
+  if (c->check.report) PetscCall(c->check.report(P, c->check_input));
   PetscFunctionReturn(0);
 }
 
 } // namespace
 
-PetscErrorCode StructureObserverCreate(const StructureInputs &in, SceneObserver *observer) {
+PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer) {
   PetscFunctionBeginUser;
   auto *c = new StructureContext();
+  c->check = check, c->check_input = in.check;
   c->items = in.report;
   if (c->items.empty()) {
     c->items = in.element_groups;
     for (const RegionInput &r : in.regions) c->items.push_back(r.name);
   }
   for (const BcInput &bc : in.bcs)
-    if (!bc.fix.empty() || bc.move[0].Given() || bc.move[1].Given() || bc.move[2].Given()) c->supports.push_back(bc.group);
+    if (!bc.fix.empty() || bc.move[0].Given() || bc.move[1].Given() || bc.move[2].Given() || !bc.gradient.empty() ||
+        bc.rotation != 0.0)
+      c->supports.push_back(bc.group);
   c->probe_element_at = in.probe_elements;
   c->probe_node_at = in.probe_nodes;
   c->history = in.history;

@@ -30,6 +30,10 @@ MeshData MakeRectangleMesh(double x0, double y0, double lx, double ly, int nx, i
 // nodes): 6 rings^2 triangles of near-equal size. Node sets: rim, centre, all.
 MeshData MakeDiscMesh(double radius, int rings);
 
+// Annulus a <= r <= b centred at the origin in z = 0: rings 0..nr of nt nodes each (ring 0 at the
+// hub), alternating diagonals. Node sets: hub (r = a), outer (r = b), all.
+MeshData MakeAnnulusMesh(double a, double b, int nr, int nt);
+
 // Tube (open cylinder) of radius r around the Z axis, z in [z0, z0 + length], ntheta cells
 // around (periodic seam) and nz along, diagonals alternating. Node sets: bottom (z = z0),
 // top, middle (the ring at mid height when nz is even), all.

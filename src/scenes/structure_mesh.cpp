@@ -1,0 +1,106 @@
+// The general scene's generated meshes (-structure_mesh_generator): the meshes the built-in scenes
+// make (src/mesh/generators.cpp) for a case given as options only, with the same -mesh_* keys and
+// checks those scenes had. A generated mesh has the generator's node groups (disc: rim, centre,
+// all; annulus: hub, outer, all; rectangle: left, right, bottom, top, corner_ll/lr/ul/ur, all) and
+// the surface group all.
+#include <petscsys.h>
+
+#include <string>
+#include <vector>
+
+#include "etfe/mesh/generators.h"
+#include "etfe/mesh/mesh_options.h"
+#include "etfe/scene_registry.h"
+#include "real_array_option.h"
+#include "structure_inputs.h"
+
+namespace etfe {
+
+PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const MeshGenInput &gen, MeshData *mesh) {
+  MeshOptions o;
+  PetscFunctionBeginUser;
+  if (gen.name == "disc") {
+    o.keys = kMeshRings | kMeshRefine, o.rings = 16;
+    PetscCall(MeshOptionsFromCommandLine(comm, owner, &o));
+    PetscCheck(gen.radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the disc's radius %g must be positive", owner,
+               gen.radius);
+    PetscCheck(o.rings >= 1 && o.refine >= 0 && o.refine < 12, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-mesh_rings %" PetscInt_FMT " / -mesh_refine %" PetscInt_FMT ": need rings >= 1 and 0 <= refine < 12",
+               o.rings, o.refine);
+    PetscCheck(GeneratedTriangles(o.rings, o.rings, 6, o.refine) <= kMaxGeneratedTriangles, comm,
+               PETSC_ERR_ARG_OUTOFRANGE,
+               "-mesh_rings %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more than the %.3g a "
+               "generated mesh may have",
+               o.rings, o.refine, GeneratedTriangles(o.rings, o.rings, 6, o.refine), kMaxGeneratedTriangles);
+    if (SceneHoldsMesh(comm)) *mesh = MakeDiscMesh(gen.radius, (int)(o.rings << o.refine));
+    PetscFunctionReturn(0);
+  }
+  if (gen.name == "annulus") {
+    o.keys = kMeshRings | kMeshSectors, o.rings = 16, o.sectors = 96;
+    PetscCall(MeshOptionsFromCommandLine(comm, owner, &o));
+    PetscCheck(gen.radii.size() == 2 && gen.radii[0] > 0 && gen.radii[1] > gen.radii[0], comm,
+               PETSC_ERR_ARG_OUTOFRANGE, "%s: the annulus' radii a,b need 0 < a < b", owner);
+    PetscCheck(o.rings >= 1 && o.sectors >= 8 && (double)o.rings * o.sectors * 2 <= 4e6, comm,
+               PETSC_ERR_ARG_OUTOFRANGE,
+               "-mesh_rings %" PetscInt_FMT " -mesh_sectors %" PetscInt_FMT ": need rings >= 1, sectors >= 8, at most "
+               "4e6 triangles",
+               o.rings, o.sectors);
+    if (SceneHoldsMesh(comm)) *mesh = MakeAnnulusMesh(gen.radii[0], gen.radii[1], (int)o.rings, (int)o.sectors);
+    PetscFunctionReturn(0);
+  }
+  PetscCheck(gen.name == "rectangle", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
+             "-structure_mesh_generator %s: use disc (-structure_mesh_radius, -mesh_rings), annulus "
+             "(-structure_mesh_radii a,b, -mesh_rings, -mesh_sectors) or rectangle (-structure_mesh_size lx,ly, "
+             "-mesh_nx, -mesh_ny), or give a mesh file with -mesh_file",
+             gen.name.c_str());
+  o.keys = kMeshGrid | kMeshRefine | kMeshIrregular, o.nx = 8, o.ny = 4;
+  PetscCall(MeshOptionsFromCommandLine(comm, owner, &o));
+  PetscCheck(gen.size.size() == 2 && gen.size[0] > 0 && gen.size[1] > 0 && o.nx >= 1 && o.ny >= 1 && o.refine >= 0 &&
+                 o.refine < 12,
+             comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "%s: need a positive size lx,ly, -mesh_nx/-mesh_ny >= 1, 0 <= -mesh_refine < 12", owner);
+  PetscCheck(o.perturb >= 0 && o.perturb < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_perturb %g: must lie in [0, 0.5) or elements may invert", o.perturb);
+  const int per_cell = o.pattern == DiagonalPattern::Crossed ? 4 : 2;
+  PetscCheck(GeneratedTriangles(o.nx, o.ny, per_cell, o.refine) <= kMaxGeneratedTriangles, comm,
+             PETSC_ERR_ARG_OUTOFRANGE,
+             "-mesh_nx %" PetscInt_FMT " -mesh_ny %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, "
+             "more than the %.3g a generated mesh may have",
+             o.nx, o.ny, o.refine, GeneratedTriangles(o.nx, o.ny, per_cell, o.refine), kMaxGeneratedTriangles);
+  if (SceneHoldsMesh(comm))
+    *mesh = MakeRectangleMesh(0.0, 0.0, gen.size[0], gen.size[1], (int)(o.nx << o.refine), (int)(o.ny << o.refine),
+                              o.pattern, o.perturb, 12345u);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, SceneSpec *scene, bool *generated) {
+  const char *names[] = {"file", "disc", "rectangle", "annulus"};
+  PetscInt k = 0;
+  MeshGenInput &g = in->generator;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, nullptr, "General scene: a generated mesh instead of a mesh file", "Scene");
+  PetscCall(PetscOptionsEList("-structure_mesh_generator",
+                              "file (-mesh_file), disc (radius -structure_mesh_radius, -mesh_rings; node groups rim, "
+                              "centre), rectangle (-structure_mesh_size lx,ly, -mesh_nx, -mesh_ny, -mesh_perturb; "
+                              "node groups left, right, bottom, top, corner_*) or annulus (-structure_mesh_radii a,b, "
+                              "-mesh_rings, -mesh_sectors; node groups hub, outer); every generated mesh has the node "
+                              "and surface group all",
+                              "", names, 4, names[0], &k, nullptr));
+  if (k == 1)
+    PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_mesh_radius", "Radius of the generated disc [mm]", "mm",
+                                &g.radius, nullptr));
+  if (k == 2)
+    PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_mesh_size",
+                               "Size lx,ly of the generated rectangle [mm] (corner at the origin)", &g.size, nullptr));
+  if (k == 3)
+    PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_mesh_radii",
+                               "Hub and outer radius a,b of the generated annulus [mm]", &g.radii, nullptr));
+  PetscOptionsEnd();
+  *generated = k != 0;
+  if (!*generated) PetscFunctionReturn(0);
+  g.name = names[k];
+  PetscCall(StructureGenerateMesh(comm, "general scene", g, &scene->mesh));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
