@@ -1,4 +1,5 @@
-// Structured meshes: rectangle (4 diagonal patterns, optional random perturbation), disc, annulus and tube.
+// Structured meshes: rectangle (4 diagonal patterns, optional random perturbation), disc, annulus,
+// tube and a strip wrapped on a cylinder.
 #include "etfe/mesh/generators.h"
 
 #include <cmath>
@@ -180,6 +181,19 @@ MeshData MakeAnnulusMesh(double a, double b, int nr, int nt) {
   char src[96];
   std::snprintf(src, sizeof src, "generated annulus, %d rings x %d sectors", nr, nt);
   m.source = src;
+  return m;
+}
+
+MeshData MakeWrappedStripMesh(double radius, double theta, double width, int nx, int ny) {
+  // Laid flat first (arc length s along the wrap, y across), then onto the cylinder: stress free.
+  MeshData m = MakeRectangleMesh(0.0, -0.5 * width, radius * theta, width, nx, ny, DiagonalPattern::Alternate, 0.0, 0u);
+  m.source = "capstan strip " + std::to_string(nx) + "x" + std::to_string(ny);
+  for (int n = 0; n < m.NumNodes(); ++n) {
+    double *x = &m.coords[3 * n];
+    const double phi = x[0] / radius - 0.5 * theta;
+    x[0] = radius * std::sin(phi);
+    x[2] = radius * std::cos(phi);
+  }
   return m;
 }
 

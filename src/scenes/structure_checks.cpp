@@ -26,7 +26,7 @@ namespace {
 
 // Hencky (SPEC §3): the centre deflection and the centre stress (mean of (Sxx + Syy)/2 over the
 // elements touching the centre node) against the Foppl closed form.
-PetscErrorCode HenckyCheck(Problem *P, const CheckInput &ck) {
+PetscErrorCode HenckyCheck(Problem *P, const CheckInput &ck, std::vector<double> *) {
   double young, nu, u[3];
   HenckyCoefficients c;
   CellFields cells;
@@ -67,7 +67,7 @@ PetscErrorCode HenckyCheck(Problem *P, const CheckInput &ck) {
 double PureShearStretchY(double lx) { return std::sqrt(std::max(0.0, 2.0 - lx * lx)); }
 
 // The patch test: every element carries the same stress; elastic, the plane-stress Hooke value.
-PetscErrorCode PatchCheck(Problem *P, const CheckInput &ck) {
+PetscErrorCode PatchCheck(Problem *P, const CheckInput &ck, std::vector<double> *) {
   CellFields c;
   PetscFunctionBeginUser;
   PetscCall(ComputeCellFields(P, P->U, &c, false));
@@ -107,7 +107,7 @@ PetscErrorCode PatchCheck(Problem *P, const CheckInput &ck) {
 // R = sqrt(a^2 + A_w/pi) (A_w the reference area of the wrinkled elements) and the torque of the
 // hub's reactions against the tension-field closed form; the hub's rotation is the control, so
 // the closed form's rotation is taken at the film's torque and its torque at the rotation.
-PetscErrorCode AnnulusCheck(Problem *P, const CheckInput &ck) {
+PetscErrorCode AnnulusCheck(Problem *P, const CheckInput &ck, std::vector<double> *) {
   CellFields f;
   const PetscScalar *r, *u;
   double young, nu;
@@ -180,7 +180,8 @@ PetscErrorCode MeasureStrip(Problem *P, double *E, double *S, double *e_eng, dou
 
 // Each increment: time, strain and stress to <results>_strip.csv (or the given path) and, at the
 // monitor's rate, a line.
-PetscErrorCode StripStep(Problem *P, const CheckInput &ck, PetscInt step, double t, PetscInt print_every) {
+PetscErrorCode StripStep(Problem *P, const CheckInput &ck, std::vector<double> *, PetscInt step, double t,
+                         PetscInt print_every) {
   double E, S, e, s;
   PetscFunctionBeginUser;
   PetscCall(MeasureStrip(P, &E, &S, &e, &s));
@@ -197,7 +198,7 @@ PetscErrorCode StripStep(Problem *P, const CheckInput &ck, PetscInt step, double
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode StripReport(Problem *P, const CheckInput &ck) {
+PetscErrorCode StripReport(Problem *P, const CheckInput &ck, std::vector<double> *) {
   double E, S, e, s;
   PetscFunctionBeginUser;
   PetscCall(MeasureStrip(P, &E, &S, &e, &s));
@@ -302,8 +303,27 @@ PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, Stru
     ck.test = right->move[0].Given() ? "relaxation" : "creep";
     PetscFunctionReturn(0);
   }
+  if (ck.name == "capstan") {
+    fn->report = CapstanCheckReport, fn->step = CapstanCheckStep, fn->state = CapstanCheckStart();
+    if (ck.given) PetscFunctionReturn(0);
+    // The wrap angle (the generator's), T1 = the size of end A's (node group left) force and the
+    // direction end B (node group right) is pulled in, at the last stage.
+    const BcInput *left = FindBc(*in, "left"), *right = FindBc(*in, "right");
+    PetscCheck(in->generator.name == "capstan" && left && left->force.Given() && right, comm, PETSC_ERR_ARG_WRONG,
+               "-structure_check capstan: needs -structure_mesh_generator capstan, a force on end A "
+               "(-bc_left_force) and end B pulled (-bc_right_ux/uy/uz)");
+    const std::vector<double> &f = left->force.values;
+    ck.theta = in->generator.wrap_angle * M_PI / 180.0;
+    ck.t1 = std::hypot(f[f.size() - 3], f[f.size() - 2], f[f.size() - 1]);
+    double d[3], len = 0.0;
+    for (int i = 0; i < 3; ++i) d[i] = right->move[i].Given() ? LastValue(right->move[i], 1.0) : 0.0, len += d[i] * d[i];
+    len = std::sqrt(len);
+    PetscCheck(len > 0, comm, PETSC_ERR_ARG_WRONG, "-structure_check capstan: end B (node group right) is not pulled");
+    for (int i = 0; i < 3; ++i) ck.tB[i] = d[i] / len;
+    PetscFunctionReturn(0);
+  }
   PetscCheck(ck.name == "patch", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "-structure_check %s: use hencky, patch, annulus or strip", ck.name.c_str());
+             "-structure_check %s: use hencky, patch, annulus, strip or capstan", ck.name.c_str());
   fn->report = PatchCheck;
   if (ck.given) PetscFunctionReturn(0);
   // The strains from the supports: the right edge drawn in x (uniaxial, the top edge free in y;

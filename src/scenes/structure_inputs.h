@@ -93,18 +93,22 @@ struct MeshGenInput {
   std::string name;                   // "" (a mesh file), disc, annulus or rectangle
   double radius = 500.0;              // disc [mm]
   std::vector<double> radii = {100.0, 500.0};  // annulus hub a, outer b [mm]
+  // capstan: a strip (length along the wrap, -mesh_nx x -mesh_ny cells) laid on a cylinder of
+  // axis y through the origin, symmetric about the z axis: radius, wrap angle [degrees], width [mm]
+  double wrap_radius = 21.35, wrap_angle = 180.0, wrap_width = 50.0;
   std::vector<double> size = {1000.0, 500.0};  // rectangle lx, ly [mm]
 };
 
 // -structure_check: a closed-form check printed after the report (structure_checks.cpp).
 struct CheckInput {
-  std::string name;          // "", hencky, patch, annulus or strip
+  std::string name;          // "", hencky, patch, annulus, strip or capstan
   // Filled by the check from the other inputs, or by a built-in scene that knows them exactly.
   double radius = 0.0, pressure = 0.0;      // hencky: a [mm], p [MPa] (0: from the mesh and the film's pressure)
   double ex = 0.0, ey = 0.0, factor = 1.0;  // patch: strains at multiplier 1, the last multiplier
   std::string mode;                         // patch: uniaxial, biaxial, pureshear, shear ("": from the supports)
   double a = 0.0, b = 0.0, eps0 = 0.0, phi = 0.0;  // annulus: radii, pretension strain, hub rotation
   std::string test, history;                // strip: relaxation or creep; its CSV ("": <results>_strip.csv)
+  double theta = 0.0, t1 = 0.0, tB[3] = {0, 0, 0};  // capstan: wrap angle, end A's tension, end B's pull direction
   bool given = false;                       // the values above are set
 };
 
@@ -157,10 +161,14 @@ PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, Scene
 
 // The observer: per-group report at the end and the history CSV per increment, then the
 // closed-form check of -structure_check.
+// A check's hooks; `state` is what it carries from increment to increment (kept in checkpoints).
 struct StructureCheckFns {
-  PetscErrorCode (*report)(Problem *P, const CheckInput &check) = nullptr;  // after the structure report
+  // After the structure report.
+  PetscErrorCode (*report)(Problem *P, const CheckInput &check, std::vector<double> *state) = nullptr;
   // Per increment, before the history row (a lab test's state line and CSV); may be null.
-  PetscErrorCode (*step)(Problem *P, const CheckInput &check, PetscInt step, double t, PetscInt print_every) = nullptr;
+  PetscErrorCode (*step)(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step, double t,
+                         PetscInt print_every) = nullptr;
+  std::vector<double> state;  // its start (empty: the check keeps none)
 };
 using StructureCheckFn = StructureCheckFns;
 PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer);
@@ -173,6 +181,11 @@ PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const Mes
 
 // -structure_check: completes in->check from the inputs (after the supports and loads are known)
 // and gives the hooks that print it (none when no check is asked for).
+// The capstan's check (structure_check_capstan.cpp): its state's start and its hooks.
+std::vector<double> CapstanCheckStart();
+PetscErrorCode CapstanCheckStep(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step,
+                                double t, PetscInt print_every);
+PetscErrorCode CapstanCheckReport(Problem *P, const CheckInput &check, std::vector<double> *state);
 PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, StructureInputs *in,
                                      StructureCheckFn *fn);
 

@@ -5,6 +5,7 @@
 // the surface group all.
 #include <petscsys.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -48,10 +49,29 @@ PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const Mes
     if (SceneHoldsMesh(comm)) *mesh = MakeAnnulusMesh(gen.radii[0], gen.radii[1], (int)o.rings, (int)o.sectors);
     PetscFunctionReturn(0);
   }
+  if (gen.name == "capstan") {
+    o.keys = kMeshGrid | kMeshRefine, o.nx = 60, o.ny = 4;
+    PetscCall(MeshOptionsFromCommandLine(comm, owner, &o));
+    PetscCheck(gen.wrap_radius > 0 && gen.wrap_width > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s: the pipe's radius and the strip's width must be positive", owner);
+    PetscCheck(gen.wrap_angle > 0 && gen.wrap_angle <= 350, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s: the wrap angle %g must lie in (0, 350] degrees", owner, gen.wrap_angle);
+    PetscCheck(o.nx >= 2 && o.ny >= 1 && o.refine >= 0 && o.refine < 10, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s: need -mesh_nx >= 2, -mesh_ny >= 1, 0 <= -mesh_refine < 10", owner);
+    PetscCheck(GeneratedTriangles(o.nx, o.ny, 2, o.refine) <= kMaxGeneratedTriangles, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-mesh_nx %" PetscInt_FMT " -mesh_ny %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, "
+               "more than the %.3g a generated mesh may have",
+               o.nx, o.ny, o.refine, GeneratedTriangles(o.nx, o.ny, 2, o.refine), kMaxGeneratedTriangles);
+    if (SceneHoldsMesh(comm))
+      *mesh = MakeWrappedStripMesh(gen.wrap_radius, gen.wrap_angle * M_PI / 180.0, gen.wrap_width,
+                                   (int)(o.nx << o.refine), (int)(o.ny << o.refine));
+    PetscFunctionReturn(0);
+  }
   PetscCheck(gen.name == "rectangle", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
              "-structure_mesh_generator %s: use disc (-structure_mesh_radius, -mesh_rings), annulus "
-             "(-structure_mesh_radii a,b, -mesh_rings, -mesh_sectors) or rectangle (-structure_mesh_size lx,ly, "
-             "-mesh_nx, -mesh_ny), or give a mesh file with -mesh_file",
+             "(-structure_mesh_radii a,b, -mesh_rings, -mesh_sectors), rectangle (-structure_mesh_size lx,ly, "
+             "-mesh_nx, -mesh_ny) or capstan (-structure_mesh_wrap radius,angle,width), or give a mesh file with "
+             "-mesh_file",
              gen.name.c_str());
   o.keys = kMeshGrid | kMeshRefine | kMeshIrregular, o.nx = 8, o.ny = 4;
   PetscCall(MeshOptionsFromCommandLine(comm, owner, &o));
@@ -74,7 +94,7 @@ PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const Mes
 }
 
 PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, SceneSpec *scene, bool *generated) {
-  const char *names[] = {"file", "disc", "rectangle", "annulus"};
+  const char *names[] = {"file", "disc", "rectangle", "annulus", "capstan"};
   PetscInt k = 0;
   MeshGenInput &g = in->generator;
   PetscFunctionBeginUser;
@@ -83,9 +103,10 @@ PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, Scen
                               "file (-mesh_file), disc (radius -structure_mesh_radius, -mesh_rings; node groups rim, "
                               "centre), rectangle (-structure_mesh_size lx,ly, -mesh_nx, -mesh_ny, -mesh_perturb; "
                               "node groups left, right, bottom, top, corner_*) or annulus (-structure_mesh_radii a,b, "
-                              "-mesh_rings, -mesh_sectors; node groups hub, outer); every generated mesh has the node "
-                              "and surface group all",
-                              "", names, 4, names[0], &k, nullptr));
+                              "-mesh_rings, -mesh_sectors; node groups hub, outer) or capstan (a strip laid on a pipe of "
+                              "axis y, -structure_mesh_wrap radius,angle,width, -mesh_nx along, -mesh_ny across; node "
+                              "groups left and right at its ends); every generated mesh has the node and surface group all",
+                              "", names, 5, names[0], &k, nullptr));
   if (k == 1)
     PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_mesh_radius", "Radius of the generated disc [mm]", "mm",
                                 &g.radius, nullptr));
@@ -95,6 +116,14 @@ PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, Scen
   if (k == 3)
     PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_mesh_radii",
                                "Hub and outer radius a,b of the generated annulus [mm]", &g.radii, nullptr));
+  if (k == 4) {
+    std::vector<double> wrap = {g.wrap_radius, g.wrap_angle, g.wrap_width};
+    PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_mesh_wrap",
+                               "The capstan strip: pipe radius [mm], wrap angle [degrees], strip width [mm]", &wrap,
+                               nullptr));
+    PetscCheck(wrap.size() == 3, comm, PETSC_ERR_ARG_SIZ, "-structure_mesh_wrap: give radius,angle,width");
+    g.wrap_radius = wrap[0], g.wrap_angle = wrap[1], g.wrap_width = wrap[2];
+  }
   PetscOptionsEnd();
   *generated = k != 0;
   if (!*generated) PetscFunctionReturn(0);

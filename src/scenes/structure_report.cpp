@@ -27,7 +27,7 @@ struct StructureContext {
   std::vector<std::string> supports;            // node groups with a prescribed component
   std::vector<double> probe_element_at, probe_node_at;
   std::string history;
-  StructureCheckFn check;                       // -structure_check: its step line and report
+  StructureCheckFn check;                       // -structure_check: its step line and report, its state
   CheckInput check_input;
   // Found in setup on the distributed problem:
   std::vector<std::vector<char>> in_item;       // per item, per local element
@@ -227,7 +227,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt pr
   CellFields f;
   Figures v;
   PetscFunctionBeginUser;
-  if (c->check.step) PetscCall(c->check.step(P, c->check_input, step, t, print_every));
+  if (c->check.step) PetscCall(c->check.step(P, c->check_input, &c->check.state, step, t, print_every));
   const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_history.csv");
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f));
@@ -322,7 +322,7 @@ PetscErrorCode Report(Problem *P, void *vctx) {
                           X[2], c->probe_node_groups[k].c_str(), v.probe_n[5 * k], v.probe_n[5 * k + 1],
                           v.probe_n[5 * k + 2], slide));
   }
-  if (c->check.report) PetscCall(c->check.report(P, c->check_input));
+  if (c->check.report) PetscCall(c->check.report(P, c->check_input, &c->check.state));
   PetscFunctionReturn(0);
 }
 
@@ -349,6 +349,10 @@ PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheck
   observer->report = Report;
   observer->ctx = c;
   observer->destroy = [](void *x) { delete (StructureContext *)x; };
+  if (!check.state.empty()) {
+    observer->state_get = [](void *x, std::vector<double> *v) { *v = ((StructureContext *)x)->check.state; };
+    observer->state_set = [](void *x, const std::vector<double> &v) { ((StructureContext *)x)->check.state = v; };
+  }
   PetscFunctionReturn(0);
 }
 
