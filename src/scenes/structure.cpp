@@ -185,12 +185,11 @@ PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *ob
     PetscCall(StructureAddSupports(comm, in, stages, scene));
     PetscCall(BuildLoadHistory(comm, in, stages, scene));
   }
-  // Form finding reports its own figures (the surface found is written as a mesh).
-  if (!scene->form_finding) {
-    StructureCheckFn check;
-    PetscCall(StructureCheckResolve(comm, *scene, &in, &check));
-    PetscCall(StructureObserverCreate(in, check, observer));
-  }
+  // Form finding reports its own figures (the surface found is written as a mesh), then the check.
+  StructureCheckFn check;
+  PetscCall(StructureCheckResolve(comm, *scene, &in, &check));
+  if (!scene->form_finding) PetscCall(StructureObserverCreate(in, check, observer));
+  else if (check.report) PetscCall(StructureCheckObserverCreate(in, check, observer));
   PetscFunctionReturn(0);
 }
 

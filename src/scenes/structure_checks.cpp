@@ -207,6 +207,41 @@ PetscErrorCode StripReport(Problem *P, const CheckInput &ck, std::vector<double>
   PetscFunctionReturn(0);
 }
 
+// Larger root c of c cosh(a/c) = R, or -1 when there is none (beyond the Goldschmidt limit).
+double CatenoidNeck(double R, double a) {
+  // g(c) = c cosh(a/c) has its minimum at c* with (a/c*) tanh(a/c*) = 1, i.e. a/c* = 1.19968.
+  double lo = a / 1.1996786402577338, hi = R;
+  if (lo * std::cosh(a / lo) > R) return -1.0;
+  if (hi * std::cosh(a / hi) < R) return -1.0;
+  for (int k = 0; k < 200; ++k) {  // g increases on [c*, inf)
+    const double mid = 0.5 * (lo + hi);
+    (mid * std::cosh(a / mid) > R ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The catenoid (a check of form finding): a film between two coaxial rings of radius R a distance
+// H apart must find r(z) = c cosh(z/c) with R = c cosh(H/(2c)) (the larger root: the stable one).
+// The neck radius is the mean radius of the ring of nodes half way (node group middle).
+PetscErrorCode CatenoidCheck(Problem *P, const CheckInput &ck, std::vector<double> *) {
+  std::vector<PetscInt> middle;
+  PetscFunctionBeginUser;
+  PetscCall(ProblemNodeSetIds(P, "middle", &middle));
+  double sum = 0.0;
+  for (PetscInt n : middle) {
+    double x[3];
+    PetscCall(ProblemGetNodePosition(P, P->U, n, x));
+    sum += std::hypot(x[0], x[1]);
+  }
+  const double neck = sum / middle.size();
+  const double ref = CatenoidNeck(ck.ring_radius, 0.5 * ck.separation);
+  PetscCall(PetscPrintf(P->comm, "neck_radius = %.8e\n", neck));
+  PetscCall(PetscPrintf(P->comm,
+                        "catenoid: ring radius %g mm, separation %g mm, closed_form = %.8e mm, relative_error = %.3e\n",
+                        ck.ring_radius, ck.separation, ref, std::fabs(neck - ref) / ref));
+  PetscFunctionReturn(0);
+}
+
 // Rank 0's largest plan distance from the origin of a node group, on every rank (0: no group).
 PetscErrorCode GroupRadius(MPI_Comm comm, const MeshData &m, const char *group, double *r) {
   PetscFunctionBeginUser;
@@ -322,8 +357,17 @@ PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, Stru
     for (int i = 0; i < 3; ++i) ck.tB[i] = d[i] / len;
     PetscFunctionReturn(0);
   }
+  if (ck.name == "catenoid") {
+    fn->report = CatenoidCheck;
+    if (ck.given) PetscFunctionReturn(0);
+    PetscCheck(in->generator.name == "tube" && scene.form_finding, comm, PETSC_ERR_ARG_WRONG,
+               "-structure_check catenoid: form finding (-analysis formfind) of a generated tube "
+               "(-structure_mesh_generator tube) held at its rings");
+    ck.ring_radius = in->generator.radius, ck.separation = in->generator.length;
+    PetscFunctionReturn(0);
+  }
   PetscCheck(ck.name == "patch", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "-structure_check %s: use hencky, patch, annulus, strip or capstan", ck.name.c_str());
+             "-structure_check %s: use hencky, patch, annulus, strip, capstan or catenoid", ck.name.c_str());
   fn->report = PatchCheck;
   if (ck.given) PetscFunctionReturn(0);
   // The strains from the supports: the right edge drawn in x (uniaxial, the top edge free in y;

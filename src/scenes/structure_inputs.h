@@ -96,12 +96,13 @@ struct MeshGenInput {
   // capstan: a strip (length along the wrap, -mesh_nx x -mesh_ny cells) laid on a cylinder of
   // axis y through the origin, symmetric about the z axis: radius, wrap angle [degrees], width [mm]
   double wrap_radius = 21.35, wrap_angle = 180.0, wrap_width = 50.0;
+  double length = 1000.0;             // tube: its length along z (radius: `radius`), centred at z = 0
   std::vector<double> size = {1000.0, 500.0};  // rectangle lx, ly [mm]
 };
 
 // -structure_check: a closed-form check printed after the report (structure_checks.cpp).
 struct CheckInput {
-  std::string name;          // "", hencky, patch, annulus, strip or capstan
+  std::string name;          // "", hencky, patch, annulus, strip, capstan or catenoid
   // Filled by the check from the other inputs, or by a built-in scene that knows them exactly.
   double radius = 0.0, pressure = 0.0;      // hencky: a [mm], p [MPa] (0: from the mesh and the film's pressure)
   double ex = 0.0, ey = 0.0, factor = 1.0;  // patch: strains at multiplier 1, the last multiplier
@@ -109,6 +110,7 @@ struct CheckInput {
   double a = 0.0, b = 0.0, eps0 = 0.0, phi = 0.0;  // annulus: radii, pretension strain, hub rotation
   std::string test, history;                // strip: relaxation or creep; its CSV ("": <results>_strip.csv)
   double theta = 0.0, t1 = 0.0, tB[3] = {0, 0, 0};  // capstan: wrap angle, end A's tension, end B's pull direction
+  double ring_radius = 0.0, separation = 0.0;        // catenoid: the rings' radius and distance
   bool given = false;                       // the values above are set
 };
 
@@ -172,6 +174,8 @@ struct StructureCheckFns {
 };
 using StructureCheckFn = StructureCheckFns;
 PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer);
+// Form finding: an observer that prints only the check (the surface found is the run's own report).
+PetscErrorCode StructureCheckObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer);
 
 // -structure_mesh_generator: reads it and its size options; on rank 0 generates scene->mesh
 // (false in *generated: no generator, read -mesh_file).

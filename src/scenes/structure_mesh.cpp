@@ -67,11 +67,29 @@ PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const Mes
                                    (int)(o.nx << o.refine), (int)(o.ny << o.refine));
     PetscFunctionReturn(0);
   }
+  if (gen.name == "tube") {
+    o.keys = kMeshTube | kMeshRefine, o.ntheta = 48, o.nz = 16;
+    PetscCall(MeshOptionsFromCommandLine(comm, owner, &o));
+    PetscCheck(gen.radius > 0 && gen.length > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s: the tube's radius and length must be positive", owner);
+    PetscCheck(o.ntheta >= 6 && o.nz >= 2 && o.nz % 2 == 0 && o.refine >= 0 && o.refine < 8, comm,
+               PETSC_ERR_ARG_OUTOFRANGE, "%s: need -mesh_ntheta >= 6, an even -mesh_nz >= 2, 0 <= -mesh_refine < 8",
+               owner);
+    PetscCheck(GeneratedTriangles(o.ntheta, o.nz, 2, o.refine) <= kMaxGeneratedTriangles, comm,
+               PETSC_ERR_ARG_OUTOFRANGE,
+               "-mesh_ntheta %" PetscInt_FMT " -mesh_nz %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g "
+               "triangles, more than the %.3g a generated mesh may have",
+               o.ntheta, o.nz, o.refine, GeneratedTriangles(o.ntheta, o.nz, 2, o.refine), kMaxGeneratedTriangles);
+    if (SceneHoldsMesh(comm))
+      *mesh = MakeTubeMesh(gen.radius, -0.5 * gen.length, gen.length, (int)(o.ntheta << o.refine),
+                           (int)(o.nz << o.refine));
+    PetscFunctionReturn(0);
+  }
   PetscCheck(gen.name == "rectangle", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
              "-structure_mesh_generator %s: use disc (-structure_mesh_radius, -mesh_rings), annulus "
              "(-structure_mesh_radii a,b, -mesh_rings, -mesh_sectors), rectangle (-structure_mesh_size lx,ly, "
-             "-mesh_nx, -mesh_ny) or capstan (-structure_mesh_wrap radius,angle,width), or give a mesh file with "
-             "-mesh_file",
+             "-mesh_nx, -mesh_ny), capstan (-structure_mesh_wrap radius,angle,width) or tube "
+             "(-structure_mesh_radius, -structure_mesh_length), or give a mesh file with -mesh_file",
              gen.name.c_str());
   o.keys = kMeshGrid | kMeshRefine | kMeshIrregular, o.nx = 8, o.ny = 4;
   PetscCall(MeshOptionsFromCommandLine(comm, owner, &o));
@@ -94,7 +112,7 @@ PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const Mes
 }
 
 PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, SceneSpec *scene, bool *generated) {
-  const char *names[] = {"file", "disc", "rectangle", "annulus", "capstan"};
+  const char *names[] = {"file", "disc", "rectangle", "annulus", "capstan", "tube"};
   PetscInt k = 0;
   MeshGenInput &g = in->generator;
   PetscFunctionBeginUser;
@@ -105,10 +123,12 @@ PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, Scen
                               "node groups left, right, bottom, top, corner_*) or annulus (-structure_mesh_radii a,b, "
                               "-mesh_rings, -mesh_sectors; node groups hub, outer) or capstan (a strip laid on a pipe of "
                               "axis y, -structure_mesh_wrap radius,angle,width, -mesh_nx along, -mesh_ny across; node "
-                              "groups left and right at its ends); every generated mesh has the node and surface group all",
-                              "", names, 5, names[0], &k, nullptr));
-  if (k == 1)
-    PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_mesh_radius", "Radius of the generated disc [mm]", "mm",
+                              "groups left and right at its ends) or tube (an open cylinder around z, radius "
+                              "-structure_mesh_radius, -structure_mesh_length, -mesh_ntheta, -mesh_nz; node groups bottom, "
+                              "top, middle); every generated mesh has the node and surface group all",
+                              "", names, 6, names[0], &k, nullptr));
+  if (k == 1 || k == 5)
+    PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_mesh_radius", "Radius of the generated disc or tube [mm]", "mm",
                                 &g.radius, nullptr));
   if (k == 2)
     PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_mesh_size",
@@ -116,6 +136,9 @@ PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, Scen
   if (k == 3)
     PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_mesh_radii",
                                "Hub and outer radius a,b of the generated annulus [mm]", &g.radii, nullptr));
+  if (k == 5)
+    PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_mesh_length",
+                                "Length of the generated tube along z [mm] (centred at z = 0)", "mm", &g.length, nullptr));
   if (k == 4) {
     std::vector<double> wrap = {g.wrap_radius, g.wrap_angle, g.wrap_width};
     PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_mesh_wrap",

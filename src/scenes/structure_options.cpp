@@ -396,7 +396,7 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
   PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_initial_bulge_centre",
                              "Plan centre x,y of the paraboloid initial guess [mm]", &in->bulge_centre, nullptr));
   {
-    const char *checks[] = {"none", "hencky", "patch", "annulus", "strip", "capstan"};
+    const char *checks[] = {"none", "hencky", "patch", "annulus", "strip", "capstan", "catenoid"};
     PetscInt k = 0;
     PetscCall(PetscOptionsEList("-structure_check",
                                 "Closed-form check printed after the report: hencky (a clamped disc under pressure: "
@@ -405,8 +405,9 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
                                 "pretensioned annulus whose hub, node group hub, is turned: wrinkled zone and torque "
                                 "against the tension-field closed form); strip: a lab strip's relaxation or creep, its "
                                 "strain and stress per increment to <results>_strip.csv; capstan: a strip pulled over "
-                                "a pipe to gross slip (T2 on end B, node group right, and mu_eff = ln(T2/T1)/theta)",
-                                "", checks, 6, checks[0], &k, nullptr));
+                                "a pipe to gross slip (T2 on end B, node group right, and mu_eff = ln(T2/T1)/theta); "
+                                "catenoid: form finding between two rings, the neck radius against c cosh(z/c)",
+                                "", checks, 7, checks[0], &k, nullptr));
     if (k > 0) in->check.name = checks[k];
   }
   PetscCall(ReadStageArray(PetscOptionsObject, "", "structure_wind",

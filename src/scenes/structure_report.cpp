@@ -356,4 +356,17 @@ PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheck
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode StructureCheckObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer) {
+  PetscFunctionBeginUser;
+  auto *c = new StructureContext();
+  c->check = check, c->check_input = in.check;
+  observer->report = [](Problem *P, void *x) {
+    auto *ctx = (StructureContext *)x;
+    return ctx->check.report(P, ctx->check_input, &ctx->check.state);
+  };
+  observer->ctx = c;
+  observer->destroy = [](void *x) { delete (StructureContext *)x; };
+  PetscFunctionReturn(0);
+}
+
 } // namespace etfe
