@@ -18,6 +18,7 @@
 #include "etfe/verification/annulus_closed_form.h"
 #include "etfe/verification/hencky_closed_form.h"
 #include "etfe/verification/patch_closed_form.h"
+#include "saddle_geometry.h"
 #include "structure_inputs.h"
 
 namespace etfe {
@@ -242,6 +243,18 @@ PetscErrorCode CatenoidCheck(Problem *P, const CheckInput &ck, std::vector<doubl
   PetscFunctionReturn(0);
 }
 
+// The thesis's saddle (quarter model, saddle_geometry.h): h1, h2, the middle part's sag and
+// curvature and the middle cutting line of the surface found.
+PetscErrorCode SaddleCheck(Problem *P, const CheckInput &ck, std::vector<double> *) {
+  SaddleGeometry g;
+  SaddleShapeNodes n;
+  PetscFunctionBeginUser;
+  g.rise = ck.rise;
+  PetscCall(SaddleShapeNodesFind(P, g, &n));
+  PetscCall(SaddleShapeReport(P, g, n, false));
+  PetscFunctionReturn(0);
+}
+
 // Rank 0's largest plan distance from the origin of a node group, on every rank (0: no group).
 PetscErrorCode GroupRadius(MPI_Comm comm, const MeshData &m, const char *group, double *r) {
   PetscFunctionBeginUser;
@@ -364,6 +377,12 @@ PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, Stru
                "-structure_check catenoid: form finding (-analysis formfind) of a generated tube "
                "(-structure_mesh_generator tube) held at its rings");
     ck.ring_radius = in->generator.radius, ck.separation = in->generator.length;
+    PetscFunctionReturn(0);
+  }
+  if (ck.name == "saddle") {
+    fn->report = SaddleCheck;
+    PetscCheck(ck.given, comm, PETSC_ERR_ARG_WRONG,
+               "-structure_check saddle: the saddle's shape report is the saddle scene's (-scene saddle)");
     PetscFunctionReturn(0);
   }
   PetscCheck(ck.name == "patch", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,

@@ -102,7 +102,7 @@ struct MeshGenInput {
 
 // -structure_check: a closed-form check printed after the report (structure_checks.cpp).
 struct CheckInput {
-  std::string name;          // "", hencky, patch, annulus, strip, capstan or catenoid
+  std::string name;          // "", hencky, patch, annulus, strip, capstan, catenoid or saddle
   // Filled by the check from the other inputs, or by a built-in scene that knows them exactly.
   double radius = 0.0, pressure = 0.0;      // hencky: a [mm], p [MPa] (0: from the mesh and the film's pressure)
   double ex = 0.0, ey = 0.0, factor = 1.0;  // patch: strains at multiplier 1, the last multiplier
@@ -111,6 +111,7 @@ struct CheckInput {
   std::string test, history;                // strip: relaxation or creep; its CSV ("": <results>_strip.csv)
   double theta = 0.0, t1 = 0.0, tB[3] = {0, 0, 0};  // capstan: wrap angle, end A's tension, end B's pull direction
   double ring_radius = 0.0, separation = 0.0;        // catenoid: the rings' radius and distance
+  double rise = 0.0;                                  // saddle: the arch's rise H (saddle_geometry.h)
   bool given = false;                       // the values above are set
 };
 
