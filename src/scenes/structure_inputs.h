@@ -20,7 +20,7 @@ struct StageArray {
   std::string option;  // "-film_roof_pressure", for messages
   std::vector<double> values;
   // 0: the values are in the option's unit (kPa, mm). Non-zero (a built-in scene's own input,
-  // structure_preset.h): the values are multipliers of this coefficient, in the solver's units
+  // StructureBuild below): the values are multipliers of this coefficient, in the solver's units
   // (MPa, mm), so the load is coef x schedule exactly as that scene always built it.
   double coef = 0.0;
   bool Given() const { return !values.empty(); }
@@ -186,7 +186,15 @@ PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const Mes
 
 // -structure_check: completes in->check from the inputs (after the supports and loads are known)
 // and gives the hooks that print it (none when no check is asked for).
-// The capstan's check (structure_check_capstan.cpp): its state's start and its hooks.
+// The checks' reports (structure_check_reports.cpp, structure_check_capstan.cpp).
+PetscErrorCode HenckyCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode PatchCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode AnnulusCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode CatenoidCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode SaddleCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode StripReport(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode StripStep(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step, double t,
+                         PetscInt print_every);
 std::vector<double> CapstanCheckStart();
 PetscErrorCode CapstanCheckStep(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step,
                                 double t, PetscInt print_every);
@@ -196,8 +204,8 @@ PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, Stru
 
 // The general scene built with `preset` (may be null) applied to the options' inputs: a built-in
 // scene (-scene hencky, -scene patch) is the general scene with its supports, loads, mesh and
-// check given here instead of by options (structure_preset.h). scene->mesh is already made when
-// mesh_given.
+// check given here instead of by options (src/scenes/<scene>.cpp). scene->mesh is already made
+// when mesh_given.
 using StructurePresetFn = PetscErrorCode (*)(MPI_Comm comm, StructureInputs *in, void *ctx);
 PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer, bool mesh_given,
                               StructurePresetFn preset, void *ctx);
