@@ -54,6 +54,6 @@ with scratch_dir() as tmp:
     _, out = run(etfe, hencky + ["-structure_check", "annulus"], expect_fail=True)
     chk.check("-structure_check annulus: the node group hub needs" in out, "refused: -structure_check annulus on a disc")
     _, out = run(etfe, hencky + ["-structure_mesh_generator", "cone"], expect_fail=True)
-    chk.check(re.search(r"-structure_mesh_generator.*cone", out) is not None, "refused: an unknown mesh generator")
+    chk.check("Unknown option cone for -structure_mesh_generator" in out, "refused: an unknown mesh generator")
 
 chk.finish()
