@@ -1,7 +1,9 @@
-// Structured meshes: rectangle (4 diagonal patterns, optional random perturbation) and disc.
+// Structured meshes: rectangle (4 diagonal patterns, optional random perturbation), disc, annulus,
+// tube and a strip wrapped on a cylinder.
 #include "etfe/mesh/generators.h"
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <string>
 
@@ -154,6 +156,44 @@ MeshData MakeTubeMesh(double radius, double z0, double length, int ntheta, int n
     if (nz % 2 == 0) m.node_sets["middle"].push_back(id(i, nz / 2));
   }
   FillAllSet(m);
+  return m;
+}
+
+MeshData MakeAnnulusMesh(double a, double b, int nr, int nt) {
+  MeshData m;
+  const double pi = std::acos(-1.0);
+  for (int i = 0; i <= nr; ++i)
+    for (int j = 0; j < nt; ++j) {
+      const double r = a + (b - a) * i / nr, th = 2 * pi * j / nt;
+      m.coords.insert(m.coords.end(), {r * std::cos(th), r * std::sin(th), 0.0});
+    }
+  for (int i = 0; i < nr; ++i)
+    for (int j = 0; j < nt; ++j) {
+      const int n00 = i * nt + j, n01 = i * nt + (j + 1) % nt, n10 = n00 + nt, n11 = n01 + nt;
+      if ((i + j) % 2 == 0) m.triangles.insert(m.triangles.end(), {n00, n10, n11, n00, n11, n01});
+      else m.triangles.insert(m.triangles.end(), {n00, n10, n01, n01, n10, n11});
+    }
+  for (int j = 0; j < nt; ++j) {
+    m.node_sets["hub"].push_back(j);
+    m.node_sets["outer"].push_back(nr * nt + j);
+  }
+  for (int n = 0; n < m.NumNodes(); ++n) m.node_sets["all"].push_back(n);
+  char src[96];
+  std::snprintf(src, sizeof src, "generated annulus, %d rings x %d sectors", nr, nt);
+  m.source = src;
+  return m;
+}
+
+MeshData MakeWrappedStripMesh(double radius, double theta, double width, int nx, int ny) {
+  // Laid flat first (arc length s along the wrap, y across), then onto the cylinder: stress free.
+  MeshData m = MakeRectangleMesh(0.0, -0.5 * width, radius * theta, width, nx, ny, DiagonalPattern::Alternate, 0.0, 0u);
+  m.source = "capstan strip " + std::to_string(nx) + "x" + std::to_string(ny);
+  for (int n = 0; n < m.NumNodes(); ++n) {
+    double *x = &m.coords[3 * n];
+    const double phi = x[0] / radius - 0.5 * theta;
+    x[0] = radius * std::sin(phi);
+    x[2] = radius * std::cos(phi);
+  }
   return m;
 }
 

@@ -1,7 +1,10 @@
-// Patch scene: a flat rectangle (optionally an irregular mesh) stretched in its plane, uniaxial
-// (free lateral edge) or biaxial, with a stage schedule of stretch multipliers so loading,
-// unloading and reloading are one option (-patch_schedule 1,0,1.5). Every element must carry the
-// same stress; with an elastic material the scene prints the closed form too.
+// -scene patch: a flat rectangle (optionally an irregular mesh, or a mesh file) stretched in its
+// plane as a case of the general scene: uniaxial (free lateral edge), biaxial, pure shear, or a
+// shear panel (every edge node on a homogeneous deformation, -bc_<group>_gradient), with a stage
+// schedule of stretch multipliers so loading, unloading and reloading are one option
+// (-patch_schedule 1,0,1.5). Every element must carry the same stress; with an elastic material
+// the closed form is printed too (-structure_check patch). The same case as options only:
+// options/structure/verify_patch.opts; this scene keeps its own option names (-patch_*).
 #include <petscsys.h>
 
 #include <algorithm>
@@ -10,67 +13,22 @@
 #include <string>
 #include <vector>
 
-#include "etfe/assembly.h"
 #include "etfe/mesh/generators.h"
 #include "etfe/mesh/mesh_options.h"
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
-#include "etfe/verification/patch_closed_form.h"
 #include "real_array_option.h"
+#include "structure_inputs.h"
 
 namespace etfe {
 
 namespace {
 
 enum class PatchMode { Uniaxial, Biaxial, PureShear, Shear };
-
-struct PatchContext {
-  double ex, ey;  // engineering strain at schedule value 1
-  PatchMode mode;
-  double final_factor;
-};
+const char *const kModes[] = {"uniaxial", "biaxial", "pureshear", "shear"};
 
 // Stretch in Y that makes Eyy = -Exx (pure shear in the principal axes).
 double PureShearStretchY(double lx) { return std::sqrt(std::max(0.0, 2.0 - lx * lx)); }
-
-PetscErrorCode PatchReport(Problem *P, void *vctx) {
-  auto *ctx = (PatchContext *)vctx;
-  CellFields c;
-  PetscFunctionBeginUser;
-  PetscCall(ComputeCellFields(P, P->U, &c, false));
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300}, glo[3], ghi[3];
-  for (PetscInt e = 0; e < P->mesh.num_elements; ++e)
-    for (int i = 0; i < 3; ++i) {
-      lo[i] = std::min(lo[i], c.stress[3 * e + i]);
-      hi[i] = std::max(hi[i], c.stress[3 * e + i]);
-    }
-  PetscCallMPI(MPI_Allreduce(lo, glo, 3, MPI_DOUBLE, MPI_MIN, P->comm));
-  PetscCallMPI(MPI_Allreduce(hi, ghi, 3, MPI_DOUBLE, MPI_MAX, P->comm));
-  const double scale = std::max({std::fabs(ghi[0]), std::fabs(ghi[1]), std::fabs(glo[0]),
-                                 std::fabs(glo[1]), 1e-30});
-  const double spread = std::max({ghi[0] - glo[0], ghi[1] - glo[1], ghi[2] - glo[2]}) / scale;
-  PetscCall(PetscPrintf(P->comm,
-                        "patch: Sxx in [%.10e, %.10e], Syy in [%.10e, %.10e], Sxy in [%.3e, %.3e] MPa\n"
-                        "patch: stress_spread = %.3e (max - min over elements, relative)\n",
-                        glo[0], ghi[0], glo[1], ghi[1], glo[2], ghi[2], spread));
-  if (std::string(P->material->Name()) == "elastic" && ctx->mode != PatchMode::Shear) {
-    double young, nu, S[2];
-    P->material->ElasticConstants(&young, &nu);
-    const double lx = 1.0 + ctx->ex * ctx->final_factor;
-    const double Exx = 0.5 * (lx * lx - 1.0);
-    double Eyy = 0.0;
-    if (ctx->mode != PatchMode::Uniaxial) {
-      const double ly = ctx->mode == PatchMode::Biaxial ? 1.0 + ctx->ey * ctx->final_factor
-                                                        : PureShearStretchY(lx);
-      Eyy = 0.5 * (ly * ly - 1.0);
-    }
-    PatchClosedFormStress(young, nu, Exx, Eyy, ctx->mode == PatchMode::Uniaxial, S);
-    const double err = std::max(std::fabs(ghi[0] - S[0]), std::fabs(glo[0] - S[0])) / std::fabs(S[0]);
-    PetscCall(PetscPrintf(P->comm, "patch: closed_form Sxx = %.10e Syy = %.10e, relative_error = %.3e\n",
-                          S[0], S[1], err));
-  }
-  PetscFunctionReturn(0);
-}
 
 // What the patch options give, defaults included.
 struct PatchInputs {
@@ -121,9 +79,8 @@ PetscErrorCode ReadPatchOptions(MPI_Comm comm, PatchInputs *in) {
              "patch: need positive -patch_lx/-patch_ly, -mesh_nx/-mesh_ny >= 1, 0 <= -mesh_refine < 12");
   PetscCheck(m.perturb >= 0 && m.perturb < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-mesh_perturb %g: must lie in [0, 0.5) or elements may invert", m.perturb);
-  static const char *const modes[] = {"uniaxial", "biaxial", "pureshear", "shear"};
   int k = 0;
-  while (k < 4 && std::string(mode) != modes[k]) ++k;
+  while (k < 4 && std::string(mode) != kModes[k]) ++k;
   PetscCheck(k < 4, comm, PETSC_ERR_ARG_UNKNOWN_TYPE, "-patch_mode %s: use uniaxial, biaxial, pureshear or shear",
              mode);
   in->mode = (PatchMode)k;
@@ -178,38 +135,44 @@ PetscErrorCode ReadPatchMesh(MPI_Comm comm, PatchInputs *in, SceneSpec *scene) {
   PetscFunctionReturn(0);
 }
 
-// Shear panel (pretension ex in X and Y plus the shear g): the homogeneous deformation
-// F = [[1 + ex, g], [0, 1 + ex]] on every edge node, so the whole panel takes it.
-void AddShearPanelSupports(const PatchInputs &in, int is, SceneSpec *scene) {
-  auto &sets = scene->mesh.node_sets;
-  std::vector<char> edge(scene->mesh.NumNodes(), 0);
-  for (const char *name : {"left", "right", "bottom", "top"})
-    for (int n : sets[name]) edge[n] = 1;
-  for (int n = 0; n < scene->mesh.NumNodes(); ++n) {
-    if (!edge[n]) continue;
-    const double X = scene->mesh.coords[3 * n], Y = scene->mesh.coords[3 * n + 1];
-    scene->constraints.push_back({n, 0, {{in.ex * X + in.shear * Y, 0.0}, {is, -1}}});
-    scene->constraints.push_back({n, 1, {{in.ex * Y, 0.0}, {is, -1}}});
+// What the patch options give, as the general scene's inputs: the film held in its plane (all:
+// z), then per mode the edges' supports, each a coefficient (ex lx, ...) times the stretch
+// multipliers, as this scene always built them.
+PetscErrorCode PatchPreset(MPI_Comm, StructureInputs *in, void *vctx) {
+  const auto *p = (const PatchInputs *)vctx;
+  PetscFunctionBeginUser;
+  auto bc = [&](const char *group) -> BcInput & {
+    in->bcs.push_back(BcInput());
+    in->bcs.back().group = group;
+    return in->bcs.back();
+  };
+  bc("all").fix = "z";
+  if (p->mode == PatchMode::Shear) {
+    // Shear panel (pretension ex in X and Y plus the shear g): F = [[1 + ex, g], [0, 1 + ex]] on
+    // every edge node, so the whole panel takes it.
+    for (const char *edge : {"left", "right", "bottom", "top"}) {
+      BcInput &b = bc(edge);
+      b.gradient = {p->ex, p->shear, 0.0, p->ex};
+      b.gradient_stages = {"-patch_schedule", p->schedule, 0.0};
+    }
+  } else {
+    // Left and bottom edges on rollers, the right edge drawn in X, the top edge drawn in Y
+    // (biaxial; pure shear with its own multipliers: Eyy = -Exx is not linear in the schedule,
+    // so each stage end gets its own value, interpolated in between) or free (uniaxial).
+    bc("left").fix = "x";
+    bc("bottom").fix = "y";
+    bc("right").move[0] = {"-patch_strain_x", p->schedule, p->ex * p->lx};
+    if (p->mode == PatchMode::Biaxial) bc("top").move[1] = {"-patch_strain_y", p->schedule, p->ey * p->ly};
+    if (p->mode == PatchMode::PureShear) {
+      std::vector<double> sy;
+      for (double f : p->schedule) sy.push_back(PureShearStretchY(1.0 + p->ex * f) - 1.0);
+      bc("top").move[1] = {"-patch_mode pureshear", sy, p->ly};
+    }
   }
-}
-
-// Uniaxial, biaxial and pure shear: left and bottom edges on rollers, the right edge drawn in X,
-// the top edge drawn in Y (biaxial; pure shear by a schedule of its own) or free (uniaxial).
-void AddStretchSupports(const PatchInputs &in, int is, SceneSpec *scene) {
-  auto &sets = scene->mesh.node_sets;
-  for (int n : sets["left"]) scene->constraints.push_back({n, 0, {}});
-  for (int n : sets["bottom"]) scene->constraints.push_back({n, 1, {}});
-  for (int n : sets["right"]) scene->constraints.push_back({n, 0, {{in.ex * in.lx, 0.0}, {is, -1}}});
-  if (in.mode == PatchMode::Biaxial)
-    for (int n : sets["top"]) scene->constraints.push_back({n, 1, {{in.ey * in.ly, 0.0}, {is, -1}}});
-  if (in.mode == PatchMode::PureShear) {
-    // Eyy = -Exx is not linear in the schedule value, so each stage end gets its own value:
-    // a second schedule carries the Y stretch of each stage end, interpolated in between.
-    Schedule sy{"stretch_y", 0.0, {}};
-    for (double f : in.schedule) sy.values.push_back(PureShearStretchY(1.0 + in.ex * f) - 1.0);
-    const int iy = scene->AddSchedule(sy);
-    for (int n : sets["top"]) scene->constraints.push_back({n, 1, {{in.ly, 0.0}, {iy, -1}}});
-  }
+  CheckInput &ck = in->check;
+  ck.name = "patch", ck.ex = p->ex, ck.ey = p->ey, ck.factor = p->schedule.back(), ck.given = true;
+  ck.mode = kModes[(int)p->mode];
+  PetscFunctionReturn(0);
 }
 
 } // namespace
@@ -225,16 +188,10 @@ PetscErrorCode SceneBuild_Patch(MPI_Comm comm, SceneSpec *scene, SceneObserver *
     scene->mesh = MakeRectangleMesh(0.0, 0.0, in.lx, in.ly, (int)(m.nx << m.refine), (int)(m.ny << m.refine),
                                     m.pattern, m.perturb, 12345u);
   }
-  const int is = scene->AddSchedule(Schedule{"stretch", 0.0, in.schedule});
-  for (int n : scene->mesh.node_sets["all"]) scene->constraints.push_back({n, 2, {}});  // empty but on rank 0
-  if (in.mode == PatchMode::Shear)
-    AddShearPanelSupports(in, is, scene);
-  else
-    AddStretchSupports(in, is, scene);
-  auto *ctx = new PatchContext{in.ex, in.ey, in.mode, in.schedule.back()};
-  observer->report = PatchReport;
-  observer->ctx = ctx;
-  observer->destroy = [](void *c) { delete (PatchContext *)c; };
+  PetscBool help = PETSC_FALSE;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (help && scene->name.empty()) PetscFunctionReturn(0);  // -help without a scene: the options are shown
+  PetscCall(StructureBuild(comm, scene, observer, true, PatchPreset, &in));
   PetscFunctionReturn(0);
 }
 

@@ -66,7 +66,8 @@ PetscErrorCode SceneRegisterAll(void) {
   PetscCall(SceneRegister("structure", SceneBuild_Structure,
                           "your own structure: a Gmsh mesh whose physical groups are held, drawn, loaded (pressure, "
                           "wind, snow, self-weight) or laid on rigid supports, by options keyed by group name",
-                          "options/structure/*.opts (docs/own-structure.md)"));
+                          "options/structure/*.opts (docs/own-structure.md; verify_*.opts and lab_strip_*.opts: the "
+                          "built-in scenes' cases as its options)"));
   PetscCall(SceneRegister("strip", SceneBuild_Strip,
                           "uniaxial strip in the lab: stress relaxation and creep against time (viscoelastic_plastic)",
                           "options/strip_relaxation.opts, options/strip_creep.opts"));
@@ -104,7 +105,8 @@ PetscErrorCode SceneCreateFromOptions(MPI_Comm comm, SceneSpec *scene, SceneObse
                              nullptr));
   PetscOptionsEnd();
   if (list) {
-    PetscCall(PetscPrintf(comm, "scenes (-scene <name>; run one with: scripts/run <options file>):\n"));
+    PetscCall(PetscPrintf(comm, "scenes (-scene <name>; run one with: scripts/run <options file>; every one but the "
+                                "saddle's stretch is a case of the general scene, structure, given its inputs):\n"));
     for (const SceneEntry &e : scene_entries)
       PetscCall(PetscPrintf(comm, "  %-9s %s\n            options files: %s\n", e.name.c_str(), e.what.c_str(),
                             e.files.c_str()));

@@ -3,12 +3,14 @@
 // (u_Y = 0), the arch at X = 1000: a circular arc through (Y = +-1000, z = 0) and (0, H).
 // Middle part X < 1000 (centre at X = 0), corner part X > 1000.
 //
-// Form finding (-analysis formfind): the arch line and the frame are prescribed, the middle part
-// carries MD:TD = -saddle_ratio_middle, the corners -saddle_ratio_corner (thesis Table 2.1). The
-// initial shape is the arch extruded along X in the middle and ruled from the arch down to the
-// frame in the corners (the PD specimens' shape). The report gives the saddle heights h1 (middle
-// part centre) and h2 (corner part centre), the sag and curvature of the middle part's centre
-// line (docs/theory.md §8: kappa = 8h/(L^2 + 4h^2)) and the middle cutting line length (X = 0).
+// Form finding (-analysis formfind), a case of the general scene (-bc_frame_fix xyz, ...,
+// -film_middle_stress_ratio, -structure_check saddle): the arch line and the frame are prescribed,
+// the middle part carries MD:TD = -saddle_ratio_middle, the corners -saddle_ratio_corner (thesis
+// Table 2.1). The initial shape is the arch extruded along X in the middle and ruled from the
+// arch down to the frame in the corners (the PD specimens' shape). The report gives the saddle
+// heights h1 (middle part centre) and h2 (corner part centre), the sag and curvature of the
+// middle part's centre line (docs/theory.md §8: kappa = 8h/(L^2 + 4h^2)) and the middle cutting line length
+// (X = 0).
 #include <petscsys.h>
 
 #include <algorithm>
@@ -21,17 +23,9 @@
 #include "etfe/rank0.h"
 #include "etfe/scene_registry.h"
 #include "saddle_geometry.h"
+#include "structure_inputs.h"
 
 namespace etfe {
-
-namespace {
-
-struct SaddleContext {
-  SaddleGeometry g;
-  SaddleShapeNodes shape;
-};
-
-} // namespace
 
 PetscErrorCode SaddleShapeNodesFind(Problem *P, const SaddleGeometry &g, SaddleShapeNodes *n) {
   double x[3];
@@ -87,17 +81,26 @@ PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const Sadd
 
 namespace {
 
-PetscErrorCode SaddleSetup(Problem *P, void *vctx) {
-  auto *c = (SaddleContext *)vctx;
-  PetscFunctionBeginUser;
-  PetscCall(SaddleShapeNodesFind(P, c->g, &c->shape));
-  PetscFunctionReturn(0);
-}
+struct SaddleFormFind {
+  SaddleGeometry g;
+  double ratio_mid, ratio_corner;
+};
 
-PetscErrorCode SaddleReport(Problem *P, void *vctx) {
-  auto *c = (SaddleContext *)vctx;
+// Form finding as the general scene's inputs: the frame and the arch line held, the symmetry
+// planes X = 0 and Y = 0 on rollers, the middle and corner parts' MD:TD ratios, the shape report.
+PetscErrorCode SaddleFormFindPreset(MPI_Comm, StructureInputs *in, void *vctx) {
+  const auto *f = (const SaddleFormFind *)vctx;
   PetscFunctionBeginUser;
-  PetscCall(SaddleShapeReport(P, c->g, c->shape, false));
+  for (const auto &gf : {std::make_pair("frame", "xyz"), std::make_pair("arch", "xyz"), std::make_pair("sym_x", "x"),
+                         std::make_pair("sym_y", "y")}) {
+    in->bcs.push_back(BcInput());
+    in->bcs.back().group = gf.first, in->bcs.back().fix = gf.second;
+  }
+  for (FilmInput &film : in->films) {
+    if (film.group == "middle") film.stress_ratio = f->ratio_mid;
+    if (film.group == "corner") film.stress_ratio = f->ratio_corner;
+  }
+  in->check.name = "saddle", in->check.rise = f->g.rise, in->check.given = true;
   PetscFunctionReturn(0);
 }
 
@@ -129,8 +132,7 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
              "-mesh_n %" PetscInt_FMT " -mesh_refine %" PetscInt_FMT ": %.3g triangles, more than the %.3g a generated "
              "mesh may have", n, refine, GeneratedTriangles(2 * n, n, 8, refine), kMaxGeneratedTriangles);
   n <<= refine;
-  auto *ctx = new SaddleContext();
-  SaddleGeometry &g = ctx->g;
+  SaddleGeometry g;
   g.rise = ratio_r * 2.0 * g.half_span;
   MeshData &m = scene->mesh;
   if (from_file) {
@@ -170,28 +172,11 @@ PetscErrorCode SceneBuild_Saddle(MPI_Comm comm, SceneSpec *scene, SceneObserver 
     m.element_sets[xc < g.arch_x ? "middle" : "corner"].push_back(e);
   }
   if (!scene->form_finding) {
-    const SaddleGeometry geometry = g;  // g lives in ctx, which this branch does not need
-    delete ctx;
-    PetscCall(SaddleStretchSetup(comm, geometry, scene, observer));
+    PetscCall(SaddleStretchSetup(comm, g, scene, observer));
     PetscFunctionReturn(0);
   }
-  scene->element_stress_ratio.assign(m.NumElements(), ratio_corner);
-  for (int e : m.element_sets["middle"]) scene->element_stress_ratio[e] = ratio_mid;
-  scene->AddSchedule({"boundary", 0.0, {1.0}});
-  std::vector<char> fixed(m.NumNodes(), 0);
-  for (const char *set : {"frame", "arch"})
-    for (int k : m.node_sets[set]) {
-      fixed[k] = 1;
-      for (int c = 0; c < 3; ++c) scene->constraints.push_back({k, c, {}});
-    }
-  for (int k : m.node_sets["sym_x"])
-    if (!fixed[k]) scene->constraints.push_back({k, 0, {}});
-  for (int k : m.node_sets["sym_y"])
-    if (!fixed[k]) scene->constraints.push_back({k, 1, {}});
-  observer->setup = SaddleSetup;
-  observer->report = SaddleReport;
-  observer->ctx = ctx;
-  observer->destroy = [](void *c) { delete (SaddleContext *)c; };
+  SaddleFormFind ff{g, ratio_mid, ratio_corner};
+  PetscCall(StructureBuild(comm, scene, observer, true, SaddleFormFindPreset, &ff));
   PetscFunctionReturn(0);
 }
 

@@ -1,9 +1,10 @@
-// Strip scene: the ETFE lab's uniaxial tests on a flat strip in its plane, with physical time
-// (-load_stage_duration, -load_hold_*): relaxation (the right edge drawn to a strain, then held)
-// and creep (a dead force on the right edge, then held). Left edge on rollers in X, bottom edge
-// on rollers in Y, so the strip is homogeneous: every element carries the test's state. Each
-// increment writes time, strain and stress to <results>_strip.csv (or -strip_history) and, at the
-// monitor's rate, a line.
+// -scene strip: the ETFE lab's uniaxial tests on a flat strip in its plane, with physical time
+// (-load_stage_duration, -load_hold_*), as a case of the general scene: relaxation (the right edge
+// drawn to a strain, then held) and creep (a dead force on the right edge, then held). Left edge
+// on rollers in X, bottom edge on rollers in Y, so the strip is homogeneous: every element carries
+// the test's state. Each increment writes time, strain and stress to <results>_strip.csv (or
+// -strip_history) and, at the monitor's rate, a line (-structure_check strip). The same cases as
+// options only: options/structure/lab_strip_*.opts; this scene keeps its own option names.
 #include <petscsys.h>
 
 #include <algorithm>
@@ -13,12 +14,11 @@
 #include <utility>
 #include <vector>
 
-#include "etfe/assembly.h"
-#include "etfe/csv_history.h"
 #include "etfe/mesh/generators.h"
 #include "etfe/mesh/mesh_options.h"
 #include "etfe/scene_registry.h"
 #include "real_array_option.h"
+#include "structure_inputs.h"
 
 namespace etfe {
 
@@ -36,57 +36,6 @@ struct StripInputs {
   std::string history;
   MeshOptions mesh;
 };
-
-struct StripContext {
-  StripTest test;
-  std::string history;
-};
-
-// The homogeneous state as the elements' mean: GL strain Exx, PK2 Sxx, and from them the
-// engineering strain and the nominal (force per reference area) stress.
-PetscErrorCode MeasureStrip(Problem *P, double *E, double *S, double *e_eng, double *s_nom) {
-  CellFields c;
-  double loc[3] = {0.0, 0.0, 0.0}, glob[3];
-  PetscFunctionBeginUser;
-  PetscCall(ComputeCellFields(P, P->U, &c, false));
-  for (PetscInt e = 0; e < P->mesh.num_elements; ++e) {
-    loc[0] += c.strain[3 * e], loc[1] += c.stress[3 * e];
-    loc[2] += 1.0;
-  }
-  PetscCallMPI(MPI_Allreduce(loc, glob, 3, MPI_DOUBLE, MPI_SUM, P->comm));
-  *E = glob[0] / glob[2], *S = glob[1] / glob[2];
-  const double stretch = std::sqrt(1.0 + 2.0 * *E);
-  *e_eng = stretch - 1.0, *s_nom = stretch * *S;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode StripStep(Problem *P, void *vctx, PetscInt step, double t, PetscInt print_every) {
-  auto *c = (StripContext *)vctx;
-  double E, S, e, s;
-  PetscFunctionBeginUser;
-  PetscCall(MeasureStrip(P, &E, &S, &e, &s));
-  const double seconds = P->clock.Seconds(t);
-  if (print_every > 0 && step % print_every == 0)
-    PetscCall(PetscPrintf(P->comm, "strip: %s  time %.6g s  strain %.6e  stress %.6e MPa (nominal %.6e)\n",
-                          kStripTests[(int)c->test], seconds, e, S, s));
-  const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_strip.csv");
-  if (path.empty() || P->rank != 0) PetscFunctionReturn(0);
-  FILE *out = CsvHistoryOpen(path, step, "step,load_time,seconds,strain_gl,strain,stress_pk2,stress_nominal");
-  PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "strip: cannot write %s", path.c_str());
-  std::fprintf(out, "%lld,%.10g,%.10g,%.12e,%.12e,%.12e,%.12e\n", (long long)step, t, seconds, E, e, S, s);
-  std::fclose(out);
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode StripReport(Problem *P, void *vctx) {
-  auto *c = (StripContext *)vctx;
-  double E, S, e, s;
-  PetscFunctionBeginUser;
-  PetscCall(MeasureStrip(P, &E, &S, &e, &s));
-  PetscCall(PetscPrintf(P->comm, "strip: %s at the end (%.6g s): strain %.9e, stress %.9e MPa (nominal %.9e)\n",
-                        kStripTests[(int)c->test], P->clock.Seconds(P->time), e, S, s));
-  PetscFunctionReturn(0);
-}
 
 PetscErrorCode ReadStripOptions(MPI_Comm comm, StripInputs *in) {
   PetscInt test = (PetscInt)in->test;
@@ -142,6 +91,26 @@ void AddEdgeForce(const StripInputs &in, double thickness, int is, SceneSpec *sc
   }
 }
 
+// What the strip options give, as the general scene's inputs: left edge on rollers in X, bottom
+// edge on rollers in Y, held in its plane; relaxation draws the right edge (strain x length times
+// the multipliers), creep's force is added by the scene itself (AddEdgeForce).
+PetscErrorCode StripPreset(MPI_Comm, StructureInputs *in, void *vctx) {
+  const auto *p = (const StripInputs *)vctx;
+  PetscFunctionBeginUser;
+  for (const auto &gf : {std::make_pair("all", "z"), std::make_pair("left", "x"), std::make_pair("bottom", "y")}) {
+    in->bcs.push_back(BcInput());
+    in->bcs.back().group = gf.first, in->bcs.back().fix = gf.second;
+  }
+  if (p->test == StripTest::Relaxation) {
+    in->bcs.push_back(BcInput());
+    in->bcs.back().group = "right";
+    in->bcs.back().move[0] = {"-strip_strain", p->schedule, p->strain * p->length};
+  }
+  CheckInput &ck = in->check;
+  ck.name = "strip", ck.test = kStripTests[(int)p->test], ck.history = p->history, ck.given = true;
+  PetscFunctionReturn(0);
+}
+
 } // namespace
 
 PetscErrorCode SceneBuild_Strip(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
@@ -151,25 +120,17 @@ PetscErrorCode SceneBuild_Strip(MPI_Comm comm, SceneSpec *scene, SceneObserver *
   if (SceneHoldsMesh(comm))
     scene->mesh = MakeRectangleMesh(0.0, 0.0, in.length, in.width, (int)in.mesh.nx, (int)in.mesh.ny,
                                     in.mesh.pattern, 0.0, 12345u);
-  const int is = scene->AddSchedule(
-      Schedule{in.test == StripTest::Creep ? "stress" : "strain", 0.0, in.schedule, "", 1.0});
-  auto &sets = scene->mesh.node_sets;
-  for (int n : sets["all"]) scene->constraints.push_back({n, 2, {}});
-  for (int n : sets["left"]) scene->constraints.push_back({n, 0, {}});
-  for (int n : sets["bottom"]) scene->constraints.push_back({n, 1, {}});
-  if (in.test == StripTest::Relaxation)
-    for (int n : sets["right"]) scene->constraints.push_back({n, 0, {{in.strain * in.length, 0.0}, {is, -1}}});
-  else {
+  PetscBool help = PETSC_FALSE;
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (help && scene->name.empty()) PetscFunctionReturn(0);  // -help without a scene: the options are shown
+  PetscCall(StructureBuild(comm, scene, observer, true, StripPreset, &in));
+  if (in.test == StripTest::Creep) {
     // The force per reference area needs the film's thickness, which the membrane reads later.
     PetscReal h = scene->thickness;
     PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-membrane_thickness", &h, nullptr));
-    AddEdgeForce(in, h, is, scene);
+    const int is = scene->AddSchedule(Schedule{"stress", 0.0, in.schedule, "", 1.0});
+    if (SceneHoldsMesh(comm)) AddEdgeForce(in, h, is, scene);
   }
-  auto *ctx = new StripContext{in.test, in.history};
-  observer->step_monitor = StripStep;
-  observer->report = StripReport;
-  observer->ctx = ctx;
-  observer->destroy = [](void *c) { delete (StripContext *)c; };
   PetscFunctionReturn(0);
 }
 

@@ -82,6 +82,19 @@ std::string InitialBulge(double h, SceneSpec *scene) {
   return "";
 }
 
+// Rank 0: -structure_initial_bulge_radius R lifts each node in z by h (1 - r^2/R^2), r its plan
+// distance from the centre (0 beyond R): the clamped disc's paraboloid, as the hencky scene
+// always started from.
+void InitialParaboloid(const StructureInputs &in, SceneSpec *scene) {
+  const MeshData &m = scene->mesh;
+  const double h = in.initial_bulge, R = in.bulge_radius;
+  scene->initial_guess.assign(3 * (size_t)m.NumNodes(), 0.0);
+  for (int n = 0; n < m.NumNodes(); ++n) {
+    const double x = m.coords[3 * n] - in.bulge_centre[0], y = m.coords[3 * n + 1] - in.bulge_centre[1];
+    scene->initial_guess[3 * n + 2] = h * std::max(0.0, 1.0 - (x * x + y * y) / (R * R));
+  }
+}
+
 PetscErrorCode BuildLoadHistory(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
   PetscFunctionBeginUser;
   PetscCall(StructureAddLoads(comm, in, stages, scene));
@@ -98,7 +111,15 @@ PetscErrorCode BuildLoadHistory(MPI_Comm comm, const StructureInputs &in, int st
     const int sl = scene->AddSchedule({"lay_on", start, std::vector<double>(stages, 1.0), ""});
     scene->reference_blend = {{1.0, 0.0}, {sl, -1}};
   }
-  if (in.initial_bulge != 0.0) {
+  if (in.initial_bulge != 0.0 && in.bulge_radius > 0.0) {
+    if (SceneHoldsMesh(comm)) InitialParaboloid(in, scene);
+    char note[160];
+    std::snprintf(note, sizeof note,
+                  "paraboloid bulge of %g mm (a flat membrane has no out-of-plane stiffness; the guess does not "
+                  "change the converged answer)",
+                  in.initial_bulge);
+    scene->initial_guess_note = note;
+  } else if (in.initial_bulge != 0.0) {
     std::string err;
     if (SceneHoldsMesh(comm)) err = InitialBulge(in.initial_bulge, scene);
     PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
@@ -114,31 +135,38 @@ PetscErrorCode BuildLoadHistory(MPI_Comm comm, const StructureInputs &in, int st
 
 } // namespace
 
-PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
+PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer, bool mesh_given,
+                              StructurePresetFn preset, void *ctx) {
   MeshOptions mesh;
   StructureInputs in;
   PetscFunctionBeginUser;
-  mesh.keys = kMeshFile;
-  PetscCall(MeshOptionsFromCommandLine(comm, "structure scene", &mesh));
-  PetscBool help = PETSC_FALSE;
-  PetscCall(PetscOptionsHasHelp(nullptr, &help));
-  if (help && mesh.file.empty()) {
-    // -help without a mesh: the scene-wide options; the per-group ones need the mesh's groups.
-    PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
-    PetscCall(PetscPrintf(comm, "  (-scene structure -mesh_file <mesh> -help also lists -bc_<group>_*, -film_<group>_*, "
-                                "-rigid_<name>_* and -region_<name>_* for the groups of that mesh)\n"));
-    PetscFunctionReturn(0);
+  bool generated = mesh_given;
+  if (!mesh_given) PetscCall(StructureMeshFromOptions(comm, &in, scene, &generated));
+  if (!generated) {
+    mesh.keys = kMeshFile;
+    PetscCall(MeshOptionsFromCommandLine(comm, "structure scene", &mesh));
+    PetscBool help = PETSC_FALSE;
+    PetscCall(PetscOptionsHasHelp(nullptr, &help));
+    if (help && mesh.file.empty()) {
+      // -help without a mesh: the scene-wide options; the per-group ones need the mesh's groups.
+      PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
+      PetscCall(PetscPrintf(comm, "  (-scene structure -mesh_file <mesh> -help also lists -bc_<group>_*, "
+                                  "-film_<group>_*, -rigid_<name>_* and -region_<name>_* for the groups of that mesh)\n"));
+      PetscFunctionReturn(0);
+    }
+    PetscCheck(!mesh.file.empty(), comm, PETSC_ERR_ARG_WRONG,
+               "-scene structure needs -mesh_file <mesh.msh>: a Gmsh mesh whose physical groups name the film's "
+               "surfaces and the supported curves (scripts/surface2msh makes one from OBJ/STL; docs/own-structure.md), "
+               "or -structure_mesh_generator disc|rectangle");
+    PetscCall(SceneReadMesh(comm, mesh.file.c_str(), &scene->mesh));
   }
-  PetscCheck(!mesh.file.empty(), comm, PETSC_ERR_ARG_WRONG,
-             "-scene structure needs -mesh_file <mesh.msh>: a Gmsh mesh whose physical groups name the film's "
-             "surfaces and the supported curves (scripts/surface2msh makes one from OBJ/STL; docs/own-structure.md)");
-  PetscCall(SceneReadMesh(comm, mesh.file.c_str(), &scene->mesh));
   // "all" always names the whole film, so a mesh without surface groups can be loaded too.
   if (SceneHoldsMesh(comm) && !scene->mesh.element_sets.count("all")) {
     std::vector<int> &all = scene->mesh.element_sets["all"];
     for (int e = 0; e < scene->mesh.NumElements(); ++e) all.push_back(e);
   }
   PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
+  if (preset) PetscCall(preset(comm, &in, ctx));
   for (int i = 0; i < 3; ++i) scene->md_axis[i] = in.md[i];
   int stages = 1;
   PetscCall(StructureStageCount(comm, in, &stages));
@@ -157,8 +185,17 @@ PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserv
     PetscCall(StructureAddSupports(comm, in, stages, scene));
     PetscCall(BuildLoadHistory(comm, in, stages, scene));
   }
-  // Form finding reports its own figures (the surface found is written as a mesh).
-  if (!scene->form_finding) PetscCall(StructureObserverCreate(in, observer));
+  // Form finding reports its own figures (the surface found is written as a mesh), then the check.
+  StructureCheckFn check;
+  PetscCall(StructureCheckResolve(comm, *scene, &in, &check));
+  if (!scene->form_finding) PetscCall(StructureObserverCreate(in, check, observer));
+  else if (check.report) PetscCall(StructureCheckObserverCreate(in, check, observer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer) {
+  PetscFunctionBeginUser;
+  PetscCall(StructureBuild(comm, scene, observer, false, nullptr, nullptr));
   PetscFunctionReturn(0);
 }
 

@@ -19,6 +19,10 @@ namespace etfe {
 struct StageArray {
   std::string option;  // "-film_roof_pressure", for messages
   std::vector<double> values;
+  // 0: the values are in the option's unit (kPa, mm). Non-zero (a built-in scene's own input,
+  // StructureBuild below): the values are multipliers of this coefficient, in the solver's units
+  // (MPa, mm), so the load is coef x schedule exactly as that scene always built it.
+  double coef = 0.0;
   bool Given() const { return !values.empty(); }
 };
 
@@ -32,6 +36,15 @@ struct BcInput {
   std::vector<double> points;   // 3 per control point (empty: the values hold on every node)
   StageArray move[3];           // per component: stages, or points x stages (point-major)
   StageArray force;             // total force on the group, 3 per stage [N]
+  // In-plane displacement gradient at multiplier 1 (du_x/dX, du_x/dY, du_y/dX, du_y/dY): the
+  // group's x and y displacements follow u = G X (a homogeneous stretch or shear of a panel's
+  // edges), times the per-stage multipliers of gradient_stages.
+  std::vector<double> gradient;
+  StageArray gradient_stages;
+  // A rigid turn about the z axis through the origin by `rotation` [rad] at multiplier 1 (a hub),
+  // of the group's position stretched by the gradient, times the multipliers of rotation_stages.
+  double rotation = 0.0;
+  StageArray rotation_stages;
 };
 
 // -film_<group>_*: a surface group's loads and form-finding ratio.
@@ -75,8 +88,39 @@ struct RegionInput {
   std::vector<double> box;  // x0, y0, x1, y1
 };
 
+// -structure_mesh_generator: a generated mesh instead of -mesh_file (structure_mesh.cpp).
+struct MeshGenInput {
+  std::string name;                   // "" (a mesh file), disc, annulus or rectangle
+  double radius = 500.0;              // disc [mm]
+  std::vector<double> radii = {100.0, 500.0};  // annulus hub a, outer b [mm]
+  // capstan: a strip (length along the wrap, -mesh_nx x -mesh_ny cells) laid on a cylinder of
+  // axis y through the origin, symmetric about the z axis: radius, wrap angle [degrees], width [mm]
+  double wrap_radius = 21.35, wrap_angle = 180.0, wrap_width = 50.0;
+  double length = 1000.0;             // tube: its length along z (radius: `radius`), centred at z = 0
+  std::vector<double> size = {1000.0, 500.0};  // rectangle lx, ly [mm]
+};
+
+// -structure_check: a closed-form check printed after the report (structure_checks.cpp).
+struct CheckInput {
+  std::string name;          // "", hencky, patch, annulus, strip, capstan, catenoid or saddle
+  // Filled by the check from the other inputs, or by a built-in scene that knows them exactly.
+  double radius = 0.0, pressure = 0.0;      // hencky: a [mm], p [MPa] (0: from the mesh and the film's pressure)
+  double ex = 0.0, ey = 0.0, factor = 1.0;  // patch: strains at multiplier 1, the last multiplier
+  std::string mode;                         // patch: uniaxial, biaxial, pureshear, shear ("": from the supports)
+  double a = 0.0, b = 0.0, eps0 = 0.0, phi = 0.0;  // annulus: radii, pretension strain, hub rotation
+  std::string test, history;                // strip: relaxation or creep; its CSV ("": <results>_strip.csv)
+  double theta = 0.0, t1 = 0.0, tB[3] = {0, 0, 0};  // capstan: wrap angle, end A's tension, end B's pull direction
+  double ring_radius = 0.0, separation = 0.0;        // catenoid: the rings' radius and distance
+  double rise = 0.0;                                  // saddle: the arch's rise H (saddle_geometry.h)
+  bool given = false;                       // the values above are set
+};
+
 struct StructureInputs {
   std::vector<std::string> node_groups, element_groups;  // the mesh's, on every rank
+  MeshGenInput generator;
+  CheckInput check;
+  std::vector<double> bulge_centre = {0.0, 0.0};          // -structure_initial_bulge_centre
+  double bulge_radius = 0.0;                              // > 0: a paraboloid over this radius
   PetscInt stages = 0;                                    // -structure_stages (0: the longest array)
   double md[3] = {1.0, 0.0, 0.0};
   PetscInt reference = 0;                                 // 0 mesh, 1 pattern
@@ -118,7 +162,52 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
 // Rigid supports and their candidate nodes (node set "structure_contact").
 PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
 
-// The observer: per-group report at the end and the history CSV per increment.
-PetscErrorCode StructureObserverCreate(const StructureInputs &in, SceneObserver *observer);
+// The observer: per-group report at the end and the history CSV per increment, then the
+// closed-form check of -structure_check.
+// A check's hooks; `state` is what it carries from increment to increment (kept in checkpoints).
+struct StructureCheckFns {
+  // After the structure report.
+  PetscErrorCode (*report)(Problem *P, const CheckInput &check, std::vector<double> *state) = nullptr;
+  // Per increment, before the history row (a lab test's state line and CSV); may be null.
+  PetscErrorCode (*step)(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step, double t,
+                         PetscInt print_every) = nullptr;
+  std::vector<double> state;  // its start (empty: the check keeps none)
+};
+using StructureCheckFn = StructureCheckFns;
+PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer);
+// Form finding: an observer that prints only the check (the surface found is the run's own report).
+PetscErrorCode StructureCheckObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer);
+
+// -structure_mesh_generator: reads it and its size options; on rank 0 generates scene->mesh
+// (false in *generated: no generator, read -mesh_file).
+PetscErrorCode StructureMeshFromOptions(MPI_Comm comm, StructureInputs *in, SceneSpec *scene, bool *generated);
+// A disc or rectangle with the -mesh_* keys of that generator (read here, checked, on rank 0 made).
+PetscErrorCode StructureGenerateMesh(MPI_Comm comm, const char *owner, const MeshGenInput &gen, MeshData *mesh);
+
+// -structure_check: completes in->check from the inputs (after the supports and loads are known)
+// and gives the hooks that print it (none when no check is asked for).
+// The checks' reports (structure_check_reports.cpp, structure_check_capstan.cpp).
+PetscErrorCode HenckyCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode PatchCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode AnnulusCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode CatenoidCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode SaddleCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode StripReport(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode StripStep(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step, double t,
+                         PetscInt print_every);
+std::vector<double> CapstanCheckStart();
+PetscErrorCode CapstanCheckStep(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step,
+                                double t, PetscInt print_every);
+PetscErrorCode CapstanCheckReport(Problem *P, const CheckInput &check, std::vector<double> *state);
+PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, StructureInputs *in,
+                                     StructureCheckFn *fn);
+
+// The general scene built with `preset` (may be null) applied to the options' inputs: a built-in
+// scene (-scene hencky, -scene patch) is the general scene with its supports, loads, mesh and
+// check given here instead of by options (src/scenes/<scene>.cpp). scene->mesh is already made
+// when mesh_given.
+using StructurePresetFn = PetscErrorCode (*)(MPI_Comm comm, StructureInputs *in, void *ctx);
+PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *observer, bool mesh_given,
+                              StructurePresetFn preset, void *ctx);
 
 } // namespace etfe

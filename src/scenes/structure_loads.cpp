@@ -113,11 +113,13 @@ PetscErrorCode AddFilmLoads(MPI_Comm comm, const StructureInputs &in, int stages
   for (const FilmInput &f : in.films) {
     const std::vector<int> *els = mesh ? ElementGroup(m, f.group) : nullptr;
     if (f.pressure.Given()) {
-      PetscCall(CheckLoadScale(comm, f.pressure));
+      // A built-in scene's pressure (coef, MPa, times multipliers) was checked by that scene.
+      const double coef = f.pressure.coef != 0.0 ? f.pressure.coef : 1.0;
+      if (f.pressure.coef == 0.0) PetscCall(CheckLoadScale(comm, f.pressure));
       std::vector<double> p;
-      for (double x : f.pressure.values) p.push_back(kPaToMPa * x);
-      const int s = StructureAddSchedule(scene, f.group + ".pressure", p, stages, "kPa", 1e3);
-      scene->pressures.push_back({els ? *els : std::vector<int>(), {{1.0, 0.0}, {s, -1}}});
+      for (double x : f.pressure.values) p.push_back(f.pressure.coef != 0.0 ? x : kPaToMPa * x);
+      const int s = StructureAddSchedule(scene, f.group + ".pressure", p, stages, "kPa", 1e3 * coef);
+      scene->pressures.push_back({els ? *els : std::vector<int>(), {{coef, 0.0}, {s, -1}}});
     }
     // cp > 0 pushes onto the face the normal points to: a pressure against the normal.
     if (f.wind_given) scene->pressures.push_back({els ? *els : std::vector<int>(), {{-f.wind_cp, 0.0}, {wind, -1}}});

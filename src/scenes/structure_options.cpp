@@ -85,6 +85,21 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
   for (int c = 0; c < 3; ++c)
     PetscCall(ReadStageArray(PetscOptionsObject, prefix, comp[c],
                              "Prescribed displacement [mm] at the end of each stage (cumulative)", &bc->move[c]));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-gradient",
+                             "In-plane displacement gradient du_x/dX,du_x/dY,du_y/dX,du_y/dY: the group's x and y "
+                             "displacements are u = G X (a homogeneous stretch or shear of a panel), times "
+                             "-gradient_stages",
+                             &bc->gradient, nullptr));
+  PetscCall(ReadStageArray(PetscOptionsObject, prefix, "gradient_stages",
+                           "Multiplier of -gradient at the end of each stage (default 1 in one stage)",
+                           &bc->gradient_stages));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-rotation",
+                              "Turn the group rigidly about the z axis through the origin by this angle [rad] (a hub; "
+                              "of its position stretched by -gradient), times -rotation_stages",
+                              "rad", &bc->rotation, nullptr));
+  PetscCall(ReadStageArray(PetscOptionsObject, prefix, "rotation_stages",
+                           "Multiplier of -rotation at the end of each stage (default 1 in one stage)",
+                           &bc->rotation_stages));
   PetscCall(ReadStageArray(PetscOptionsObject, prefix, "force",
                            "Total force on the group fx,fy,fz [N] at the end of each stage (3 values a stage), "
                            "shared by the nodes in proportion to their length along the group",
@@ -109,6 +124,21 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
                prefix.c_str(), k / 3, k / 3 + 1, OptionNum(b[0]).c_str(), OptionNum(b[1]).c_str(),
                OptionNum(b[2]).c_str());
   }
+  PetscCheck(bc->gradient.empty() || bc->gradient.size() == 4, comm, PETSC_ERR_ARG_SIZ,
+             "-%sgradient: give the four components du_x/dX,du_x/dY,du_y/dX,du_y/dY (%zu values given)",
+             prefix.c_str(), bc->gradient.size());
+  PetscCheck(bc->gradient.empty() || (bc->fix.find('x') == std::string::npos && bc->fix.find('y') == std::string::npos &&
+                                      bc->points.empty()),
+             comm, PETSC_ERR_ARG_WRONG,
+             "-%sgradient prescribes the group's x and y displacements: give no -%sfix x or y and no -%spoints with it",
+             prefix.c_str(), prefix.c_str(), prefix.c_str());
+  if (!bc->gradient.empty() && !bc->gradient_stages.Given()) bc->gradient_stages.values = {1.0};
+  if (bc->rotation != 0.0 && !bc->rotation_stages.Given()) bc->rotation_stages.values = {1.0};
+  PetscCheck(bc->rotation == 0.0 || (bc->fix.find('x') == std::string::npos && bc->fix.find('y') == std::string::npos &&
+                                     bc->points.empty()),
+             comm, PETSC_ERR_ARG_WRONG,
+             "-%srotation turns the group's x and y displacements: give no -%sfix x or y and no -%spoints with it",
+             prefix.c_str(), prefix.c_str(), prefix.c_str());
   PetscCheck(bc->force.values.size() % 3 == 0, comm, PETSC_ERR_ARG_SIZ,
              "-%sforce: give fx,fy,fz for each stage (%zu values given)", prefix.c_str(), bc->force.values.size());
   PetscFunctionReturn(0);
@@ -359,6 +389,27 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
                               "Initial guess: lift the free film by up to this much [mm] along its normal (a flat "
                               "film under pressure has no out-of-plane stiffness to start from)",
                               "mm", &in->initial_bulge, nullptr));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-structure_initial_bulge_radius",
+                              "Initial guess: instead of along the normal, a paraboloid h (1 - r^2/R^2) in z over this "
+                              "radius R [mm] about -structure_initial_bulge_centre (a clamped disc's own shape)",
+                              "mm", &in->bulge_radius, nullptr));
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_initial_bulge_centre",
+                             "Plan centre x,y of the paraboloid initial guess [mm]", &in->bulge_centre, nullptr));
+  {
+    const char *checks[] = {"none", "hencky", "patch", "annulus", "strip", "capstan", "catenoid"};
+    PetscInt k = 0;
+    PetscCall(PetscOptionsEList("-structure_check",
+                                "Closed-form check printed after the report: hencky (a clamped disc under pressure: "
+                                "centre deflection and stress against Hencky's solution) or patch (a rectangle "
+                                "stretched in its plane: every element's stress, against Hooke's law) or annulus (a "
+                                "pretensioned annulus whose hub, node group hub, is turned: wrinkled zone and torque "
+                                "against the tension-field closed form); strip: a lab strip's relaxation or creep, its "
+                                "strain and stress per increment to <results>_strip.csv; capstan: a strip pulled over "
+                                "a pipe to gross slip (T2 on end B, node group right, and mu_eff = ln(T2/T1)/theta); "
+                                "catenoid: form finding between two rings, the neck radius against c cosh(z/c)",
+                                "", checks, 7, checks[0], &k, nullptr));
+    if (k > 0) in->check.name = checks[k];
+  }
   PetscCall(ReadStageArray(PetscOptionsObject, "", "structure_wind",
                            "Wind velocity pressure q [kPa] at the end of each stage (times -film_<group>_wind_cp)",
                            &in->wind));
@@ -394,6 +445,8 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
   for (int i = 0; i < 3; ++i) in->md[i] = md[i];
   PetscCheck(in->probe_elements.size() % 2 == 0 && in->probe_nodes.size() % 2 == 0, comm, PETSC_ERR_ARG_SIZ,
              "-structure_probe_elements / -structure_probe_nodes: give plan points, 2 values (x,y) each");
+  PetscCheck(in->bulge_radius >= 0 && in->bulge_centre.size() == 2, comm, PETSC_ERR_ARG_WRONG,
+             "-structure_initial_bulge_radius must not be negative and -structure_initial_bulge_centre is x,y");
   PetscCheck(in->stages >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-structure_stages %d: give the number of load stages (1 or more), or 0 to take it from the longest "
              "per-stage option",
@@ -421,7 +474,8 @@ PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool fo
     BcInput bc;
     PetscCall(ReadBc(comm, g, &bc));
     const bool any = !bc.fix.empty() || bc.move[0].Given() || bc.move[1].Given() || bc.move[2].Given() ||
-                     bc.force.Given() || !bc.points.empty();
+                     bc.force.Given() || !bc.points.empty() ||
+                     !bc.gradient.empty() || bc.rotation != 0.0;
     if (any) in->bcs.push_back(bc);
   }
   for (const std::string &g : in->element_groups) {

@@ -27,6 +27,8 @@ struct StructureContext {
   std::vector<std::string> supports;            // node groups with a prescribed component
   std::vector<double> probe_element_at, probe_node_at;
   std::string history;
+  StructureCheckFn check;                       // -structure_check: its step line and report, its state
+  CheckInput check_input;
   // Found in setup on the distributed problem:
   std::vector<std::vector<char>> in_item;       // per item, per local element
   std::vector<std::vector<char>> in_support;    // per support group, per local node
@@ -220,11 +222,12 @@ std::string Header(const Problem *P, const StructureContext *c, bool contact) {
   return h + ",work,shift_work";
 }
 
-PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
+PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt print_every) {
   auto *c = (StructureContext *)vctx;
   CellFields f;
   Figures v;
   PetscFunctionBeginUser;
+  if (c->check.step) PetscCall(c->check.step(P, c->check_input, &c->check.state, step, t, print_every));
   const std::string path = CsvHistoryPath(c->history, P->observer.results_stem, "_history.csv");
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f));
@@ -319,27 +322,48 @@ PetscErrorCode Report(Problem *P, void *vctx) {
                           X[2], c->probe_node_groups[k].c_str(), v.probe_n[5 * k], v.probe_n[5 * k + 1],
                           v.probe_n[5 * k + 2], slide));
   }
+  if (c->check.report) PetscCall(c->check.report(P, c->check_input, &c->check.state));
   PetscFunctionReturn(0);
 }
 
 } // namespace
 
-PetscErrorCode StructureObserverCreate(const StructureInputs &in, SceneObserver *observer) {
+PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer) {
   PetscFunctionBeginUser;
   auto *c = new StructureContext();
+  c->check = check, c->check_input = in.check;
   c->items = in.report;
   if (c->items.empty()) {
     c->items = in.element_groups;
     for (const RegionInput &r : in.regions) c->items.push_back(r.name);
   }
   for (const BcInput &bc : in.bcs)
-    if (!bc.fix.empty() || bc.move[0].Given() || bc.move[1].Given() || bc.move[2].Given()) c->supports.push_back(bc.group);
+    if (!bc.fix.empty() || bc.move[0].Given() || bc.move[1].Given() || bc.move[2].Given() || !bc.gradient.empty() ||
+        bc.rotation != 0.0)
+      c->supports.push_back(bc.group);
   c->probe_element_at = in.probe_elements;
   c->probe_node_at = in.probe_nodes;
   c->history = in.history;
   observer->setup = Setup;
   observer->step_monitor = Step;
   observer->report = Report;
+  observer->ctx = c;
+  observer->destroy = [](void *x) { delete (StructureContext *)x; };
+  if (!check.state.empty()) {
+    observer->state_get = [](void *x, std::vector<double> *v) { *v = ((StructureContext *)x)->check.state; };
+    observer->state_set = [](void *x, const std::vector<double> &v) { ((StructureContext *)x)->check.state = v; };
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StructureCheckObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer) {
+  PetscFunctionBeginUser;
+  auto *c = new StructureContext();
+  c->check = check, c->check_input = in.check;
+  observer->report = [](Problem *P, void *x) {
+    auto *ctx = (StructureContext *)x;
+    return ctx->check.report(P, ctx->check_input, &ctx->check.state);
+  };
   observer->ctx = c;
   observer->destroy = [](void *x) { delete (StructureContext *)x; };
   PetscFunctionReturn(0);

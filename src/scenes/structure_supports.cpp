@@ -46,6 +46,20 @@ double PolylineLength(const std::vector<double> &pts) {
 // along the other three), or points given off the group (in plan, away from its heights).
 constexpr double kPolylineFar = 0.1;
 
+// Component c of the displacement that turns the stretched position x = (I + G) X about the z
+// axis by the group's rotation: (R - I) x. An isotropic stretch (a pretensioned hub) is written
+// (1 + g) (R - I) X, as the annulus scene always wrote it.
+double RotationCoefficient(const BcInput &bc, const double *X, int c) {
+  const double cs = std::cos(bc.rotation), sn = std::sin(bc.rotation);
+  const std::vector<double> &G = bc.gradient;
+  if (G.empty() || (G[1] == 0.0 && G[2] == 0.0 && G[0] == G[3])) {
+    const double k = G.empty() ? 1.0 : 1 + G[0];
+    return c == 0 ? k * ((cs - 1) * X[0] - sn * X[1]) : k * (sn * X[0] + (cs - 1) * X[1]);
+  }
+  const double x = (1 + G[0]) * X[0] + G[1] * X[1], y = G[2] * X[0] + (1 + G[3]) * X[1];
+  return c == 0 ? (cs - 1) * x - sn * y : sn * x + (cs - 1) * y;
+}
+
 struct Held {
   ScheduledValue value;
   std::string group;
@@ -92,6 +106,8 @@ PetscErrorCode StructureStageCount(MPI_Comm comm, const StructureInputs &in, int
   for (const BcInput &bc : in.bcs) {
     for (const StageArray &a : bc.move) see(a, StagesOf(a, bc.points.size() / 3));
     see(bc.force, bc.force.values.size() / 3);
+    see(bc.gradient_stages, bc.gradient_stages.values.size());
+    see(bc.rotation_stages, bc.rotation_stages.values.size());
   }
   for (const FilmInput &f : in.films) see(f.pressure, f.pressure.values.size()), see(f.snow, f.snow.values.size());
   see(in.wind, in.wind.values.size());
@@ -135,8 +151,23 @@ PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, in
         std::string name = bc.group + "." + comp_name[c];
         if (npts) name += "@" + std::to_string(p + 1);
         ids[c].push_back(StructureAddSchedule(scene, name, scene->form_finding ? std::vector<double>() : v, stages,
-                                              "mm", 1.0));
+                                              "mm", a.coef != 0.0 ? a.coef : 1.0));
       }
+    }
+    int gradient = -1, rotation = -1;
+    if (!bc.gradient.empty() || bc.rotation != 0.0)
+      PetscCheck(!bc.move[0].Given() && !bc.move[1].Given(), comm, PETSC_ERR_ARG_WRONG,
+                 "node group %s: -bc_%s_gradient / -bc_%s_rotation prescribe x and y and -bc_%s_ux/-bc_%s_uy move "
+                 "them; give one of them",
+                 bc.group.c_str(), bc.group.c_str(), bc.group.c_str(), bc.group.c_str(), bc.group.c_str());
+    if (bc.rotation != 0.0)
+      rotation = StructureAddSchedule(scene, bc.group + ".rotation",
+                                      scene->form_finding ? std::vector<double>() : bc.rotation_stages.values, stages,
+                                      "rad", bc.rotation);
+    if (!bc.gradient.empty()) {
+      gradient = StructureAddSchedule(scene, bc.group + ".gradient",
+                                      scene->form_finding ? std::vector<double>() : bc.gradient_stages.values, stages,
+                                      "", 1.0);
     }
     if (!SceneHoldsMesh(comm) || !err.empty()) continue;
     const auto it = scene->mesh.node_sets.find(bc.group);
@@ -175,9 +206,20 @@ PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, in
     for (int n : it->second) {
       for (int c = 0; c < 3 && err.empty(); ++c) {
         ScheduledValue v;
+        const double *X = &scene->mesh.coords[3 * n];
+        if ((gradient >= 0 || rotation >= 0) && c < 2) {
+          if (gradient >= 0) v = {{bc.gradient[2 * c] * X[0] + bc.gradient[2 * c + 1] * X[1], 0.0}, {gradient, -1}};
+          if (rotation >= 0) {
+            const double turn = RotationCoefficient(bc, X, c);
+            v = gradient >= 0 ? ScheduledValue{{v.coef[0], turn}, {gradient, rotation}}
+                              : ScheduledValue{{turn, 0.0}, {rotation, -1}};
+          }
+          AddConstraint(scene, &held, n, c, v, bc.group, stages, &err);
+          continue;
+        }
         if (ids[c].empty() && bc.fix.find("xyz"[c]) == std::string::npos) continue;
         if (ids[c].size() == 1) {
-          v = {{1.0, 0.0}, {ids[c][0], -1}};
+          v = {{bc.move[c].coef != 0.0 ? bc.move[c].coef : 1.0, 0.0}, {ids[c][0], -1}};
         } else if (!ids[c].empty()) {
           int k = 0;
           double s = 0.0;

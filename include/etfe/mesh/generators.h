@@ -30,6 +30,16 @@ MeshData MakeRectangleMesh(double x0, double y0, double lx, double ly, int nx, i
 // nodes): 6 rings^2 triangles of near-equal size. Node sets: rim, centre, all.
 MeshData MakeDiscMesh(double radius, int rings);
 
+// Annulus a <= r <= b centred at the origin in z = 0: rings 0..nr of nt nodes each (ring 0 at the
+// hub), alternating diagonals. Node sets: hub (r = a), outer (r = b), all.
+MeshData MakeAnnulusMesh(double a, double b, int nr, int nt);
+
+// Strip of width `width` laid stress free on the cylinder of radius r around the Y axis over the
+// wrap angle theta [rad], symmetric about +Z (the capstan rig): the rectangle of nx x ny cells
+// (length r theta along the wrap, y across, alternating diagonals) bent onto it. Node sets as
+// the rectangle's: left (end A, at -theta/2), right (end B), bottom, top, corners, all.
+MeshData MakeWrappedStripMesh(double radius, double theta, double width, int nx, int ny);
+
 // Tube (open cylinder) of radius r around the Z axis, z in [z0, z0 + length], ntheta cells
 // around (periodic seam) and nz along, diagonals alternating. Node sets: bottom (z = z0),
 // top, middle (the ring at mid height when nz is even), all.
