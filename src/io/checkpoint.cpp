@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -43,6 +44,30 @@ uint64_t SceneStateChecksum(const std::vector<double> &v) {
   uint64_t h = 0;
   for (size_t i = 0; i < v.size(); ++i) h += ValueChecksum(("scene_state" + std::to_string(i)).c_str(), v[i]);
   return h;
+}
+
+// Per stage end, the physics with the loads up to it (LoadPathStates, -restart_branch).
+uint64_t LoadPathChecksum(const std::vector<std::uint64_t> &v) {
+  uint64_t h = 0;
+  for (size_t k = 0; k < v.size(); ++k) h += FingerprintChecksum(("load_path" + std::to_string(k)).c_str(), v[k]);
+  return h;
+}
+
+bool ReadLoadPath(hid_t f, std::vector<std::uint64_t> *v) {
+  bool good = false;
+  H5E_BEGIN_TRY {
+    hid_t d = H5Dopen2(f, "load_path_fingerprints", H5P_DEFAULT);
+    hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
+    const hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
+    if (n >= 0) {
+      v->assign((size_t)n, 0);
+      good = n == 0 || H5Dread(d, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v->data()) >= 0;
+    }
+    if (sp >= 0) H5Sclose(sp);
+    if (d >= 0) H5Dclose(d);
+  }
+  H5E_END_TRY;
+  return good;
 }
 
 const char *const kDoubles[3] = {"t", "dt", "dt_last"};
@@ -155,6 +180,11 @@ std::string VerifyIntegrity(const std::string &path) {
         good = rows("layer_pairs", (hsize_t)shape[0], 1, &v);
         if (good) DataChecksum(PETSC_COMM_SELF, "layer_pairs", 0, shape[0], 1, v.data(), &sum);
       }
+      if (good && H5Lexists(f, "load_path_fingerprints", H5P_DEFAULT) > 0) {  // written since branch restarts
+        std::vector<std::uint64_t> lp;
+        good = ReadLoadPath(f, &lp);
+        if (good) sum += LoadPathChecksum(lp);
+      }
       for (const char *state : {"scene_state", "chamber_state"}) {
         if (!good || H5Lexists(f, state, H5P_DEFAULT) <= 0) continue;
         hid_t d = H5Dopen2(f, state, H5P_DEFAULT);
@@ -221,6 +251,13 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
       cst[7 * k + 6] = c.status;
     }
     PetscCall(H5WriteNatural(tmp, order, f, "contact_state", Layout::Pairs, 7, cst.data(), false, &sum));
+  }
+  {
+    std::vector<std::uint64_t> lp;
+    for (std::uint64_t state : P->load_path_states) lp.push_back(PhysicsFingerprintFrom(P, state));
+    PetscCall(H5WriteRows(tmp, f, "load_path_fingerprints", H5T_NATIVE_UINT64, lp.size(), 1, 0,
+                          P->rank == 0 ? lp.size() : 0, lp.data()));
+    sum += LoadPathChecksum(lp);
   }
   if (P->observer.state_get) {
     std::vector<double> v;
@@ -355,11 +392,41 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
 
 namespace {
 
+// A branch's comparison once mesh and options agree: the checkpoint is at a stage end k before
+// this run's last stage, and the physics with the loads up to k is the same (LoadPathStates).
+PetscErrorCode BranchDifferences(Problem *P, const std::string &path, hid_t f, std::string *table) {
+  double t = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(H5ReadAttribute(path, f, "t", H5T_NATIVE_DOUBLE, &t));
+  const long long k = std::llround(t), stages = (long long)P->scene.NumStages();
+  char line[320];
+  std::vector<std::uint64_t> lp;
+  if (std::fabs(t - (double)k) > 1e-9) {
+    std::snprintf(line, sizeof line, "\n    the checkpoint is at load time %.9g, inside a stage: a base state ends at a "
+                  "stage end (write it with -checkpoint_stage_end, the default)", t);
+    *table += line;
+  } else if (k >= stages) {
+    std::snprintf(line, sizeof line, "\n    the checkpoint is at the end of stage %lld and this run has %lld stages: "
+                  "nothing is left to branch (add the branch's stages, e.g. -structure_stages %lld)", k, stages, k + 1);
+    *table += line;
+  } else if (H5Lexists(f, "load_path_fingerprints", H5P_DEFAULT) <= 0 || !ReadLoadPath(f, &lp) ||
+             (long long)lp.size() <= k)
+    *table += "\n    the checkpoint holds no load-path fingerprints (written by an etfe without branch restarts): run "
+              "the base again";
+  else if (lp[k] != PhysicsFingerprintFrom(P, P->load_path_states[k])) {
+    std::snprintf(line, sizeof line, "\n    the options agree, but what they resolve to up to load time %lld does "
+                  "not: supports or their motions, loads or chambers in stages 1-%lld, the film or its material", k, k);
+    *table += line;
+  }
+  PetscFunctionReturn(0);
+}
+
 // Opens a checkpoint (collective) and refuses it unless it is intact and of this run: checksum
 // first (rank 0 reads the whole file), then scene, every physics option (see
 // checkpoint_compare.cpp), mesh, material history, contact pairs, stages and what the options
-// resolve to. A refusal changes nothing.
-PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
+// resolve to. A refusal changes nothing. A branch (-restart_branch) compares the loads only up to
+// the checkpoint's load time, a stage end (checkpoint_compare.cpp).
+PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file, bool branch) {
   PetscFunctionBeginUser;
   std::string why;
   if (P->rank == 0) {
@@ -396,9 +463,9 @@ PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
   PetscCall(H5ReadAttribute(path, f, "physics_fingerprint", H5T_NATIVE_UINT64, &physics));
   PetscCall(H5ReadString(path, f, "options", &options));
   PetscCall(OptionsAsLines(&now));
-  std::string table = OptionDifferences(options, now);
+  std::string table = OptionDifferences(options, now, branch);
   const bool same_shape = cp.nodes == sh.nodes && cp.elements == sh.elements && cp.pairs == sh.pairs &&
-                          cp.history == sh.history && cp.stages == sh.stages;
+                          cp.history == sh.history && (branch || cp.stages == sh.stages);
   if (mesh != P->scene_mesh_fingerprint)
     table += "\n    mesh: checkpoint " + std::to_string(cp.nodes) + " nodes, " + std::to_string(cp.elements) +
              " triangles; this run " + std::to_string(sh.nodes) + ", " + std::to_string(sh.elements) +
@@ -408,9 +475,18 @@ PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
              " history values per element, " + std::to_string(cp.pairs) + " contact pairs and " +
              std::to_string(cp.stages) + " stages, this run " + std::to_string(sh.history) + ", " +
              std::to_string(sh.pairs) + " and " + std::to_string(sh.stages);
+  else if (table.empty() && branch)
+    PetscCall(BranchDifferences(P, path, f, &table));
   else if (table.empty() && physics != PhysicsFingerprint(P))
     table += "\n    the options agree, but what they resolve to does not (schedules, supports, contact or material "
              "constants: another etfe build, or changed defaults?)";
+  PetscCheck(table.empty() || !branch, P->comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart_branch %s: this run is no branch of the checkpoint's run:%s\n  Nothing was changed. A branch "
+             "starts its own loads from the base state the checkpoint holds (a stage end): the model (-scene, -mesh_*, "
+             "-material_*, -membrane_*, -contact_*, -layer_*) and what the options resolve to up to the checkpoint's "
+             "load time (supports and their motions, loads, chambers, film) must be those of the base run (its "
+             "options: h5dump -a options %s); only the stages after it may differ",
+             path.c_str(), table.c_str(), path.c_str());
   PetscCheck(table.empty(), P->comm, PETSC_ERR_FILE_UNEXPECTED,
              "-restart %s: this run's physics differs from the checkpoint's run:%s\n  Nothing was changed. A restart "
              "continues the same history: give the options of that run (stored in the checkpoint: h5dump -a options "
@@ -475,12 +551,12 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
 } // namespace
 
 PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step, std::string *run_id,
-                                  std::string *results_file) {
+                                  std::string *results_file, bool branch) {
   hid_t f = -1;
   long long s = -1;
   std::string options;
   PetscFunctionBeginUser;
-  PetscCall(OpenChecked(P, path, &f));
+  PetscCall(OpenChecked(P, path, &f, branch));
   PetscErrorCode ierr = H5ReadString(path, f, "run_id", run_id);
   if (!ierr) ierr = H5ReadAttribute(path, f, "step", H5T_NATIVE_LLONG, &s);
   if (!ierr && results_file) ierr = H5ReadString(path, f, "options", &options);
@@ -496,10 +572,10 @@ PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointRead(Problem *P, const std::string &path, StepperState *st, Vec Uc, Vec Up) {
+PetscErrorCode CheckpointRead(Problem *P, const std::string &path, StepperState *st, Vec Uc, Vec Up, bool branch) {
   hid_t f = -1;
   PetscFunctionBeginUser;
-  PetscCall(OpenChecked(P, path, &f));
+  PetscCall(OpenChecked(P, path, &f, branch));
   PetscErrorCode ierr = ReadState(P, path, f, st, Uc, Up);
   H5Fclose(f);
   PetscCall(ierr);
@@ -513,6 +589,9 @@ PetscErrorCode CheckpointFingerprintScene(MPI_Comm comm, const SceneSpec &scene,
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) v[0] = MeshFingerprint(scene.mesh), v[1] = ScenePhysicsState(scene, P->thickness, P->min_area_ratio);
   PetscCallMPI(MPI_Bcast(v, 2, MPI_UINT64_T, 0, comm));
+  P->load_path_states.assign((size_t)scene.NumStages() + 1, 0);  // NumStages: the same on every rank
+  if (rank == 0) P->load_path_states = LoadPathStates(scene, P->thickness, P->min_area_ratio);
+  PetscCallMPI(MPI_Bcast(P->load_path_states.data(), (int)P->load_path_states.size(), MPI_UINT64_T, 0, comm));
   P->scene_mesh_fingerprint = v[0];
   P->scene_physics_state = v[1];
   PetscFunctionReturn(0);
