@@ -134,7 +134,11 @@ def browser(chk, tmp, report, checks_csv):
 
 
 def test(etfe, chk):
-    tmp = scratch_dir("etfe-design-run")
+    with scratch_dir("etfe-design-run") as tmp:
+        checks(etfe, chk, tmp)
+
+
+def checks(etfe, chk, tmp):
     ff = os.path.join(tmp, "hypar_ff.msh")
     run(etfe, ["-options_file", os.path.join(REPO, "options/structure/hypar_formfind.opts"), "-formfind_monitor", 0,
                "-output", 0, "-formfind_mesh_out", ff, "-output_file", os.path.join(tmp, "ff.h5")])
