@@ -17,6 +17,9 @@ import json
 import os
 import re
 
+from . import REPO
+from . import options as optionsfile
+
 # EN 1990 (2002) Annex A1 recommended values (Tables A1.1 and A1.2(B)); a National Annex may set
 # others, and the design file's "factors" replace any of them.
 DEFAULT_FACTORS = {
@@ -83,7 +86,7 @@ class Design:
         self.resistance.update(data.get("resistance", {}))
         self.checks = data.get("checks", [])
         self.combinations = []
-        for k, c in enumerate(data.get("combinations", [])):
+        for k, c in enumerate(list(data.get("combinations", [])) + self.generated(data.get("generate", []))):
             where = "combination %d (%s)" % (k + 1, c.get("name", "?"))
             f = {}
             for case, expr in c.get("factors", {}).items():
@@ -95,6 +98,35 @@ class Design:
                                           duration=c.get("duration", "short"),
                                           options=dict(c.get("options", {}))))
         self.validate()
+
+    def generated(self, which):
+        """EN 1990 6.4.3.2 (6.10) and 6.5.3 (6.14b) combinations, each variable case leading in turn:
+        ULS  gamma_G,sup G (gamma_G,inf where the leading case says "G_favourable") + gamma_Q Q1
+             + sum gamma_Q psi0,i Qi;   SLS (characteristic)  G + Q1 + sum psi0,i Qi.
+        Permanent cases: kind "permanent"; accidental ones are never generated; cases of one
+        "group" (wind directions) never meet in a combination."""
+        out = []
+        for sit in which:
+            if sit not in ("ULS", "SLS"):
+                raise DesignError("generate: %r is neither ULS nor SLS" % sit)
+        variable = [n for n, c in self.cases.items() if c.get("kind", "variable") not in ("permanent", "accidental")]
+        permanent = [n for n, c in self.cases.items() if c.get("kind") == "permanent"]
+        for sit in which:
+            for lead in variable:
+                lc = self.cases[lead]
+                f = {}
+                for g in permanent:
+                    f[g] = 1 if sit == "SLS" else ("gamma_G_inf" if lc.get("G_favourable") else "gamma_G_sup")
+                f[lead] = 1 if sit == "SLS" else "gamma_Q"
+                for other in variable:
+                    oc = self.cases[other]
+                    if other == lead or (oc.get("group") and oc.get("group") == lc.get("group")):
+                        continue
+                    psi = "psi0_" + oc.get("kind", "variable")
+                    f[other] = psi if sit == "SLS" else "gamma_Q*" + psi
+                out.append(dict(name="%s-%s" % (sit, lead), situation=sit, factors=f,
+                                duration=lc.get("duration", "short")))
+        return out
 
     @staticmethod
     def load(path):
@@ -113,6 +145,15 @@ class Design:
                 if not LOAD_OPTION.match(opt):
                     raise DesignError("load case %s: %s is no per-stage load option of the general scene (%s)"
                                       % (name, opt, LOAD_OPTION.pattern))
+        model = self.model if os.path.isabs(self.model) else os.path.join(REPO, self.model)
+        try:
+            given = [k.lstrip("-") for k, _ in optionsfile.read(model)]
+        except optionsfile.OptionsFileError as e:
+            raise DesignError("model: %s" % e)
+        loads = sorted(set(k for k in given if LOAD_OPTION.match(k) or k == "structure_stages"))
+        if loads:
+            raise DesignError("model %s sets %s: load options belong in the design file (base loads, load cases), "
+                              "which gives them per stage" % (self.model, ", ".join("-" + k for k in loads)))
         for opt, v in self.base_loads.items():
             if len(v) != self.base_stages:
                 raise DesignError("base load %s has %d values for %d base stages" % (opt, len(v), self.base_stages))

@@ -14,6 +14,8 @@ COMBINATION_COLUMNS = [
     ("utilisation_place", ""), ("max_principal_stress", "MPa"), ("max_deflection", "mm"),
     ("max_plastic_strain", "1"), ("wrinkled_elements", "1"), ("increments", "1"), ("newton_iterations", "1"),
     ("cutbacks", "1"), ("wall", "s"), ("reactions", "N"), ("chamber_pressures", "kPa"), ("warnings", "")]
+GROUP_COLUMNS = [("quantity", ""), ("max", "unit"), ("max_combination", ""), ("min", "unit"), ("min_combination", ""),
+                 ("unit", "")]
 CHECK_COLUMNS = [("check", ""), ("combination", ""), ("situation", ""), ("value", "unit"), ("limit", "unit"),
                  ("unit", ""), ("verdict", ""), ("place", "")]
 
@@ -55,9 +57,10 @@ PALETTE = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e
            "#17becf"]
 
 
-def plan_svg(X, tri, values, title, unit, categories=None, lo=None, hi=None, width=420):
+def plan_svg(X, tri, values, title, unit, categories=None, lo=None, hi=None, width=420, order=None):
     """The film in plan (x, y) coloured per element (values) or per category (categories: names,
-    values their indices); a legend beside it."""
+    values their indices); a legend beside it. Elements are drawn in ascending order of `order`
+    (default: the values), so where layers overlap in plan (a cushion's foils) the largest shows."""
     x, y = X[:, 0], X[:, 1]
     x0, x1, y0, y1 = x.min(), x.max(), y.min(), y.max()
     s = (width - 20) / max(x1 - x0, y1 - y0, 1e-12)
@@ -65,7 +68,8 @@ def plan_svg(X, tri, values, title, unit, categories=None, lo=None, hi=None, wid
     parts = []
     vmin = float(np.min(values)) if lo is None else lo
     vmax = float(np.max(values)) if hi is None else hi
-    for e, t in enumerate(tri):
+    for e in np.argsort(values if order is None else order, kind="stable"):
+        t = tri[e]
         pts = " ".join("%.1f,%.1f" % (10 + (x[n] - x0) * s, 10 + (y1 - y[n]) * s) for n in t)
         if categories is not None:
             c = PALETTE[int(values[e]) % len(PALETTE)]
@@ -111,7 +115,7 @@ def table(cols, rows, table_id, verdict_col=None):
     return "\n".join(out)
 
 
-def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names, missing):
+def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names, missing, groups=()):
     overall = "PASS" if check_rows and all(r["verdict"] == "pass" for r in check_rows) and not missing else "FAIL"
     if not check_rows:
         overall = "NO CHECKS"
@@ -136,7 +140,8 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
     if env:
         u, ug = env["utilisation"]
         body.append(plan_svg(X, tri, u, "Utilisation envelope (plan)", "", lo=0.0, hi=max(1.0, float(u.max()))))
-        body.append(plan_svg(X, tri, ug, "Governing combination of the utilisation", "", categories=names))
+        body.append(plan_svg(X, tri, ug, "Governing combination of the utilisation (where it is largest in plan)", "",
+                             categories=names, order=u))
         w, _ = env["wrinkle_state"]
         body.append(plan_svg(X, tri, w, "Wrinkle state envelope (0 taut, 1 wrinkled, 2 slack)", "", lo=0.0, hi=2.0))
         d, _ = env["deflection"]
@@ -154,6 +159,9 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
                           rows, "envelopes"))
     else:
         body.append("<p class='FAIL'>No combination completed: no envelope.</p>")
+    if groups:
+        body.append("<h3>Reactions per support group and chamber pressures</h3>")
+        body.append(table(GROUP_COLUMNS, groups, "groups"))
     doc = ('<!DOCTYPE html><html><head><meta charset="utf-8"><title>%s</title><style>%s</style></head><body>%s'
            '</body></html>\n' % (html.escape(design.title), STYLE, "\n".join(body)))
     with open(path, "w") as f:

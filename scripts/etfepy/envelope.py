@@ -100,12 +100,33 @@ def envelopes(per_comb):
     return res
 
 
+def group_envelopes(names, extras):
+    """Reactions per support group (<group>_RX/RY/RZ, N) and chamber pressures (<c>_p_kPa) from each
+    completed combination's last history row: per column the largest and smallest value and the
+    combination that gives each. [dict(quantity, unit, max, max_combination, min, min_combination)]."""
+    cols = []
+    for h in extras:
+        for k in h:
+            if (k.endswith(("_RX", "_RY", "_RZ")) or k.endswith("_p_kPa")) and k not in cols:
+                cols.append(k)
+    rows = []
+    for col in cols:
+        vals = [(h[col], names[k]) for k, h in enumerate(extras) if col in h]
+        if not vals:
+            continue
+        hi = max(vals, key=lambda v: v[0])
+        lo = min(vals, key=lambda v: v[0])
+        rows.append(dict(quantity=col, unit="kPa" if col.endswith("_p_kPa") else "N", max=hi[0],
+                         max_combination=hi[1], min=lo[0], min_combination=lo[1]))
+    return rows
+
+
 def triangle_areas(X, tri):
     a, b, c = X[tri[:, 0]], X[tri[:, 1]], X[tri[:, 2]]
     return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
 
 
-def write_envelopes(path, X, tri, env, names, missing):
+def write_envelopes(path, X, tri, env, names, missing, groups=()):
     """Envelope HDF5 (mesh + fields + governing combination index) and its XDMF beside it."""
     with h5py().File(path, "w") as f:
         f.attrs["format"] = "etfe-envelope-1"
@@ -120,6 +141,10 @@ def write_envelopes(path, X, tri, env, names, missing):
             d.attrs.update(units=unit, description="%s of %s over the combinations" % (how, desc))
             d = f.create_dataset("envelope/" + name + "_governing", data=idx.astype(np.int32))
             d.attrs.update(units="1", description="index of the governing combination (root attribute combinations)")
+        for g in groups:  # per support group and chamber: [max, min] and their combinations
+            d = f.create_dataset("groups/" + g["quantity"], data=np.array([g["max"], g["min"]]))
+            d.attrs.update(units=g["unit"], description="largest and smallest over the combinations",
+                           governing="%s\n%s" % (g["max_combination"], g["min_combination"]))
     h5 = os.path.basename(path)
     nn, ne = X.shape[0], tri.shape[0]
     attrs = []

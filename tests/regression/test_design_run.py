@@ -139,6 +139,13 @@ def test(etfe, chk):
 
 
 def checks(etfe, chk, tmp):
+    # EN 1990 generation (no run): snow leading and wind leading with G favourable.
+    gen = dict(DESIGN, combinations=[], generate=["ULS", "SLS"])
+    gen["load_cases"] = dict(DESIGN["load_cases"], W=dict(DESIGN["load_cases"]["W"], G_favourable=True))
+    got = {c["name"]: c["factors"] for c in designmod.Design(gen, "gen").combinations}
+    want = {"ULS-S": {"G": 1.35, "S": 1.5, "W": 1.5 * 0.6}, "ULS-W": {"G": 1.0, "W": 1.5, "S": 1.5 * 0.5},
+            "SLS-S": {"G": 1.0, "S": 1.0, "W": 0.6}, "SLS-W": {"G": 1.0, "W": 1.0, "S": 0.5}}
+    chk.check(got == want, "generated EN 1990 combinations (recommended factors): %s" % got)
     ff = os.path.join(tmp, "hypar_ff.msh")
     run(etfe, ["-options_file", os.path.join(REPO, "options/structure/hypar_formfind.opts"), "-formfind_monitor", 0,
                "-output", 0, "-formfind_mesh_out", ff, "-output_file", os.path.join(tmp, "ff.h5")])
@@ -204,6 +211,22 @@ def checks(etfe, chk, tmp):
     xmf = open(os.path.join(out, "envelope.xmf")).read()
     chk.check("max_principal_stress_governing" in xmf and "envelope.h5:/envelope/utilisation" in xmf,
               "envelope.xmf lists the envelopes and their governing combination for ParaView")
+
+    pv = shutil.which("pvpython")
+    if pv:
+        script = os.path.join(tmp, "pv.py")
+        with open(script, "w") as f:
+            f.write("import sys\nfrom paraview.simple import *\nr = Xdmf3ReaderS(FileName=[sys.argv[1]])\n"
+                    "r.UpdatePipeline()\nd = servermanager.Fetch(r)\nc = d.GetCellData()\n"
+                    "print('CELLS', d.GetNumberOfCells(), 'ARRAYS', ' '.join(c.GetArrayName(i) for i in "
+                    "range(c.GetNumberOfArrays())))\n")
+        p = subprocess.run([pv, script, os.path.join(out, "envelope.xmf")], capture_output=True, text=True,
+                           timeout=300)
+        got = [l for l in p.stdout.splitlines() if l.startswith("CELLS")]
+        chk.check(got and "utilisation_governing" in got[0] and got[0].split()[1] == str(len(e)),
+                  "ParaView (pvpython, Xdmf3ReaderS) opens envelope.xmf: %s" % (got[0][:80] if got else p.stderr[-200:]))
+    else:
+        print("  SKIP  envelope.xmf in ParaView: pvpython is not installed")
 
     # Checks and tables.
     rows = list(csv.DictReader(open(os.path.join(out, "checks.csv"))))
