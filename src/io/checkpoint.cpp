@@ -590,7 +590,7 @@ PetscErrorCode CheckpointFingerprintScene(MPI_Comm comm, const SceneSpec &scene,
   if (rank == 0) v[0] = MeshFingerprint(scene.mesh), v[1] = ScenePhysicsState(scene, P->thickness, P->min_area_ratio);
   PetscCallMPI(MPI_Bcast(v, 2, MPI_UINT64_T, 0, comm));
   P->load_path_states.assign((size_t)scene.NumStages() + 1, 0);  // NumStages: the same on every rank
-  if (rank == 0) P->load_path_states = LoadPathStates(scene, P->thickness, P->min_area_ratio);
+  if (rank == 0) P->load_path_states = LoadPathStates(scene, P->thickness, P->min_area_ratio, P->clock);
   PetscCallMPI(MPI_Bcast(P->load_path_states.data(), (int)P->load_path_states.size(), MPI_UINT64_T, 0, comm));
   P->scene_mesh_fingerprint = v[0];
   P->scene_physics_state = v[1];

@@ -174,7 +174,8 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   return h.Value();
 }
 
-std::vector<std::uint64_t> LoadPathStates(const SceneSpec &s, double thickness, double min_area_ratio) {
+std::vector<std::uint64_t> LoadPathStates(const SceneSpec &s, double thickness, double min_area_ratio,
+                                          const StageClock &clock) {
   const int stages = s.NumStages();
   std::vector<std::uint64_t> states;
   for (int end = 0; end <= stages; ++end) {
@@ -214,6 +215,10 @@ std::vector<std::uint64_t> LoadPathStates(const SceneSpec &s, double thickness, 
       h.Add(sp.name), h.Add(sp.type), h.Add(sp.centre), h.Add(sp.axis), h.Add(sp.radius);
     h.Add(s.element_stress_ratio);
     h.Add(s.initial_guess);
+    if (clock.Active()) {  // the physical time of stages 1..end (time-dependent materials)
+      h.Add(clock.hold_first);
+      for (int k = 0; k < end && k < (int)clock.duration.size(); ++k) h.Add(clock.duration[k]), h.Add(clock.hold[k]);
+    }
     states.push_back(h.Value());
   }
   return states;

@@ -54,7 +54,9 @@ std::uint64_t PhysicsFingerprintFrom(const Problem *problem, std::uint64_t scene
 // film, supports, constraints, chambers and the non-zero loads with their values at stage ends
 // 0..k (rank 0's global description). A run that branches from a checkpoint at stage end k must
 // agree on entry k with the run that wrote it; what the loads do after k is the branch's own.
-std::vector<std::uint64_t> LoadPathStates(const SceneSpec &scene, double thickness, double min_area_ratio);
+// With the physical time of those stages when the clock is active (-load_stage_duration, holds).
+std::vector<std::uint64_t> LoadPathStates(const SceneSpec &scene, double thickness, double min_area_ratio,
+                                          const StageClock &clock);
 // The options in force, one "-name value" per line, sorted by name.
 PetscErrorCode OptionsAsLines(std::string *lines);
 // The options that differ (other than those that may change), as a table for a message;
