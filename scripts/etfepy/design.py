@@ -48,6 +48,11 @@ EXAMPLE_RESISTANCE = {
 LOAD_OPTION = re.compile(r"^(structure_self_weight|structure_wind|film_\w+_(snow|pressure)|chamber_\w+_pressure)$")
 
 
+def load_unit(option):
+    """The unit of a load option's value: kPa, or a factor of the film's weight."""
+    return "x weight" if option == "structure_self_weight" else "kPa"
+
+
 class DesignError(Exception):
     pass
 
