@@ -11,6 +11,7 @@ once and checkpointed; three combinations branch from it, two at a time:
     with the governing combination;
   * a combination that cannot converge (Newton limited to 1 iteration, no cut-back) is reported as
     not converged, the envelopes say incomplete, its checks fail and the exit status is 1;
+  * a branch stopped half-way continues with a plain -restart of its own checkpoint, bit for bit;
   * a branch whose base stages differ is refused, and a plain -restart with changed loads still is;
   * the tables are CSV, and the HTML report opens in headless Chromium (when installed: scripts/setup
     installs it) with no console error, and its verdict table is the CSV's.
@@ -186,6 +187,18 @@ def checks(etfe, chk, tmp):
                               default_rtol=0.0, default_atol=0.0)
     chk.check(not fails, "ULS-S from the base checkpoint equals the direct run bit for bit (every field of the last "
                          "step)%s" % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
+
+    # A branch stopped half-way continues with a plain -restart from its own checkpoint.
+    stop_dir = os.path.join(tmp, "stop")
+    args = d.combination_args(comb, stop_dir)
+    args[args.index("-restart_branch") + 1] = os.path.join(out, "base.checkpoint.h5")
+    r1 = runner.run(args + ["-load_stop_after", 12], etfe=etfe, timeout=600)
+    args = [a for a in args if a not in ("-restart_branch", os.path.join(out, "base.checkpoint.h5"))]
+    r2 = runner.run(args + ["-restart", os.path.join(stop_dir, "ULS-S.checkpoint.h5")], etfe=etfe, timeout=600)
+    fails = h5compare.compare(os.path.join(stop_dir, "ULS-S.h5"), os.path.join(out, "ULS-S.h5"), step="last",
+                              default_rtol=0.0, default_atol=0.0)
+    chk.check(r1.returncode == 0 and r2.returncode == 0 and not fails,
+              "ULS-S stopped at increment 12 and continued with -restart equals the uninterrupted branch bit for bit")
 
     # Envelopes: element-wise extremes.
     s1, s2 = last_step(os.path.join(out, "ULS-S.h5")), last_step(os.path.join(out, "SLS-W.h5"))
