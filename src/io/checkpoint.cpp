@@ -6,13 +6,13 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <vector>
 
+#include "checkpoint_branch.h"
 #include "checkpoint_compare.h"
 #include "etfe/chamber.h"
 #include "etfe/layer_contact.h"
@@ -44,30 +44,6 @@ uint64_t SceneStateChecksum(const std::vector<double> &v) {
   uint64_t h = 0;
   for (size_t i = 0; i < v.size(); ++i) h += ValueChecksum(("scene_state" + std::to_string(i)).c_str(), v[i]);
   return h;
-}
-
-// Per stage end, the physics with the loads up to it (LoadPathStates, -restart_branch).
-uint64_t LoadPathChecksum(const std::vector<std::uint64_t> &v) {
-  uint64_t h = 0;
-  for (size_t k = 0; k < v.size(); ++k) h += FingerprintChecksum(("load_path" + std::to_string(k)).c_str(), v[k]);
-  return h;
-}
-
-bool ReadLoadPath(hid_t f, std::vector<std::uint64_t> *v) {
-  bool good = false;
-  H5E_BEGIN_TRY {
-    hid_t d = H5Dopen2(f, "load_path_fingerprints", H5P_DEFAULT);
-    hid_t sp = d >= 0 ? H5Dget_space(d) : -1;
-    const hssize_t n = sp >= 0 ? H5Sget_simple_extent_npoints(sp) : -1;
-    if (n >= 0) {
-      v->assign((size_t)n, 0);
-      good = n == 0 || H5Dread(d, H5T_NATIVE_UINT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, v->data()) >= 0;
-    }
-    if (sp >= 0) H5Sclose(sp);
-    if (d >= 0) H5Dclose(d);
-  }
-  H5E_END_TRY;
-  return good;
 }
 
 const char *const kDoubles[3] = {"t", "dt", "dt_last"};
@@ -180,11 +156,7 @@ std::string VerifyIntegrity(const std::string &path) {
         good = rows("layer_pairs", (hsize_t)shape[0], 1, &v);
         if (good) DataChecksum(PETSC_COMM_SELF, "layer_pairs", 0, shape[0], 1, v.data(), &sum);
       }
-      if (good && H5Lexists(f, "load_path_fingerprints", H5P_DEFAULT) > 0) {  // written since branch restarts
-        std::vector<std::uint64_t> lp;
-        good = ReadLoadPath(f, &lp);
-        if (good) sum += LoadPathChecksum(lp);
-      }
+      if (good) good = LoadPathVerify(f, &sum);  // -restart_branch's fingerprints, when there
       for (const char *state : {"scene_state", "chamber_state"}) {
         if (!good || H5Lexists(f, state, H5P_DEFAULT) <= 0) continue;
         hid_t d = H5Dopen2(f, state, H5P_DEFAULT);
@@ -252,13 +224,7 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
     }
     PetscCall(H5WriteNatural(tmp, order, f, "contact_state", Layout::Pairs, 7, cst.data(), false, &sum));
   }
-  {
-    std::vector<std::uint64_t> lp;
-    for (std::uint64_t state : P->load_path_states) lp.push_back(PhysicsFingerprintFrom(P, state));
-    PetscCall(H5WriteRows(tmp, f, "load_path_fingerprints", H5T_NATIVE_UINT64, lp.size(), 1, 0,
-                          P->rank == 0 ? lp.size() : 0, lp.data()));
-    sum += LoadPathChecksum(lp);
-  }
+  PetscCall(LoadPathWrite(P, tmp, f, &sum));
   if (P->observer.state_get) {
     std::vector<double> v;
     P->observer.state_get(P->observer.ctx, &v);
@@ -391,35 +357,6 @@ PetscErrorCode CheckpointWrite(Problem *P, const std::string &path, const Steppe
 }
 
 namespace {
-
-// A branch's comparison once mesh and options agree: the checkpoint is at a stage end k before
-// this run's last stage, and the physics with the loads up to k is the same (LoadPathStates).
-PetscErrorCode BranchDifferences(Problem *P, const std::string &path, hid_t f, std::string *table) {
-  double t = 0.0;
-  PetscFunctionBeginUser;
-  PetscCall(H5ReadAttribute(path, f, "t", H5T_NATIVE_DOUBLE, &t));
-  const long long k = std::llround(t), stages = (long long)P->scene.NumStages();
-  char line[320];
-  std::vector<std::uint64_t> lp;
-  if (std::fabs(t - (double)k) > 1e-9) {
-    std::snprintf(line, sizeof line, "\n    the checkpoint is at load time %.9g, inside a stage: a base state ends at a "
-                  "stage end (write it with -checkpoint_stage_end, the default)", t);
-    *table += line;
-  } else if (k >= stages) {
-    std::snprintf(line, sizeof line, "\n    the checkpoint is at the end of stage %lld and this run has %lld stages: "
-                  "nothing is left to branch (add the branch's stages, e.g. -structure_stages %lld)", k, stages, k + 1);
-    *table += line;
-  } else if (H5Lexists(f, "load_path_fingerprints", H5P_DEFAULT) <= 0 || !ReadLoadPath(f, &lp) ||
-             (long long)lp.size() <= k)
-    *table += "\n    the checkpoint holds no load-path fingerprints (written by an etfe without branch restarts): run "
-              "the base again";
-  else if (lp[k] != PhysicsFingerprintFrom(P, P->load_path_states[k])) {
-    std::snprintf(line, sizeof line, "\n    the options agree, but what they resolve to up to load time %lld does "
-                  "not: supports or their motions, loads or chambers in stages 1-%lld, the film or its material", k, k);
-    *table += line;
-  }
-  PetscFunctionReturn(0);
-}
 
 // Opens a checkpoint (collective) and refuses it unless it is intact and of this run: checksum
 // first (rank 0 reads the whole file), then scene, every physics option (see
