@@ -33,6 +33,12 @@ struct CheckpointOptions {
   PetscBool stage_end = PETSC_TRUE;  // a checkpoint at each stage end (with a results file)
   char file[PETSC_MAX_PATH_LEN] = "";
   char restart[PETSC_MAX_PATH_LEN] = "";
+  // -restart_branch: `restart` is a base state (a stage end) from which this run starts its own
+  // loads (the stages after it), writing a results file of its own (checkpoint_compare.cpp).
+  PetscBool branch = PETSC_FALSE;
+  // -checkpoint_final: a checkpoint of the last state too, once the history completed (the base
+  // state that -restart_branch runs start from).
+  PetscBool final = PETSC_FALSE;
 };
 
 // results_stem: the results file without its extension; the default checkpoint goes beside it.
@@ -52,7 +58,7 @@ PetscErrorCode CheckpointWrite(Problem *problem, const std::string &path, const 
 // when results_file is given, the results file of the run that wrote it (its -output_file, or the
 // default results/<scene>/<scene>.h5; as that run gave it, relative to its working directory).
 PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, PetscInt *step, std::string *run_id,
-                                  std::string *results_file = nullptr);
+                                  std::string *results_file = nullptr, bool branch = false);
 // Takes the fingerprints a checkpoint compares the scene by from rank 0's global description
 // (the mesh: coordinates, triangles, node and element sets; the physics: schedules, constraints,
 // loads, supports, element data, with the problem's thickness and area ratio) and stores them
@@ -61,7 +67,8 @@ PetscErrorCode CheckpointValidate(Problem *problem, const std::string &path, Pet
 PetscErrorCode CheckpointFingerprintScene(MPI_Comm comm, const SceneSpec &scene, Problem *problem);
 // Refuses (with the reason) a checkpoint of another scene, mesh, material, contact set or
 // physics options, or one whose data do not match its checksum.
+// branch: the comparison of -restart_branch (the loads after the checkpoint's stage end may differ).
 PetscErrorCode CheckpointRead(Problem *problem, const std::string &path, StepperState *state,
-                              Vec U_committed, Vec U_previous);
+                              Vec U_committed, Vec U_previous, bool branch = false);
 
 } // namespace etfe

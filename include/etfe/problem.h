@@ -65,6 +65,9 @@ struct Problem {
   // Of the global description, the same on every rank (CheckpointFingerprintScene): the mesh,
   // and the state of the physics hash after the scene's part, for a restart's comparison.
   std::uint64_t scene_mesh_fingerprint = 0, scene_physics_state = 0;
+  // Per stage end k = 0..stages: the state of a hash of the scene's physics with its loads up to
+  // load time k only (LoadPathStates), which a branch restart (-restart_branch) compares.
+  std::vector<std::uint64_t> load_path_states;
   bool has_initial_guess = false;            // the scene gave an initial displacement
   std::vector<double> element_stress_ratio;  // form finding: MD:TD per local element (empty: uniform)
   SceneObserver observer;

@@ -114,6 +114,25 @@ PetscErrorCode ResultsOptionsFromCommandLine(const Case &c, OutputOptions *oo,
   PetscCall(OutputOptionsFromCommandLine(comm, c.P->scene.name.c_str(), oo));
   PetscCall(CheckpointOptionsFromCommandLine(
       comm, std::filesystem::path(oo->path).replace_extension("").string(), cko));
+  char branch[PETSC_MAX_PATH_LEN] = "";
+  PetscOptionsBegin(comm, nullptr, "Branch restart", "Checkpoint");
+  PetscCall(PetscOptionsString("-restart_branch",
+                               "Start this run's own loads from a base state: a checkpoint at a stage end of a run "
+                               "whose model, supports and loads up to there this run shares (only the stages after "
+                               "it may differ); results go to this run's own -output_file (docs/design-run.md)",
+                               "", branch, branch, sizeof branch, nullptr));
+  PetscCall(PetscOptionsBool("-checkpoint_final",
+                             "Also write a checkpoint of the last state once the load history completes: the base "
+                             "state that -restart_branch runs start from",
+                             "", cko->final, &cko->final, nullptr));
+  PetscOptionsEnd();
+  if (branch[0]) {
+    PetscCheck(!cko->restart[0], comm, PETSC_ERR_ARG_INCOMP,
+               "-restart %s and -restart_branch %s: give one (-restart continues a history, -restart_branch starts "
+               "another from a base state)", cko->restart, branch);
+    std::snprintf(cko->restart, sizeof cko->restart, "%s", branch);
+    cko->branch = PETSC_TRUE;
+  }
   PetscCheck(!(c.formfind && (cko->restart[0] || cko->every > 0 || cko->every_s > 0)), comm, PETSC_ERR_SUP,
              "checkpoint/restart is for load histories (-analysis stretch); form finding restarts "
              "from its "
@@ -136,7 +155,19 @@ PetscErrorCode OpenResults(const Case &c, const OutputOptions &oo, const Checkpo
   if (!c.formfind && (oo.enabled || cko.every > 0 || cko.every_s > 0 || c.lso.stop_after >= 0))
     PetscCall(CheckpointCheckWritable(c.P->comm, cko));
   OutputOptions o = oo;
-  if (cko.restart[0]) PetscCall(CheckpointValidate(c.P, cko.restart, &restart_step, &run_id, &o.checkpoint_results));
+  if (cko.restart[0])
+    PetscCall(CheckpointValidate(c.P, cko.restart, &restart_step, &run_id, &o.checkpoint_results, cko.branch));
+  if (cko.branch) {  // a load history of its own: a new results file and run id
+    restart_step = -1;
+    run_id.clear();
+    std::error_code ec1, ec2;
+    const bool same = !o.checkpoint_results.empty() &&
+                      std::filesystem::weakly_canonical(oo.path, ec1) ==
+                          std::filesystem::weakly_canonical(o.checkpoint_results, ec2) && !ec1 && !ec2;
+    PetscCheck(!oo.enabled || !same, c.P->comm, PETSC_ERR_ARG_WRONG,
+               "-restart_branch %s: -output_file %s is the base run's results file; give the branch a file of its "
+               "own (-output_file)", cko.restart, oo.path);
+  }
   if (oo.enabled) PetscCall(OutputOpen(c.P, o, out, restart_step, run_id));
   if (*out) c.P->observer.results_stem = OutputStem(*out);
   PetscFunctionReturn(0);
@@ -181,7 +212,8 @@ std::string RestartCommand(MPI_Comm comm, const char *checkpoint) {
     return q + "'";
   };
   for (size_t k = 0; k < g_command.size(); ++k) {
-    if (k > 0 && g_command[k] == "-restart") {  // the checkpoint given before is replaced
+    // The checkpoint given before is replaced (a branch's own checkpoint continues the branch).
+    if (k > 0 && (g_command[k] == "-restart" || g_command[k] == "-restart_branch")) {
       ++k;
       continue;
     }

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <vector>
 
+#include "checkpoint_branch.h"
 #include "checkpoint_compare.h"
 #include "etfe/chamber.h"
 #include "etfe/layer_contact.h"
@@ -155,6 +156,7 @@ std::string VerifyIntegrity(const std::string &path) {
         good = rows("layer_pairs", (hsize_t)shape[0], 1, &v);
         if (good) DataChecksum(PETSC_COMM_SELF, "layer_pairs", 0, shape[0], 1, v.data(), &sum);
       }
+      if (good) good = LoadPathVerify(f, &sum);  // -restart_branch's fingerprints, when there
       for (const char *state : {"scene_state", "chamber_state"}) {
         if (!good || H5Lexists(f, state, H5P_DEFAULT) <= 0) continue;
         hid_t d = H5Dopen2(f, state, H5P_DEFAULT);
@@ -222,6 +224,7 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
     }
     PetscCall(H5WriteNatural(tmp, order, f, "contact_state", Layout::Pairs, 7, cst.data(), false, &sum));
   }
+  PetscCall(LoadPathWrite(P, tmp, f, &sum));
   if (P->observer.state_get) {
     std::vector<double> v;
     P->observer.state_get(P->observer.ctx, &v);
@@ -358,8 +361,9 @@ namespace {
 // Opens a checkpoint (collective) and refuses it unless it is intact and of this run: checksum
 // first (rank 0 reads the whole file), then scene, every physics option (see
 // checkpoint_compare.cpp), mesh, material history, contact pairs, stages and what the options
-// resolve to. A refusal changes nothing.
-PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
+// resolve to. A refusal changes nothing. A branch (-restart_branch) compares the loads only up to
+// the checkpoint's load time, a stage end (checkpoint_compare.cpp).
+PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file, bool branch) {
   PetscFunctionBeginUser;
   std::string why;
   if (P->rank == 0) {
@@ -396,9 +400,9 @@ PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
   PetscCall(H5ReadAttribute(path, f, "physics_fingerprint", H5T_NATIVE_UINT64, &physics));
   PetscCall(H5ReadString(path, f, "options", &options));
   PetscCall(OptionsAsLines(&now));
-  std::string table = OptionDifferences(options, now);
+  std::string table = OptionDifferences(options, now, branch);
   const bool same_shape = cp.nodes == sh.nodes && cp.elements == sh.elements && cp.pairs == sh.pairs &&
-                          cp.history == sh.history && cp.stages == sh.stages;
+                          cp.history == sh.history && (branch || cp.stages == sh.stages);
   if (mesh != P->scene_mesh_fingerprint)
     table += "\n    mesh: checkpoint " + std::to_string(cp.nodes) + " nodes, " + std::to_string(cp.elements) +
              " triangles; this run " + std::to_string(sh.nodes) + ", " + std::to_string(sh.elements) +
@@ -408,9 +412,18 @@ PetscErrorCode OpenChecked(Problem *P, const std::string &path, hid_t *file) {
              " history values per element, " + std::to_string(cp.pairs) + " contact pairs and " +
              std::to_string(cp.stages) + " stages, this run " + std::to_string(sh.history) + ", " +
              std::to_string(sh.pairs) + " and " + std::to_string(sh.stages);
+  else if (table.empty() && branch)
+    PetscCall(BranchDifferences(P, path, f, &table));
   else if (table.empty() && physics != PhysicsFingerprint(P))
     table += "\n    the options agree, but what they resolve to does not (schedules, supports, contact or material "
              "constants: another etfe build, or changed defaults?)";
+  PetscCheck(table.empty() || !branch, P->comm, PETSC_ERR_FILE_UNEXPECTED,
+             "-restart_branch %s: this run is no branch of the checkpoint's run:%s\n  Nothing was changed. A branch "
+             "starts its own loads from the base state the checkpoint holds (a stage end): the model (-scene, -mesh_*, "
+             "-material_*, -membrane_*, -contact_*, -layer_*) and what the options resolve to up to the checkpoint's "
+             "load time (supports and their motions, loads, chambers, film) must be those of the base run (its "
+             "options: h5dump -a options %s); only the stages after it may differ",
+             path.c_str(), table.c_str(), path.c_str());
   PetscCheck(table.empty(), P->comm, PETSC_ERR_FILE_UNEXPECTED,
              "-restart %s: this run's physics differs from the checkpoint's run:%s\n  Nothing was changed. A restart "
              "continues the same history: give the options of that run (stored in the checkpoint: h5dump -a options "
@@ -475,12 +488,12 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
 } // namespace
 
 PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt *step, std::string *run_id,
-                                  std::string *results_file) {
+                                  std::string *results_file, bool branch) {
   hid_t f = -1;
   long long s = -1;
   std::string options;
   PetscFunctionBeginUser;
-  PetscCall(OpenChecked(P, path, &f));
+  PetscCall(OpenChecked(P, path, &f, branch));
   PetscErrorCode ierr = H5ReadString(path, f, "run_id", run_id);
   if (!ierr) ierr = H5ReadAttribute(path, f, "step", H5T_NATIVE_LLONG, &s);
   if (!ierr && results_file) ierr = H5ReadString(path, f, "options", &options);
@@ -496,10 +509,10 @@ PetscErrorCode CheckpointValidate(Problem *P, const std::string &path, PetscInt 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CheckpointRead(Problem *P, const std::string &path, StepperState *st, Vec Uc, Vec Up) {
+PetscErrorCode CheckpointRead(Problem *P, const std::string &path, StepperState *st, Vec Uc, Vec Up, bool branch) {
   hid_t f = -1;
   PetscFunctionBeginUser;
-  PetscCall(OpenChecked(P, path, &f));
+  PetscCall(OpenChecked(P, path, &f, branch));
   PetscErrorCode ierr = ReadState(P, path, f, st, Uc, Up);
   H5Fclose(f);
   PetscCall(ierr);
@@ -513,6 +526,9 @@ PetscErrorCode CheckpointFingerprintScene(MPI_Comm comm, const SceneSpec &scene,
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (rank == 0) v[0] = MeshFingerprint(scene.mesh), v[1] = ScenePhysicsState(scene, P->thickness, P->min_area_ratio);
   PetscCallMPI(MPI_Bcast(v, 2, MPI_UINT64_T, 0, comm));
+  P->load_path_states.assign((size_t)scene.NumStages() + 1, 0);  // NumStages: the same on every rank
+  if (rank == 0) P->load_path_states = LoadPathStates(scene, P->thickness, P->min_area_ratio, P->clock);
+  PetscCallMPI(MPI_Bcast(P->load_path_states.data(), (int)P->load_path_states.size(), MPI_UINT64_T, 0, comm));
   P->scene_mesh_fingerprint = v[0];
   P->scene_physics_state = v[1];
   PetscFunctionReturn(0);

@@ -18,6 +18,14 @@
 // Everything else (-scene, -analysis, -mesh_*, -material_*, -membrane_thickness and
 // _min_area_ratio, -contact_* incl. the friction law, mu and the penalties, -load_increments,
 // every -<scene>_* option) must be equal, as must the mesh and the resolved physics.
+//
+// A branch restart (-restart_branch) starts another load history from a checkpoint taken at a
+// stage end (the base state: prestressed, inflated): it may also change the scene's load options
+// (every option that is not one of kModel: -structure_*, -film_*, -bc_*, -chamber_*,
+// -load_increments, ...), as long as what they resolve to up to the checkpoint's load time is
+// the same (LoadPathStates): the same supports and their motions, loads and chambers up to the
+// base's end, the same film. The model (-scene, -analysis, -mesh_*, -material_*, -membrane_*,
+// -contact_*, -layer_*) and the mesh must be equal as on any restart.
 #include "checkpoint_compare.h"
 
 #include <petscsys.h>
@@ -44,6 +52,19 @@ const char *const kMayChange[] = {
     "viewer", "objects_", "check_pointer", "checkstack", "no_signal_handler", "debugger", "start_in_debugger",
     "stop_for_debugger", "display", "citations", "use_gpu_aware_mpi", "vecscatter_", "sf_", "skip_petscrc",
     "scene_list", "mesh_file"};
+
+// What a branch restart may not change by name (the model, not its loads).
+const char *const kModel[] = {"scene", "analysis", "mesh_", "material_", "membrane_", "contact_", "layer_",
+                              "formfind_", "cutpattern_", "plan_"};
+
+bool HasPrefix(const std::string &name, const char *const *list, size_t n) {
+  for (size_t k = 0; k < n; ++k) {
+    const std::string pre = list[k];
+    if (name.compare(0, pre.size(), pre) != 0) continue;
+    if (name.size() == pre.size() || pre.back() == '_' || name[pre.size()] == '_') return true;
+  }
+  return false;
+}
 
 std::string Lower(std::string s) {
   for (char &c : s) c = (char)std::tolower((unsigned char)c);
@@ -105,14 +126,10 @@ std::string Shown(const std::map<std::string, std::string> &m, const std::string
 
 } // namespace
 
-bool CheckpointOptionMayChange(const std::string &option) {
+bool CheckpointOptionMayChange(const std::string &option, bool branch) {
   const std::string name = Lower(option[0] == '-' ? option.substr(1) : option);
-  for (const char *p : kMayChange) {
-    const std::string pre = p;
-    if (name.compare(0, pre.size(), pre) != 0) continue;
-    if (name.size() == pre.size() || pre.back() == '_' || name[pre.size()] == '_') return true;
-  }
-  return false;
+  if (HasPrefix(name, kMayChange, sizeof kMayChange / sizeof *kMayChange)) return true;
+  return branch && !HasPrefix(name, kModel, sizeof kModel / sizeof *kModel);
 }
 
 std::uint64_t MeshFingerprint(const MeshData &m) {
@@ -157,8 +174,60 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   return h.Value();
 }
 
-std::uint64_t PhysicsFingerprint(const Problem *P) {
-  Fnv64 h(P->scene_physics_state);
+std::vector<std::uint64_t> LoadPathStates(const SceneSpec &s, double thickness, double min_area_ratio,
+                                          const StageClock &clock) {
+  const int stages = s.NumStages();
+  std::vector<std::uint64_t> states;
+  for (int end = 0; end <= stages; ++end) {
+    Fnv64 h;
+    // The values of a scheduled quantity at the stage ends 0..end (linear between them), and
+    // whether any is non-zero: a load that is zero up to `end` (a wind the base does not have)
+    // adds nothing, so the base and its branches hash the same.
+    auto values = [&](const ScheduledValue &v, std::vector<double> *x) {
+      x->clear();
+      bool any = false;
+      for (int k = 0; k <= end; ++k) x->push_back(v.At(s.schedules, k)), any |= x->back() != 0.0;
+      return any;
+    };
+    std::vector<double> x;
+    h.Add(s.name);
+    h.Add(s.md_axis);
+    h.Add(s.element_thickness), h.Add(s.element_md), h.Add(s.element_reference);
+    h.Add(thickness), h.Add(min_area_ratio);
+    values(s.reference_blend, &x), h.Add(x);
+    h.Add(s.constraints.size());
+    for (const DofConstraint &c : s.constraints) h.Add(c.node), h.Add(c.comp), values(c.value, &x), h.Add(x);
+    for (const PressureSpec &p : s.pressures)
+      if (p.chamber >= 0 || values(p.value, &x))
+        h.Add(p.elements), h.Add(p.chamber), h.Add(p.sign), h.Add(p.chamber >= 0 ? std::vector<double>() : x);
+    h.Add(s.chambers.size());
+    for (const ChamberSpec &c : s.chambers) {
+      h.Add(c.name), h.Add(c.origin), h.Add(c.kappa), h.Add(c.extra_volume);
+      values(c.supplied, &x), h.Add(x);
+      for (int k = 1; k <= end; ++k) h.Add(c.SealedIn(k));
+    }
+    if (!s.chambers.empty()) h.Add(s.atmosphere);
+    for (const NodalForce &f : s.nodal_forces)
+      if (values(f.value, &x)) h.Add(f.node), h.Add(f.comp), h.Add(x);
+    h.Add(s.contact.active), h.Add(s.contact.node_set), h.Add(s.contact.search_tol);
+    h.Add(s.contact.supports.size());
+    for (const SupportSpec &sp : s.contact.supports)
+      h.Add(sp.name), h.Add(sp.type), h.Add(sp.centre), h.Add(sp.axis), h.Add(sp.radius);
+    h.Add(s.element_stress_ratio);
+    h.Add(s.initial_guess);
+    if (clock.Active()) {  // the physical time of stages 1..end (time-dependent materials)
+      h.Add(clock.hold_first);
+      for (int k = 0; k < end && k < (int)clock.duration.size(); ++k) h.Add(clock.duration[k]), h.Add(clock.hold[k]);
+    }
+    states.push_back(h.Value());
+  }
+  return states;
+}
+
+std::uint64_t PhysicsFingerprint(const Problem *P) { return PhysicsFingerprintFrom(P, P->scene_physics_state); }
+
+std::uint64_t PhysicsFingerprintFrom(const Problem *P, std::uint64_t scene_state) {
+  Fnv64 h(scene_state);
   if (P->contact) {
     const ContactSet &c = *P->contact;
     h.Add(c.params.kn), h.Add(c.params.kt), h.Add(c.params.mu), h.Add(c.law), h.Add(c.follow);
@@ -188,12 +257,12 @@ PetscErrorCode OptionsAsLines(std::string *lines) {
   PetscFunctionReturn(0);
 }
 
-std::string OptionDifferences(const std::string &checkpoint_lines, const std::string &current_lines) {
+std::string OptionDifferences(const std::string &checkpoint_lines, const std::string &current_lines, bool branch) {
   const auto a = ParseOptions(checkpoint_lines), b = ParseOptions(current_lines);
   std::vector<std::string> names;
   for (const auto *m : {&a, &b})
     for (const auto &kv : *m)
-      if (!CheckpointOptionMayChange(kv.first)) names.push_back(kv.first);
+      if (!CheckpointOptionMayChange(kv.first, branch)) names.push_back(kv.first);
   std::sort(names.begin(), names.end());
   names.erase(std::unique(names.begin(), names.end()), names.end());
   std::string table;

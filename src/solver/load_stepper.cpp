@@ -214,7 +214,7 @@ PetscErrorCode WriteCheckpoint(LoadStepper *ps) {
 PetscErrorCode RestartFromCheckpoint(LoadStepper *s) {
   StepperState st;
   PetscFunctionBeginUser;
-  PetscCall(CheckpointRead(s->P, s->ck.restart, &st, s->U_committed, s->U_previous));
+  PetscCall(CheckpointRead(s->P, s->ck.restart, &st, s->U_committed, s->U_previous, s->ck.branch));
   s->t = st.t, s->dt = st.dt, s->dt_last = st.dt_last;
   s->step = st.step, s->converged_states = st.converged_states, s->easy = st.easy;
   s->res->cutbacks = st.cutbacks, s->res->newton_iterations = st.newton;
@@ -224,8 +224,11 @@ PetscErrorCode RestartFromCheckpoint(LoadStepper *s) {
   // is that of the uninterrupted run.
   PetscCall(ProblemSetLoadTime(s->P, s->t, s->P->U));
   if (s->P->layers) PetscCall(LayerContactPair(s->P, s->P->U));  // as after the checkpoint's increment
-  PetscCall(PetscPrintf(s->P->comm, "restart: from %s at increment %" PetscInt_FMT ", load time %g\n", s->ck.restart,
-                        s->step, s->t));
+  // A branch's chambers follow its own scene from the next stage on (sealed or supplied): decided
+  // again at the base's stage end as the commit of the increment that ended there does.
+  if (s->ck.branch && s->P->chambers) PetscCall(ChamberCommit(s->P, s->t));
+  PetscCall(PetscPrintf(s->P->comm, "%s: from %s at increment %" PetscInt_FMT ", load time %g\n",
+                        s->ck.branch ? "restart (branch)" : "restart", s->ck.restart, s->step, s->t));
   PetscFunctionReturn(0);
 }
 
@@ -514,6 +517,9 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
   if (OutputLastStep(s->out) != s->step && !res->interrupted) PetscCall(OutputWriteStep(s->out, P, P->U, s->step, s->t));
   PetscCall(StabilizationSummary(s));  // may find the run not in equilibrium
   res->completed = res->failure.empty() ? PETSC_TRUE : PETSC_FALSE;
+  // The base state of branches (-checkpoint_final): only a history that ran to its end.
+  if (s->ck.final && res->completed && !res->stopped && s->Finished() && s->checkpoint_step != s->step)
+    PetscCall(WriteCheckpoint(s));
   res->steps = s->step;
   res->time = s->t;
   PetscCall(PetscTime(&t1));

@@ -1,0 +1,234 @@
+"""Envelopes over the combinations' results and the design checks (docs/design-run.md).
+
+Each combination's state is the last step of its results file (the full factored load); a
+combination that did not complete has no state and makes the envelopes incomplete. Envelope
+fields are element-wise (cells) or node-wise extremes over the completed combinations, each with
+the index of the governing combination (the first in the design's order on a tie).
+"""
+import csv
+import math
+import os
+
+import numpy as np
+
+from .results import h5py, text
+
+# name: (where, how, unit, description); how: max or min over the combinations.
+ENVELOPES = {
+    "max_principal_stress": ("cell", "max", "MPa", "largest principal Cauchy stress"),
+    "lowest_major_stress": ("cell", "min", "MPa", "smallest major principal Cauchy stress (the prestress left)"),
+    "cauchy_mises": ("cell", "max", "MPa", "von Mises of the Cauchy stress"),
+    "max_principal_strain": ("cell", "max", "1", "largest principal Green-Lagrange strain"),
+    "plastic_strain_eq": ("cell", "max", "1", "equivalent plastic strain"),
+    "wrinkle_state": ("cell", "max", "1", "0 taut, 1 wrinkled, 2 slack"),
+    "utilisation": ("cell", "max", "1", "design stress / design resistance"),
+    "displacement_magnitude": ("node", "max", "mm", "|u| from the mesh"),
+    "deflection": ("node", "max", "mm", "|u - u_base|: the motion from the base state"),
+}
+
+
+def combination_state(path):
+    """{field: array} of a results file's last step and its status, or (None, status)."""
+    with h5py().File(path, "r") as f:
+        status = text(f.attrs.get("status", b""))
+        steps = sorted(f["steps"].keys()) if "steps" in f else []
+        if not status.startswith("complete") or not steps:
+            return None, status
+        g = f["steps"][steps[-1]]
+        st = {k: g[k][()] for k in g.keys() if not isinstance(g[k], h5py().Group)}
+        st["_time"] = float(g.attrs["time"])
+        return st, status
+
+
+def mesh(path):
+    with h5py().File(path, "r") as f:
+        return f["mesh/coordinates"][()], f["mesh/triangles"][()]
+
+
+def last_history_row(stem):
+    """The history CSV's last row (reactions per support group, chamber pressures) or {}."""
+    path = stem + "_history.csv"
+    if not os.path.exists(path):
+        return {}
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    return {k: float(v) for k, v in rows[-1].items()} if rows else {}
+
+
+def resistance_of(design, comb):
+    r = design.resistance
+    kmod = r.get("k_mod", 1.0)
+    if isinstance(kmod, dict):
+        kmod = kmod.get(comb["duration"], 1.0)
+    return float(r["f_k"]) * float(kmod) / float(r["gamma_M"]), float(kmod)
+
+
+def quantities(state, base_u, design, comb):
+    """The per-element and per-node quantities the envelopes and checks take."""
+    q = {}
+    ps = state["principal_stress"]
+    q["max_principal_stress"] = ps[:, 0]
+    q["lowest_major_stress"] = ps[:, 0]
+    q["cauchy_mises"] = state["cauchy_mises"]
+    e = state["strain"]
+    q["max_principal_strain"] = 0.5 * (e[:, 0] + e[:, 1]) + np.sqrt(0.25 * (e[:, 0] - e[:, 1]) ** 2 + e[:, 2] ** 2)
+    n_el = ps.shape[0]
+    q["plastic_strain_eq"] = state.get("plastic_strain_eq", np.zeros(n_el))
+    q["wrinkle_state"] = state.get("wrinkle_state", np.zeros(n_el))
+    measure = design.resistance.get("stress", "cauchy_mises")
+    sigma = q["max_principal_stress"] if measure == "max_principal_stress" else q["cauchy_mises"]
+    fd, _ = resistance_of(design, comb)
+    q["utilisation"] = sigma / fd
+    u = state["displacement"]
+    q["displacement_magnitude"] = np.linalg.norm(u, axis=1)
+    q["deflection"] = np.linalg.norm(u - base_u, axis=1)
+    q["area_ratio"] = state["area_ratio"]
+    return q
+
+
+def envelopes(per_comb):
+    """per_comb: [quantities or None] in the design's order. {name: (values, governing index)}."""
+    done = [k for k, q in enumerate(per_comb) if q is not None]
+    res = {}
+    if not done:
+        return res
+    for name, (_, how, _, _) in ENVELOPES.items():
+        stack = np.stack([per_comb[k][name] for k in done])
+        idx = np.argmax(stack, axis=0) if how == "max" else np.argmin(stack, axis=0)
+        vals = np.take_along_axis(stack, idx[None, :], axis=0)[0]
+        res[name] = (vals, np.array(done)[idx])
+    return res
+
+
+def group_envelopes(names, extras):
+    """Reactions per support group (<group>_RX/RY/RZ, N) and chamber pressures (<c>_p_kPa) from each
+    completed combination's last history row: per column the largest and smallest value and the
+    combination that gives each. [dict(quantity, unit, max, max_combination, min, min_combination)]."""
+    cols = []
+    for h in extras:
+        for k in h:
+            if (k.endswith(("_RX", "_RY", "_RZ")) or k.endswith("_p_kPa")) and k not in cols:
+                cols.append(k)
+    rows = []
+    for col in cols:
+        vals = [(h[col], names[k]) for k, h in enumerate(extras) if col in h]
+        if not vals:
+            continue
+        hi = max(vals, key=lambda v: v[0])
+        lo = min(vals, key=lambda v: v[0])
+        rows.append(dict(quantity=col, unit="kPa" if col.endswith("_p_kPa") else "N", max=hi[0],
+                         max_combination=hi[1], min=lo[0], min_combination=lo[1]))
+    return rows
+
+
+def triangle_areas(X, tri):
+    a, b, c = X[tri[:, 0]], X[tri[:, 1]], X[tri[:, 2]]
+    return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
+
+
+def write_envelopes(path, X, tri, env, names, missing, groups=()):
+    """Envelope HDF5 (mesh + fields + governing combination index) and its XDMF beside it."""
+    with h5py().File(path, "w") as f:
+        f.attrs["format"] = "etfe-envelope-1"
+        f.attrs["combinations"] = "\n".join(names)
+        f.attrs["complete"] = 0 if missing else 1
+        f.attrs["missing"] = "\n".join(missing)
+        f["mesh/coordinates"] = X
+        f["mesh/triangles"] = tri.astype(np.int32)
+        for name, (vals, idx) in env.items():
+            where, how, unit, desc = ENVELOPES[name]
+            d = f.create_dataset("envelope/" + name, data=vals)
+            d.attrs.update(units=unit, description="%s of %s over the combinations" % (how, desc))
+            d = f.create_dataset("envelope/" + name + "_governing", data=idx.astype(np.int32))
+            d.attrs.update(units="1", description="index of the governing combination (root attribute combinations)")
+        for g in groups:  # per support group and chamber: [max, min] and their combinations
+            d = f.create_dataset("groups/" + g["quantity"], data=np.array([g["max"], g["min"]]))
+            d.attrs.update(units=g["unit"], description="largest and smallest over the combinations",
+                           governing="%s\n%s" % (g["max_combination"], g["min_combination"]))
+    h5 = os.path.basename(path)
+    nn, ne = X.shape[0], tri.shape[0]
+    attrs = []
+    for name in env:
+        where = ENVELOPES[name][0]
+        n, centre = (ne, "Cell") if where == "cell" else (nn, "Node")
+        for ds in (name, name + "_governing"):
+            attrs.append('<Attribute Name="%s" AttributeType="Scalar" Center="%s"><DataItem Dimensions="%d" '
+                         'NumberType="%s" Precision="%d" Format="HDF">%s:/envelope/%s</DataItem></Attribute>'
+                         % (ds, centre, n, "Int" if ds.endswith("governing") else "Float",
+                            4 if ds.endswith("governing") else 8, h5, ds))
+    xmf = ('<?xml version="1.0" ?>\n<Xdmf Version="3.0"><Domain><Grid Name="envelope" GridType="Uniform">'
+           '<Topology TopologyType="Triangle" NumberOfElements="%d"><DataItem Dimensions="%d 3" NumberType="Int" '
+           'Precision="4" Format="HDF">%s:/mesh/triangles</DataItem></Topology><Geometry GeometryType="XYZ">'
+           '<DataItem Dimensions="%d 3" NumberType="Float" Precision="8" Format="HDF">%s:/mesh/coordinates</DataItem>'
+           '</Geometry>\n%s\n</Grid></Domain></Xdmf>\n' % (ne, ne, h5, nn, h5, "\n".join(attrs)))
+    with open(os.path.splitext(path)[0] + ".xmf", "w") as f:
+        f.write(xmf)
+
+
+def place_of_cell(X, tri, e):
+    c = X[tri[e]].mean(axis=0)
+    return "element %d at (%.0f, %.0f, %.0f) mm" % (e, c[0], c[1], c[2])
+
+
+def place_of_node(X, n):
+    return "node %d at (%.0f, %.0f, %.0f) mm" % (n, X[n, 0], X[n, 1], X[n, 2])
+
+
+# kind: (quantity, max or min, unit, what); chamber_pressure and wrinkled_area are computed apart.
+CHECKS = {
+    "utilisation": ("utilisation", "max", "1", "design stress / design resistance"),
+    "plastic_strain": ("plastic_strain_eq", "max", "1", "equivalent plastic strain"),
+    "principal_strain": ("max_principal_strain", "max", "1", "largest principal strain"),
+    "deflection": ("deflection", "max", "mm", "deflection from the base state"),
+    "min_prestress": ("lowest_major_stress", "min", "MPa", "smallest major principal stress"),
+}
+
+
+def run_checks(design, combs, per_comb, extras, X, tri):
+    """One row per check and combination it applies to: dict(check, combination, situation, value,
+    limit, unit, verdict, place). A combination that did not complete fails every check it has."""
+    rows = []
+    areas = triangle_areas(X, tri)
+    for chk in design.checks:
+        kind, name = chk["kind"], chk.get("name", chk["kind"])
+        situations = chk.get("situations", ["ULS", "SLS"])
+        for k, comb in enumerate(combs):
+            if comb["situation"] not in situations:
+                continue
+            row = dict(check=name, kind=kind, combination=comb["name"], situation=comb["situation"])
+            q = per_comb[k]
+            if q is None:
+                row.update(value=float("nan"), limit=chk.get("limit", float("nan")), unit="",
+                           verdict="not converged", place="the combination did not complete")
+                rows.append(row)
+                continue
+            if kind in CHECKS:
+                qty, how, unit, _ = CHECKS[kind]
+                v = q[qty]
+                i = int(np.argmax(v) if how == "max" else np.argmin(v))
+                value, limit = float(v[i]), float(chk["limit"] if kind != "utilisation" else chk.get("limit", 1.0))
+                ok = value <= limit if how == "max" else value >= limit
+                place = place_of_node(X, i) if qty in ("deflection",) else place_of_cell(X, tri, i)
+                row.update(value=value, limit=limit, unit=unit, verdict="pass" if ok else "FAIL", place=place)
+            elif kind == "wrinkled_area":
+                wr = q["wrinkle_state"] >= 1
+                value = float(np.sum(areas[wr] * q["area_ratio"][wr])) * 1e-6
+                limit = float(chk["limit"])
+                row.update(value=value, limit=limit, unit="m^2", verdict="pass" if value <= limit else "FAIL",
+                           place="%d of %d elements wrinkled or slack" % (int(np.sum(wr)), len(wr)))
+            elif kind == "chamber_pressure":
+                col = chk["chamber"] + "_p_kPa"
+                value = extras[k].get(col, float("nan"))
+                lo, hi = chk["range"]
+                ok = lo <= value <= hi
+                row.update(value=value, limit="%g to %g" % (lo, hi), unit="kPa", verdict="pass" if ok else "FAIL",
+                           place="chamber " + chk["chamber"])
+            else:
+                raise ValueError("check %s: unknown kind %s (utilisation, plastic_strain, principal_strain, "
+                                 "deflection, min_prestress, wrinkled_area, chamber_pressure)" % (name, kind))
+            rows.append(row)
+    return rows
+
+
+def finite(x):
+    return isinstance(x, (int, float)) and math.isfinite(x)
