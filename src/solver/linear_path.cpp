@@ -3,8 +3,11 @@
 
 #include <petscksp.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+
+#include "etfe/linear_crossover.h"
 
 namespace etfe {
 
@@ -25,6 +28,11 @@ const Setting kTuning[] = {{"-ksp_pc_side", "right"},        {"-ksp_rtol", "1e-4
                            {"-pc_gamg_threshold", "0.05"},   {"-mg_levels_ksp_type", "gmres"},
                            {"-mg_levels_ksp_max_it", "3"},   {"-membrane_near_null_space", "true"},
                            {"-etfe_pc_shift", "0.1"}};
+
+// The options file of the scalable path (the crossover data's name for it), and the size from
+// which the direct path no longer fits a node's memory (docs/solvers.md, "The largest run here").
+const char *const kScalableFile = "gmres_gamg_shifted";
+const PetscInt kMemoryMinDof = 3000000;
 
 enum Choice { kAuto, kDirectChoice, kScalable };
 const char *const kChoiceNames[] = {"auto", "direct", "scalable"};
@@ -246,19 +254,25 @@ PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof) {
 }
 
 PetscErrorCode DecideLinearPath(MPI_Comm comm, PetscInt dof, LinearPath *path) {
-  PetscInt choice = kAuto, min_dof = 3000000, min_ranks = 16;
-  PetscBool krylov = PETSC_FALSE, mat_set = PETSC_FALSE;
+  PetscInt choice = kAuto, min_dof = kMemoryMinDof, min_ranks = 16;
+  PetscBool krylov = PETSC_FALSE, mat_set = PETSC_FALSE, min_dof_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   *path = LinearPath();
   path->dof = dof;
   PetscCallMPI(MPI_Comm_size(comm, &path->ranks));
+  // Where the measurements on this rank count show the scalable path faster at every larger size
+  // measured, it is taken from there; elsewhere from where the direct path stops fitting.
+  const Crossover crossover = MeasuredCrossover(path->ranks, kScalableFile);
+  if (crossover.dof > 0) min_dof = std::min(min_dof, crossover.dof);
   PetscOptionsBegin(comm, nullptr, "Linear solver path", "KSP");
   PetscCall(PetscOptionsEList("-etfe_solver",
                               "auto: the options' (direct) solver below the thresholds, the scalable path (FGMRES + "
                               "GAMG) above; direct: the options as given; scalable: always the scalable path",
                               "", kChoiceNames, 3, kChoiceNames[choice], &choice, nullptr));
-  PetscCall(PetscOptionsInt("-etfe_scalable_min_dof", "auto: the scalable path from this many DOF", "", min_dof,
-                            &min_dof, nullptr));
+  PetscCall(PetscOptionsInt("-etfe_scalable_min_dof",
+                            "auto: the scalable path from this many DOF (default: the crossover measured on this rank "
+                            "count where there is one, else 3000000, where MUMPS stops fitting a node)",
+                            "", min_dof, &min_dof, &min_dof_set));
   PetscCall(PetscOptionsInt("-etfe_scalable_min_ranks", "auto: the scalable path from this many ranks", "", min_ranks,
                             &min_ranks, nullptr));
   PetscOptionsEnd();
@@ -271,6 +285,12 @@ PetscErrorCode DecideLinearPath(MPI_Comm comm, PetscInt dof, LinearPath *path) {
     PetscCall(ApplyScalablePath());
     if (choice == kScalable)
       std::snprintf(why, sizeof why, "scalable path (FGMRES + GAMG), as -etfe_solver asks");
+    else if (big && !min_dof_set && crossover.dof > 0 && min_dof == crossover.dof)
+      std::snprintf(why, sizeof why,
+                    "scalable path (FGMRES + GAMG) chosen automatically: %" PetscInt_FMT
+                    " DOF on %d rank(s), from the crossover measured here at %" PetscInt_FMT
+                    " DOF (docs/solvers.md; -etfe_solver direct keeps the direct solver)",
+                    dof, path->ranks, crossover.dof);
     else
       std::snprintf(why, sizeof why,
                     "scalable path (FGMRES + GAMG) chosen automatically: %" PetscInt_FMT
@@ -278,13 +298,23 @@ PetscErrorCode DecideLinearPath(MPI_Comm comm, PetscInt dof, LinearPath *path) {
                     " (-etfe_solver direct keeps the direct solver)",
                     dof, path->ranks, big ? "from" : "ranks from", big ? "dof" : "ranks", big ? min_dof : min_ranks);
     PetscCall(PetscPrintf(comm, "  linear solver: %s\n", why));
-  } else {
+  } else if (choice == kDirectChoice || krylov) {
     std::snprintf(why, sizeof why, "the options' solver (%s)",
-                  choice == kDirectChoice ? "-etfe_solver direct"
-                  : krylov          ? "-etfe_solver auto: they name a Krylov method"
-                                    : "-etfe_solver auto: below the thresholds");
+                  choice == kDirectChoice ? "-etfe_solver direct" : "-etfe_solver auto: they name a Krylov method");
+  } else if (crossover.rows > 0) {
+    std::snprintf(why, sizeof why,
+                  "the options' solver: %" PetscInt_FMT " DOF below -etfe_scalable_min_dof %" PetscInt_FMT
+                  "; measured on %d rank(s) up to %" PetscInt_FMT " DOF, the scalable path %s",
+                  dof, min_dof, path->ranks, crossover.measured_max,
+                  crossover.dof > 0 ? "faster from the crossover" : "slower at every size");
+  } else {
+    std::snprintf(why, sizeof why,
+                  "the options' solver: %" PetscInt_FMT " DOF below -etfe_scalable_min_dof %" PetscInt_FMT
+                  "; no crossover measured on %d rank(s)",
+                  dof, min_dof, path->ranks);
   }
   path->why = why;
+  PetscCall(PetscInfo(nullptr, "linear path: %s\n", why));
   PetscCall(Classify(comm, path));
   path->outer_krylov = path->krylov_named;
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mat_type", &mat_set));
