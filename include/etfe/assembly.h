@@ -85,13 +85,13 @@ struct CellFields {
 PetscErrorCode ComputeCellFields(Problem *problem, Vec U, CellFields *fields, bool with_true_stress = true);
 
 // The unassembled tangent for domain decomposition (-mat_type is, PCBDDC; unassembled.cpp).
-// UnassembledDefaultType: before MatSetFromOptions, -pc_type bddc without -mat_type makes J a
-// MATIS. UnassembledCheckType: after it, sets problem->unassembled and refuses bddc on an
+// UnassembledDefaultType: before MatSetFromOptions, the unassembled linear path (PC bddc,
+// problem->linear_path) without -mat_type makes J a MATIS. UnassembledCheckType: after it, sets problem->unassembled and refuses bddc on an
 // assembled matrix and MATIS with gas chambers. UnassembledMatrixSetUp: the local matrix over
 // the rank's element nodes, exactly preallocated. UnassembledAddElement: one element block by
 // local ids. UnassembledAddConstraintDiagonal: the constrained rows' unit diagonal, split over
 // the subdomains sharing each node (after assembly).
-PetscErrorCode UnassembledDefaultType(Mat J);
+PetscErrorCode UnassembledDefaultType(const Problem *problem);
 PetscErrorCode UnassembledCheckType(Problem *problem);
 PetscErrorCode UnassembledMatrixSetUp(Problem *problem);
 PetscErrorCode UnassembledAddElement(Mat J, const int tri[3], const PetscScalar K[81]);

@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "etfe/linear_path.h"
 #include "etfe/material.h"
 #include "etfe/mesh/local_mesh.h"
 #include "etfe/scene.h"
@@ -93,6 +94,9 @@ struct Problem {
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
   PetscBool near_null_space = PETSC_FALSE;  // rigid-body modes attached to J (AMG preconditioners)
+  // The linear solver path, decided before the problem is built (linear_path.h): the matrix
+  // format, the memory check and the solver set-up read it.
+  LinearPath linear_path;
   // J is unassembled (MATIS, -mat_type is: domain decomposition); constraint_unit: 1 at the owned
   // constrained DOFs, their diagonal (unassembled.cpp).
   PetscBool unassembled = PETSC_FALSE;

@@ -8,7 +8,8 @@
 #include "etfe/contact.h"
 #include "etfe/input_plausibility.h"
 #include "etfe/material.h"
-#include "linear_path.h"
+#include "etfe/linear_path.h"
+#include "memory_check.h"
 #include "solver_defaults.h"
 
 namespace etfe {
@@ -25,14 +26,18 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
     PetscCall(MaterialCreateFromOptions(comm, &material));
     PetscCall(MaterialCheckPlausible(comm, *material));
   }
+  // The linear path first: it may name the matrix type and the near-null space the problem reads,
+  // and whether it fits the nodes' memory is known before anything large is made.
+  LinearPath path;
   {
-    // The linear path first: it may name the matrix type and the near-null space the problem reads.
     PetscInt nodes = (PetscInt)scene.mesh.coords.size() / 3;
     PetscCallMPI(MPI_Bcast(&nodes, 1, MPIU_INT, 0, comm));  // rank 0 alone holds the mesh
-    PetscCall(ChooseLinearPath(comm, nodes));
+    PetscCall(DecideLinearPath(comm, 3 * nodes, &path));
+    PetscCall(CheckMemoryFits(comm, path));
   }
   auto *P = new Problem();
   c->P = P;
+  P->linear_path = std::move(path);
   P->thickness = scene.thickness;
   PetscCall(MembraneOptionsFromCommandLine(comm, P));
   PetscCall(ReportPlausibility(comm, CheckThickness(P->thickness)));

@@ -13,7 +13,7 @@
 #include "etfe/material.h"
 #include "etfe/output.h"
 #include "etfe/problem.h"
-#include "solver_defaults.h"
+#include "etfe/linear_path.h"
 
 namespace etfe {
 

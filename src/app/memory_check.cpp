@@ -1,9 +1,6 @@
 // Whether the chosen linear solver fits the nodes' memory (memory_check.h).
 #include "memory_check.h"
 
-
-#include <petscksp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,117 +10,6 @@
 namespace etfe {
 
 namespace {
-
-// Peak memory per DOF of a whole run (all ranks of a node together), measured with this code on
-// the clamped membrane and DD1511 (docs/solvers.md, "The largest run here"). Lower ends of what
-// was measured, so that a refusal means the run cannot fit, not that it might not.
-struct PathMemory {
-  const char *name;
-  double kb_per_dof;
-};
-const PathMemory kDirect = {"a sparse direct factorization", 2.5};  // MUMPS, 1.5e6 DOF: 3.8 GB, grows as N log N
-const PathMemory kGamg = {"FGMRES + GAMG", 2.1};                    // 1.5e6 DOF, one rank: 3.2 GB
-const PathMemory kLean = {"a Krylov method", 1.1};                  // GMRES(20) + BoomerAMG on J, 1.5e7 DOF: 16.3 GB
-
-// A factorization's memory is what matters wherever the factor PC sits.
-PetscErrorCode IsFactor(PC pc, PetscBool *factor) {
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, factor, PCLU, PCCHOLESKY, ""));
-  PetscFunctionReturn(0);
-}
-
-// The path of a PC that is not a composite one.
-PetscErrorCode PathOfPC(PC pc, PathMemory *path) {
-  PetscBool factor, bddc, gamg;
-  PetscFunctionBeginUser;
-  PetscCall(IsFactor(pc, &factor));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCBDDC, &bddc));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &gamg));
-  *path = factor ? kDirect : bddc ? PathMemory{"BDDC (direct subdomain factorizations)", kDirect.kb_per_dof}
-          : gamg ? kGamg : kLean;
-  PetscFunctionReturn(0);
-}
-
-// Block Jacobi and additive Schwarz make their blocks' solvers only at set-up with a matrix: an
-// identity of 64 rows per rank (room for several blocks a rank; nothing is factored before a
-// solve) gives them, configured from the options as the real ones will be. A set-up the probe
-// cannot make (more blocks asked for than it has rows) counts as a Krylov method: the check
-// never refuses a run for its own sake.
-PetscErrorCode PathOfBlocks(PC pc, PetscBool asm_pc, PathMemory *path) {
-  const PetscInt rows = 64;
-  MPI_Comm comm;
-  Mat A;
-  KSP *sub = nullptr;
-  PetscInt nlocal = 0, first = 0, row0;
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectGetComm((PetscObject)pc, &comm));
-  PetscCall(MatCreateAIJ(comm, rows, rows, PETSC_DETERMINE, PETSC_DETERMINE, 1, nullptr, 0, nullptr, &A));
-  PetscCall(MatGetOwnershipRange(A, &row0, nullptr));
-  for (PetscInt i = row0; i < row0 + rows; ++i) PetscCall(MatSetValue(A, i, i, 1.0, INSERT_VALUES));
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(PCSetOperators(pc, A, A));
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-  PetscErrorCode ierr = PCSetUp(pc);
-  if (!ierr) ierr = asm_pc ? PCASMGetSubKSP(pc, &nlocal, &first, &sub) : PCBJacobiGetSubKSP(pc, &nlocal, &first, &sub);
-  PetscCall(PetscPopErrorHandler());
-  *path = kLean;
-  PetscBool factor = PETSC_FALSE;
-  if (!ierr && nlocal > 0) {
-    PC subpc;
-    PetscCall(KSPSetFromOptions(sub[0]));
-    PetscCall(KSPGetPC(sub[0], &subpc));
-    PetscCall(IsFactor(subpc, &factor));
-  }
-  PetscInt any = factor ? 1 : 0;  // every rank's blocks decide alike
-  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPIU_INT, MPI_MAX, comm));
-  if (any) *path = {asm_pc ? "additive Schwarz with factored blocks" : "block Jacobi with factored blocks",
-                    kDirect.kb_per_dof};
-  PetscCall(MatDestroy(&A));
-  PetscFunctionReturn(0);
-}
-
-// The linear path as PETSc builds it from the options: a KSP configured as the solver's is
-// (CreateSolver: preonly + LU, then the options), inspected by type. *copies: how many times
-// the whole system is held (PCREDUNDANT: once per subcommunicator; otherwise 1).
-PetscErrorCode ChosenPath(MPI_Comm comm, PathMemory *path, double *copies) {
-  KSP ksp;
-  PC pc;
-  PetscBool redundant, bjacobi, asm_pc;
-  PetscFunctionBeginUser;
-  *copies = 1.0;
-  PetscCall(KSPCreate(comm, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-  PetscCall(KSPSetFromOptions(ksp));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCREDUNDANT, &redundant));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCBJACOBI, &bjacobi));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCASM, &asm_pc));
-  if (redundant) {
-    // Each subcommunicator solves the whole system with the inner solver.
-    KSP inner;
-    PC inner_pc;
-    PetscMPIInt size, inner_size;
-    PetscCall(PCRedundantGetKSP(pc, &inner));
-    PetscCall(KSPSetFromOptions(inner));
-    PetscCall(KSPGetPC(inner, &inner_pc));
-    PetscCall(PathOfPC(inner_pc, path));
-    PetscCallMPI(MPI_Comm_size(comm, &size));
-    PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)inner), &inner_size));
-    *copies = (double)size / inner_size;
-    static char name[160];  // the path's name for the message, made once per run
-    std::snprintf(name, sizeof name, "%s of the whole system on each of %d rank group(s) (PC redundant)",
-                  path->name, (int)*copies);
-    path->name = name;
-  } else if (bjacobi || asm_pc) {
-    PetscCall(PathOfBlocks(pc, asm_pc, path));
-  } else {
-    PetscCall(PathOfPC(pc, path));
-  }
-  PetscCall(KSPDestroy(&ksp));
-  PetscFunctionReturn(0);
-}
 
 // kB from /proc/meminfo's line `key`, or 0.
 double MeminfoKb(const char *key) {
@@ -177,7 +63,7 @@ NodeMemory ReadNodeMemory(double node_gb) {
 
 } // namespace
 
-PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
+PetscErrorCode CheckMemoryFits(MPI_Comm comm, const LinearPath &path) {
   PetscBool check = PETSC_TRUE;
   PetscReal node_gb = 0.0;
   MPI_Comm node;
@@ -205,10 +91,8 @@ PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
   PetscCallMPI(MPI_Comm_size(node, &here));
   PetscCallMPI(MPI_Comm_rank(node, &node_rank));
   PetscCallMPI(MPI_Comm_free(&node));
-  PathMemory path = kLean;
-  double copies = 1.0;
-  PetscCall(ChosenPath(comm, &path, &copies));
-  const double need_gb = path.kb_per_dof * 1e3 * (double)dof * copies * here / size / 1e9;
+  const PetscInt dof = path.dof;
+  const double need_gb = path.kb_per_dof * 1e3 * (double)dof * path.copies * here / size / 1e9;
   const NodeMemory mem = ReadNodeMemory(node_gb);
   // The tightest node decides; its first rank speaks for it.
   struct {
@@ -221,7 +105,7 @@ PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof) {
   PetscCallMPI(MPI_Bcast(v, 5, MPI_DOUBLE, worst.rank, comm));
   char where[512];
   std::snprintf(where, sizeof where, "%.3g GB on the node of rank %d (%d of the run's %d rank(s); %s: ~%.1f kB per DOF "
-                "as measured with this code, %" PetscInt_FMT " DOF)", v[0], worst.rank, (int)v[3], size, path.name,
+                "as measured with this code, %" PetscInt_FMT " DOF)", v[0], worst.rank, (int)v[3], size, path.memory_name,
                 path.kb_per_dof, dof);
   const char *ways = "Ways out: more nodes (the estimate is per node: spread the ranks over machines with mpirun's "
                      "host list or the batch scheduler), a leaner linear solver (-options_file "

@@ -6,13 +6,15 @@
 #pragma once
 #include <petscsys.h>
 
+#include "etfe/linear_path.h"
+
 namespace etfe {
 
 // Reads -etfe_memory_check and -etfe_memory_node_gb. Refuses (an error naming the estimate, the
 // node's memory and the ways out) when the estimate exceeds a node's memory (its physical memory,
 // or the batch job's memory limit where the control group sets one); prints a warning when it
-// exceeds what the node has available now. Collective; call it once the linear path's options are
-// in the options database.
-PetscErrorCode CheckMemoryFits(MPI_Comm comm, PetscInt dof);
+// exceeds what the node has available now. The estimate is the decided path's memory per DOF
+// (linear_path.h) times its DOF. Collective.
+PetscErrorCode CheckMemoryFits(MPI_Comm comm, const LinearPath &path);
 
 } // namespace etfe

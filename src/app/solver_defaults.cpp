@@ -8,52 +8,20 @@
 #include "etfe/linesearch.h"
 #include "etfe/pc_refresh.h"
 #include "etfe/pc_shift.h"
+#include "etfe/solver_needs.h"
 #include "etfe/tangent_shift.h"
 
 namespace etfe {
 
-PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof) {
-  PetscFunctionBeginUser;
-  *max_dof = 0;
-  PetscOptionsBegin(comm, nullptr, "Linear solver", "PC");
-  PetscCall(PetscOptionsInt(
-      "-etfe_lu_native_max_dof",
-      "On one rank, systems up to this many DOF are factored with PETSc's own LU (AMD ordering) "
-      "unless -pc_factor_mat_solver_type names a package; 0: always MUMPS",
-      "", *max_dof, max_dof, nullptr));
-  PetscOptionsEnd();
-  PetscFunctionReturn(0);
-}
-
-// Measured (-log_view, MatLUFactorNum per factorization): PD15a, 2 340 DOF: PETSc's LU 1.25 ms
-// against MUMPS's ~4.5 ms (its analysis and distribution overheads dominate a small system);
-// Hencky, 5 403 DOF: 15 vs 10 ms; DD1511 on 10^4 triangles, 30 k DOF: 35 vs 23 ms. Whenever MUMPS
-// factors, its workspace margin ICNTL(14) defaults to 200 % unless the options set it: the stiff
-// contact penalties delay pivots and need more than MUMPS's own 20 %.
+// The package the linear path chose (linear_path.h) where the options name none.
 PetscErrorCode ChooseLUPackage(Problem *P, PC pc) {
-  char pkg[64] = "", pctype[64] = "";
-  PetscBool pkg_set = PETSC_FALSE, pc_set = PETSC_FALSE, icntl14 = PETSC_FALSE;
-  PetscInt max_dof;
   PetscFunctionBeginUser;
-  PetscCall(LUNativeMaxDofFromOptions(P->comm, &max_dof));
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_factor_mat_solver_type", pkg, sizeof pkg,
-                                  &pkg_set));
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, "-pc_type", pctype, sizeof pctype, &pc_set));
-  const bool native = P->size == 1 && 3 * P->mesh.num_nodes_global <= max_dof;
-  if (!pkg_set) {
-    PetscCall(PCFactorSetMatSolverType(pc, native ? MATSOLVERPETSC : MATSOLVERMUMPS));
-    if (native) PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGAMD));
-  }
-  const bool factor = !pc_set || !std::strcmp(pctype, PCLU) || !std::strcmp(pctype, PCCHOLESKY);
-  const bool mumps = factor && (pkg_set ? !std::strcmp(pkg, MATSOLVERMUMPS) : !native);
-  // Asking reads the option: a -mat_mumps_icntl_14 that does not apply (options/solvers/mumps_lu.opts
-  // sets it, then another package or PC is chosen) is not reported as never used at the end.
-  PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &icntl14));
-  if (mumps && !icntl14) {
-    PetscCall(PetscOptionsSetValue(nullptr, "-mat_mumps_icntl_14", "200"));
-    // The program's own default, not the user's: read here, so that a run in which MUMPS never
-    // factors (every increment converged without a Newton step) does not call it never used.
-    PetscCall(PetscOptionsHasName(nullptr, nullptr, "-mat_mumps_icntl_14", &icntl14));
+  const LinearPath &path = P->linear_path;
+  if (path.lu_native) {
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERPETSC));
+    PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGAMD));
+  } else if (!path.lu_package_named) {
+    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   }
   PetscFunctionReturn(0);
 }
@@ -70,8 +38,9 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(VecDestroy(&F));
   // Sealed gas chambers: Newton's matrix is the sparse tangent plus their rank-one stiffness
   // (chamber.h), solved by GMRES preconditioned with the sparse tangent's factorization.
-  const bool lrc = P->chambers && P->chambers->may_seal;
-  PetscCall(SNESSetJacobian(*snes, lrc ? P->chambers->J : P->J, P->J, FormShiftedJacobian, P));
+  LinearPathTakeNeeds(&P->linear_path, ProblemSolverNeeds(*P));
+  const bool lrc = P->linear_path.needs.krylov_outer;
+  PetscCall(SNESSetJacobian(*snes, lrc && P->chambers ? P->chambers->J : P->J, P->J, FormShiftedJacobian, P));
   PetscCall(SNESSetType(*snes, SNESNEWTONLS));
   PetscCall(SNESSetTolerances(*snes, 1e-9, 1e-10, 1e-14, 30, 10000));
   PetscCall(SNESGetKSP(*snes, &ksp));

@@ -7,10 +7,8 @@
 
 namespace etfe {
 
-// -etfe_lu_native_max_dof: up to this many DOF on one rank, PETSc's own LU (0: always MUMPS).
-PetscErrorCode LUNativeMaxDofFromOptions(MPI_Comm comm, PetscInt *max_dof);
-// The LU package of pc when the options name none (PETSc's own LU with AMD for small systems on
-// one rank, MUMPS otherwise), and MUMPS's workspace margin when MUMPS factors.
+// The LU package of pc when the options name none, as the linear path decided (P->linear_path:
+// PETSc's own LU with AMD for small systems on one rank, MUMPS otherwise).
 PetscErrorCode ChooseLUPackage(Problem *P, PC pc);
 // The SNES of P (residual, Jacobian, tolerances, KSP/PC, line search) with the defaults above,
 // then SNESSetFromOptions: options files and the command line override every default.

@@ -33,7 +33,7 @@ static PetscErrorCode CreateMatrix(Problem *P, const std::vector<PetscInt> &d_nn
   PetscCall(PetscOptionsHasName(nullptr, nullptr, "-layer_contact", &layers));
   PetscCall(MatSetType(P->J, layers ? MATAIJ : MATBAIJ));
   PetscCall(MatSetOptionsPrefix(P->J, nullptr));
-  PetscCall(UnassembledDefaultType(P->J));
+  PetscCall(UnassembledDefaultType(P));
   PetscCall(MatSetFromOptions(P->J));
   PetscCall(UnassembledCheckType(P));
   if (P->unassembled) {

@@ -9,7 +9,6 @@
 // that share the node (MatDiagonalSet on MATIS divides by the multiplicity), so every local
 // matrix is regular at its constrained DOFs and the sum is the assembled matrix's identity row.
 #include <algorithm>
-#include <cstring>
 
 #include "etfe/assembly.h"
 
@@ -34,32 +33,19 @@ std::vector<PetscInt> LocalBlockNonzeros(const LocalMesh &m) {
   return nnz;
 }
 
-PetscErrorCode OptionString(const char *name, char *value, size_t len, PetscBool *set) {
-  PetscFunctionBeginUser;
-  value[0] = 0;
-  PetscCall(PetscOptionsGetString(nullptr, nullptr, name, value, len, set));
-  PetscFunctionReturn(0);
-}
-
 } // namespace
 
-PetscErrorCode UnassembledDefaultType(Mat J) {
-  char pc[64], mat[64];
-  PetscBool pc_set, mat_set;
+PetscErrorCode UnassembledDefaultType(const Problem *P) {
   PetscFunctionBeginUser;
-  PetscCall(OptionString("-pc_type", pc, sizeof pc, &pc_set));
-  PetscCall(OptionString("-mat_type", mat, sizeof mat, &mat_set));
-  if (pc_set && !std::strcmp(pc, PCBDDC) && !mat_set) PetscCall(MatSetType(J, MATIS));
+  if (P->linear_path.kind == LinearPath::Kind::unassembled && !P->linear_path.mat_type_named)
+    PetscCall(MatSetType(P->J, MATIS));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode UnassembledCheckType(Problem *P) {
-  char pc[64];
-  PetscBool pc_set;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectTypeCompare((PetscObject)P->J, MATIS, &P->unassembled));
-  PetscCall(OptionString("-pc_type", pc, sizeof pc, &pc_set));
-  PetscCheck(P->unassembled || !pc_set || std::strcmp(pc, PCBDDC), P->comm, PETSC_ERR_ARG_INCOMP,
+  PetscCheck(P->unassembled || P->linear_path.kind != LinearPath::Kind::unassembled, P->comm, PETSC_ERR_ARG_INCOMP,
              "-pc_type bddc needs the unassembled tangent: drop -mat_type (bddc then takes -mat_type is) or give "
              "-mat_type is");
   PetscFunctionReturn(0);

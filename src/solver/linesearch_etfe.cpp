@@ -1,7 +1,8 @@
 // The "etfe" line search. Newton on membranes fails in recognisable ways: a full step folds an
 // element through itself (a slack region), the linear solve is inaccurate (stiff penalties,
 // near-singular tangents), or the residual grows far from the solution. This line search
-//   1. checks the true residual |J y - F| / |F| of the Newton direction (warns, fails when large);
+//   1. checks the true residual |J y - F| / |F| of the Newton direction (warns, fails when large;
+//      with an inexact Newton method, -snes_ksp_ew, against what the Krylov solve was asked for);
 //   2. caps the largest nodal update at -snes_linesearch_etfe_max_update (mm);
 //   3. halves the step while the trial collapses or flips an element or gives a non-finite
 //      residual (the "domain" of the membrane);
@@ -30,32 +31,60 @@ struct EtfeLineSearch {
   PetscReal linear_warn = 1e-6, linear_fail = 1e-2;
   PetscBool check_linear = PETSC_TRUE;
   PetscReal armijo = 1e-4;
+  // Inexact Newton (-snes_ksp_ew): the Krylov solve is asked for |J y - F| <= eta_k |F| only, eta_k
+  // up to 0.9 far from the answer; the check then fails a direction only past inexact_factor
+  // eta_k, and never accepts one past inexact_max (nearer 1, y is hardly a descent direction).
+  PetscReal inexact_factor = 10.0, inexact_max = 0.9;
 };
 
-// r is scratch (the line search's trial residual, overwritten by the trials that follow).
+// The forcing term eta_k the Krylov solve was asked for (its relative tolerance, which
+// Eisenstat-Walker sets before each solve), or 0 when Newton's directions are meant to be exact.
+PetscErrorCode ForcingTerm(SNES snes, PetscReal *eta) {
+  PetscBool ew;
+  KSP ksp;
+  PetscFunctionBeginUser;
+  *eta = 0.0;
+  PetscCall(SNESKSPGetUseEW(snes, &ew));
+  if (!ew) PetscFunctionReturn(0);
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetTolerances(ksp, eta, nullptr, nullptr, nullptr));
+  PetscFunctionReturn(0);
+}
+
+// r is scratch (the line search's trial residual, overwritten by the trials that follow). eta:
+// the forcing term (ForcingTerm); *rel: |J y - F| / |F| (eta when the check is off).
 PetscErrorCode CheckLinearResidual(SNESLineSearch ls, EtfeLineSearch *d, Vec F, Vec Y, Vec r,
-                                   PetscReal fnorm, PetscBool *ok) {
+                                   PetscReal fnorm, PetscReal eta, PetscReal *rel, PetscBool *ok) {
   SNES snes;
   Mat J;
   PetscReal rnorm;
   PetscFunctionBeginUser;
   *ok = PETSC_TRUE;
+  *rel = eta;
   PetscCall(SNESLineSearchGetSNES(ls, &snes));
   PetscCall(SNESGetJacobian(snes, &J, nullptr, nullptr, nullptr));
-  if (!J || fnorm == 0.0) PetscFunctionReturn(0);
+  if (!d->check_linear || !J || fnorm == 0.0) PetscFunctionReturn(0);
   PetscCall(MatMult(J, Y, r));
   PetscCall(VecAXPY(r, -1.0, F));
   PetscCall(VecNorm(r, NORM_2, &rnorm));
-  const PetscReal rel = rnorm / fnorm;
-  if (!(rel <= d->linear_fail)) {
-    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ls),
-                          "  line search: linear solve inaccurate, |J y - F|/|F| = %.3e > %.1e "
-                          "(singular or ill-conditioned tangent: check supports, penalties, "
-                          "-pc_factor_mat_solver_type)\n",
-                          (double)rel, (double)d->linear_fail));
+  *rel = rnorm / fnorm;
+  const PetscReal bound = PetscMax(d->linear_fail, PetscMin(d->inexact_max, d->inexact_factor * eta));
+  if (!(*rel <= bound)) {
+    if (eta > 0)
+      PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ls),
+                            "  line search: linear solve inaccurate, |J y - F|/|F| = %.3e > %.1e (inexact Newton: "
+                            "asked for %.1e; the preconditioner does not carry this tangent: -ksp_max_it, "
+                            "-snes_ksp_ew_rtolmax)\n",
+                            (double)*rel, (double)bound, (double)eta));
+    else
+      PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ls),
+                            "  line search: linear solve inaccurate, |J y - F|/|F| = %.3e > %.1e "
+                            "(singular or ill-conditioned tangent: check supports, penalties, "
+                            "-pc_factor_mat_solver_type)\n",
+                            (double)*rel, (double)bound));
     *ok = PETSC_FALSE;
-  } else if (rel > d->linear_warn) {
-    PetscCall(PetscInfo(ls, "linear solve residual |J y - F|/|F| = %g\n", (double)rel));
+  } else if (*rel > d->linear_warn) {
+    PetscCall(PetscInfo(ls, "linear solve residual |J y - F|/|F| = %g (forcing term %g)\n", (double)*rel, (double)eta));
   }
   PetscFunctionReturn(0);
 }
@@ -96,9 +125,12 @@ struct Backtracking {
 };
 
 // Halves the step from b->lambda while the trial W = X - lambda Y collapses or flips an element,
-// makes the residual G non-finite, or does not decrease |F| sufficiently (Armijo).
+// makes the residual G non-finite, or does not decrease |F| sufficiently: Armijo, |G| <= (1 - c
+// lambda (1 - eta)) |F| with eta the direction's linear residual |J y - F|/|F| under inexact Newton
+// (Eisenstat and Walker's globalization: the linear model itself promises only that much
+// decrease), 0 otherwise.
 PetscErrorCode Backtrack(SNESLineSearch ls, EtfeLineSearch *d, Vec X, Vec Y, Vec W, Vec G, PetscReal fnorm,
-                         Backtracking *b) {
+                         PetscReal eta, Backtracking *b) {
   Problem *P = d->problem;
   SNES snes;
   PetscBool ok;
@@ -127,7 +159,7 @@ PetscErrorCode Backtrack(SNESLineSearch ls, EtfeLineSearch *d, Vec X, Vec Y, Vec
       PetscCall(PetscViewerASCIIPrintf(monitor, "    Line search etfe: lambda %g |F| %.6e -> %.6e\n",
                                        (double)b->lambda, (double)fnorm, (double)b->gnorm));
     if (PetscIsInfOrNanReal(b->gnorm)) continue;
-    if (b->gnorm <= (1.0 - d->armijo * b->lambda) * fnorm) {
+    if (b->gnorm <= (1.0 - d->armijo * b->lambda * (1.0 - eta)) * fnorm) {
       b->accepted = PETSC_TRUE;
       break;
     }
@@ -151,15 +183,15 @@ PetscErrorCode Apply(SNESLineSearch ls) {
   PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_SUCCEEDED));
   if (ls->norms) PetscCall(VecNorm(F, NORM_2, &fnorm));
 
-  if (d->check_linear) {
-    PetscCall(CheckLinearResidual(ls, d, F, Y, G, fnorm, &ok));
-    if (!ok) {
-      PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_USER));
-      PetscFunctionReturn(0);
-    }
+  PetscReal eta, rel;
+  PetscCall(ForcingTerm(snes, &eta));
+  PetscCall(CheckLinearResidual(ls, d, F, Y, G, fnorm, eta, &rel, &ok));
+  if (!ok) {
+    PetscCall(SNESLineSearchSetReason(ls, SNES_LINESEARCH_FAILED_USER));
+    PetscFunctionReturn(0);
   }
   PetscCall(InitialStepLength(ls, d, Y, &b.lambda));
-  PetscCall(Backtrack(ls, d, X, Y, W, G, fnorm, &b));
+  PetscCall(Backtrack(ls, d, X, Y, W, G, fnorm, eta > 0 ? PetscMin(rel, d->inexact_max) : 0.0, &b));
   if (!b.accepted) {
     if (b.best_lambda > 0.0 && b.best_norm < fnorm) {
       b.lambda = b.best_lambda;
@@ -199,6 +231,19 @@ PetscErrorCode SetFromOptions(SNESLineSearch ls, PetscOptionItems *PetscOptionsO
   PetscCall(PetscOptionsReal("-snes_linesearch_etfe_linear_fail",
                              "Fail the step when |J y - F|/|F| exceeds this", "", d->linear_fail,
                              &d->linear_fail, nullptr));
+  PetscCall(PetscOptionsReal("-snes_linesearch_etfe_inexact_factor",
+                             "Inexact Newton (-snes_ksp_ew): fail the step when |J y - F|/|F| exceeds this many times "
+                             "the forcing term the Krylov solve was asked for (and -snes_linesearch_etfe_linear_fail)",
+                             "", d->inexact_factor, &d->inexact_factor, nullptr));
+  PetscCall(PetscOptionsReal("-snes_linesearch_etfe_inexact_max",
+                             "Inexact Newton (-snes_ksp_ew): never accept a direction with |J y - F|/|F| above this "
+                             "(< 1: a descent direction for |F|)",
+                             "", d->inexact_max, &d->inexact_max, nullptr));
+  PetscCheck(d->inexact_factor >= 1 && d->inexact_max > 0 && d->inexact_max < 1, PetscObjectComm((PetscObject)ls),
+             PETSC_ERR_ARG_OUTOFRANGE,
+             "-snes_linesearch_etfe_inexact_factor %g, -snes_linesearch_etfe_inexact_max %g: give a factor >= 1 and "
+             "a bound in (0, 1)",
+             (double)d->inexact_factor, (double)d->inexact_max);
   PetscOptionsHeadEnd();
   PetscFunctionReturn(0);
 }

@@ -121,7 +121,7 @@ PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, Incre
   PetscCall(WorstNode(P, s.F, &f->worst_node, &f->worst));
   f->bad_element = P->diagnostics.bad_element;
   f->bad_status = P->diagnostics.bad_status;
-  f->stiff_penalty = P->contact && P->contact->params.kn > 1e5 * P->AxialStiffness();
+  f->stiff_penalty = P->linear_path.needs.penalty;  // what the physics asked of the solver (solver_needs.cpp)
   f->load_max_it = inc.max_it < s.snes_max_it;
   {
     KSP ksp;
