@@ -4,7 +4,6 @@
 #include <cstring>
 
 #include "etfe/assembly.h"
-#include "etfe/chamber.h"
 #include "etfe/linesearch.h"
 #include "etfe/pc_refresh.h"
 #include "etfe/pc_shift.h"
@@ -70,8 +69,9 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   PetscCall(VecDestroy(&F));
   // Sealed gas chambers: Newton's matrix is the sparse tangent plus their rank-one stiffness
   // (chamber.h), solved by GMRES preconditioned with the sparse tangent's factorization.
-  const bool lrc = P->chambers && P->chambers->may_seal;
-  PetscCall(SNESSetJacobian(*snes, lrc ? P->chambers->J : P->J, P->J, FormShiftedJacobian, P));
+  const TermSolverNeeds needs = ProblemSolverNeeds(*P);
+  const bool lrc = needs.krylov_outer;
+  PetscCall(SNESSetJacobian(*snes, needs.outer ? needs.outer : P->J, P->J, FormShiftedJacobian, P));
   PetscCall(SNESSetType(*snes, SNESNEWTONLS));
   PetscCall(SNESSetTolerances(*snes, 1e-9, 1e-10, 1e-14, 30, 10000));
   PetscCall(SNESGetKSP(*snes, &ksp));

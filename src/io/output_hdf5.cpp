@@ -57,7 +57,7 @@ std::vector<const OutputField *> FieldsWritten(const Problem *P, bool open) {
     case FieldWhen::Step: on = !open; break;
     case FieldWhen::Plastic: on = !open && P->material->HasPlasticStrain(); break;
     case FieldWhen::Wrinkling: on = !open && P->wrinkling; break;
-    case FieldWhen::Contact: on = !open && P->contact; break;
+    case FieldWhen::Contact: on = !open && FindTerm<ContactSet>(*P); break;
     }
     if (on) rows.push_back(&f);
   }
@@ -228,8 +228,9 @@ XdmfIndex XdmfIndexOf(const OutputFile *out) {
   ix.name = P->scene.name;
   ix.rows[(int)Layout::Nodes] = P->mesh.num_nodes_global;
   ix.rows[(int)Layout::Cells] = P->mesh.num_elements_global;
-  ix.rows[(int)Layout::Pairs] = P->contact ? (long long)P->contact->num_global : 0;
-  ix.contact = P->contact != nullptr;
+  const ContactSet *contact = FindTerm<ContactSet>(*P);
+  ix.rows[(int)Layout::Pairs] = contact ? (long long)contact->num_global : 0;
+  ix.contact = contact != nullptr;
   ix.fields = out->step_fields;
   return ix;
 }
@@ -654,7 +655,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   if (!out->steps.empty() && out->steps.back().first == step) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(LogEvents().output, 0, 0, 0, 0));
   PetscCall(ComputeCellFields(P, U_fields ? U_fields : U, &v.cells));
-  if (P->contact) ContactValues(*P->contact, &v);
+  if (const ContactSet *contact = FindTerm<ContactSet>(*P)) ContactValues(*contact, &v);
   char name[64];
   std::snprintf(name, sizeof name, "steps/%06lld", (long long)step);
   hid_t g = H5Gcreate2(out->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -666,7 +667,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(H5WriteAttribute(out->path, g, "time", H5T_NATIVE_DOUBLE, &time));
   PetscCall(H5WriteAttribute(out->path, g, "stage", H5T_NATIVE_INT, &stage));
   PetscCall(H5WriteAttribute(out->path, g, "load_factor", H5T_NATIVE_DOUBLE, &factor));
-  if (P->contact) PetscCall(CreateGroup(out->path, g, "contact"));
+  if (FindTerm<ContactSet>(*P)) PetscCall(CreateGroup(out->path, g, "contact"));
   PetscCall(VecGetArrayRead(U, &v.displacement));
   PetscCall(VecGetArrayRead(P->reaction, &v.reaction));
   PetscCall(WriteFields(out, g, out->step_fields, v));

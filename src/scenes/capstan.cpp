@@ -51,15 +51,16 @@ PetscErrorCode CapstanStep(Problem *P, void *vctx, PetscInt step, double t, Pets
   PetscFunctionBeginUser;
   PetscCall(EndBTension(P, c, &t2));
   const std::vector<char> &is_b = c->is_b;
-  for (const ContactPair &pr : P->contact->pairs) {
+  const ContactSet &contact = *FindTerm<ContactSet>(*P);  // the scene's supports make it
+  for (const ContactPair &pr : contact.pairs) {
     if (is_b[pr.local_node]) continue;  // held by the grip: their slide is prescribed
     local[0] += pr.committed.status != CONTACT_OPEN;
     // Slipping, or sticking at the Coulomb limit: the lagged law commits a slipping pair whose
     // node stopped or turned back within the increment as sticking with its force still on the
     // cone (kernels/contact_law.cpp), so in gross slip pairs pass between the two; either way
     // their friction is fully mobilised. (The implicit law's sticking pairs lie inside the cone.)
-    const ContactPairReport r = ContactReport(*P->contact, pr);
-    const double limit = P->contact->params.mu * std::fabs(r.force[2]);
+    const ContactPairReport r = ContactReport(contact, pr);
+    const double limit = contact.params.mu * std::fabs(r.force[2]);
     local[1] += pr.committed.status == CONTACT_SLIP ||
                 (pr.committed.status == CONTACT_STICK && std::hypot(r.force[0], r.force[1]) >= limit * (1.0 - 1e-9));
   }
@@ -85,7 +86,7 @@ PetscErrorCode CapstanReport(Problem *P, void *vctx) {
              "capstan: no gross slip by the end of the pull (T2/T1 = %.4f); increase -capstan_pull",
              c->t2_last / c->t1);
   const double mu_eff = std::log(c->t2_onset / c->t1) / c->theta;
-  double mu = P->contact->params.mu;
+  double mu = FindTerm<ContactSet>(*P)->params.mu;
   PetscCall(PetscPrintf(P->comm,
                         "capstan: theta = %.6f rad, T1 = %.6e N, T2 at slip onset = %.6e N (step %" PetscInt_FMT "), "
                         "T2 at the end = %.6e N, exp(mu theta) = %.6f\n",
