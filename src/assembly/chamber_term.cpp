@@ -46,7 +46,15 @@ PetscErrorCode ChamberSet::Restore(Problem &P, const std::vector<TermData> &bloc
   return 0;
 }
 
-PetscErrorCode ChamberSet::Fields(const Problem &, std::vector<TermData> *) const {
+// At the last evaluation: the written state's (its residual, or the commit's ChamberUpdate).
+PetscErrorCode ChamberSet::Fields(const Problem &, std::vector<TermData> *fields) const {
+  TermData p, v;
+  p.name = "gauge_pressure", p.replicated = true, p.values = gauge, p.units = "MPa";
+  p.description = "gauge pressure of each gas chamber";
+  v.name = "volume", v.replicated = true, v.values = volume, v.units = "mm^3";
+  v.description = "volume each gas chamber encloses";
+  fields->push_back(std::move(p));
+  fields->push_back(std::move(v));
   return 0;
 }
 

@@ -30,6 +30,7 @@ PetscInt NaturalOrder::GlobalRows(Layout layout) const {
   switch (layout) {
   case Layout::Nodes: return P->mesh.num_nodes_global;
   case Layout::Cells: return P->mesh.num_elements_global;
+  case Layout::Items: return 0;  // replicated: H5WriteRows, never scattered
   case Layout::Pairs: {
     PetscInt n = 0, first;
     std::vector<PetscInt> ids;

@@ -58,6 +58,7 @@ std::vector<const OutputField *> FieldsWritten(const Problem *P, bool open) {
     case FieldWhen::Plastic: on = !open && P->material->HasPlasticStrain(); break;
     case FieldWhen::Wrinkling: on = !open && P->wrinkling; break;
     case FieldWhen::Contact: on = !open && FindTerm<ContactSet>(*P); break;
+    case FieldWhen::Term: break;  // WriteTermFields
     }
     if (on) rows.push_back(&f);
   }
@@ -108,6 +109,35 @@ PetscErrorCode CreateGroup(const std::string &path, hid_t loc, const char *name)
   PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: cannot create the group %s in %s (disk full?)",
              name, path.c_str());
   H5Gclose(g);
+  PetscFunctionReturn(0);
+}
+
+// The physics terms' fields of a step (a chamber's pressure and volume), each the table's row
+// <term>/<field> in the term's group of the step, with that row's self-description.
+PetscErrorCode WriteTermFields(OutputFile *out, const Problem *P, hid_t g) {
+  PetscFunctionBeginUser;
+  for (const auto &term : P->terms) {
+    std::vector<TermData> fields;
+    PetscCall(term->Fields(*P, &fields));
+    if (fields.empty()) continue;
+    PetscCall(CreateGroup(out->path, g, term->Name()));
+    for (const TermData &d : fields) {
+      const std::string name = std::string(term->Name()) + "/" + d.name;
+      const int row = OutputFieldIndex(name);
+      PetscCheck(row >= 0 && kOutputFields[row].when == FieldWhen::Term && !std::strcmp(kOutputFields[row].units, d.units),
+                 P->comm, PETSC_ERR_PLIB,
+                 "the field %s [%s] of the physics term %s is not a row of the field table with those units "
+                 "(include/etfe/output_fields.h, FieldWhen::Term): add it there and to docs/results.md",
+                 name.c_str(), d.units, term->Name());
+      const OutputField &f = kOutputFields[row];
+      if (d.replicated)
+        PetscCall(H5WriteRows(out->path, g, f.name, H5T_NATIVE_DOUBLE, d.values.size(), 1, 0,
+                              P->rank == 0 ? d.values.size() : 0, d.values.data()));
+      else
+        PetscCall(H5WriteNatural(out->path, *out->order, g, f.name, d.layout, d.components, d.values.data(), f.integer));
+      PetscCall(DescribeField(out->path, g, f));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -671,6 +701,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(VecGetArrayRead(U, &v.displacement));
   PetscCall(VecGetArrayRead(P->reaction, &v.reaction));
   PetscCall(WriteFields(out, g, out->step_fields, v));
+  PetscCall(WriteTermFields(out, P, g));
   PetscCall(VecRestoreArrayRead(P->reaction, &v.reaction));
   PetscCall(VecRestoreArrayRead(U, &v.displacement));
   H5Gclose(g);
