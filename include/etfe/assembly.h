@@ -21,14 +21,17 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
 // The assembled tangent dR/dU (constrained rows and columns replaced by the identity); SNES
 // solves with it plus the tangent shift (FormShiftedJacobian, tangent_shift.h).
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
-// Viscous stabilization (stabilization.cpp): Begin makes the residual carry
-// relative * E h0 * (U - anchor) on free DOFs and the tangent its diagonal, until End;
-// MoveAnchor starts a proximal pass from U; Measure gives the force at U (StabilizingForce).
+// What the problem's physics terms ask of the linear solver, over all of them (physics_terms.cpp).
+TermSolverNeeds ProblemSolverNeeds(const Problem &problem);
+
+// Viscous stabilization (stabilization.cpp), a physics term every problem has (any load history
+// may need it): Begin makes the residual carry relative * E h0 * (U - anchor) on free DOFs and
+// the tangent its diagonal, until End; MoveAnchor starts a proximal pass from U; Measure gives
+// the force at U (StabilizingForce). AddStabilizationTerm: in the registry (MakePhysicsTerms).
+PetscErrorCode AddStabilizationTerm(Problem *problem);
 PetscErrorCode StabilizationBegin(Problem *problem, double relative, Vec anchor);
 PetscErrorCode StabilizationMoveAnchor(Problem *problem, Vec U);
 void StabilizationEnd(Problem *problem);
-PetscErrorCode AddStabilizationForce(Problem *problem, Vec U, Vec F);
-PetscErrorCode AddStabilizationTangent(Problem *problem, Mat J);
 // The 2-norm of the stabilizing force at U (N).
 PetscErrorCode StabilizationForceNorm(Problem *problem, Vec U, PetscReal *norm);
 // The stabilizing force f at a converged state U, given the film's internal forces Fint at U:
@@ -47,7 +50,6 @@ struct StabilizingForce {
   double applied_moment = 0.0;       // sum over the nodes of |x - c| |g| [N mm]
 };
 PetscErrorCode StabilizationMeasure(Problem *problem, Vec U, Vec Fint, StabilizingForce *force);
-PetscErrorCode StabilizationDestroy(Problem *problem);
 // The largest committed equivalent plastic strain, its element (natural id, -1 without a
 // plastic law) and that element's reference centroid [mm] (collective).
 PetscErrorCode LargestPlasticStrain(Problem *problem, double *value, PetscInt *element, double centroid[3]);

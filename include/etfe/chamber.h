@@ -1,7 +1,7 @@
 // Gas chambers as a component of the problem (assembly layer, src/assembly/chamber.cpp): exists
 // only when the scene has chambers (SceneSpec::chambers); without them nothing here is allocated
 // or run. Each chamber's volume and gauge pressure are evaluated at every residual (collective:
-// one reduction), the pressure acting on its boundary's pressure loads (Problem::pressures with
+// one reduction), the pressure acting on its boundary's pressure loads (pressure_term.h, with
 // its index). A chamber that can be sealed adds the rank-one stiffness (kappa p_abs / V) g g^T to
 // the tangent without densifying the sparse matrix: Newton solves with J = A + U diag(c) U^T
 // (MATLRC, U the chambers' volume gradients g) preconditioned by the factored sparse A, which
@@ -11,11 +11,13 @@
 
 #include <vector>
 
+#include "etfe/physics_term.h"
+
 namespace etfe {
 
 struct Problem;
 
-struct ChamberSet {
+struct ChamberSet : PhysicsTerm {
   double atmosphere = 0.101325;            // MPa, absolute
   std::vector<double> volume, gauge;       // at the last evaluation (mm^3, MPa)
   std::vector<char> sealed;                // committed: the gas amount is fixed
@@ -29,11 +31,26 @@ struct ChamberSet {
   Mat U = nullptr;                         // dense, one column per chamber: dV/dx on free DOFs
   Vec c = nullptr;                         // kappa p_abs / V per sealed chamber, 0 otherwise
   Vec g_work = nullptr;                    // ghosted scratch for assembling g
+
+  // As a physics term (chamber_term.cpp): the volumes evaluated before the pressure loads read
+  // them, the rank-one tangent, the commit (sealing, release), the checkpoint's chamber_state,
+  // the pressures and volumes in the results and the Krylov solve around the sparse tangent.
+  const char *Name() const override { return "chambers"; }
+  PetscErrorCode Prepare(Problem &, const PetscScalar *u) override;
+  PetscErrorCode AddLocalForces(Problem &, const PetscScalar *u, PetscScalar *f, int *status, double *external2) override;
+  PetscErrorCode AddTangent(Problem &, Vec U, const PetscScalar *u, Mat A) override;
+  PetscErrorCode Commit(Problem &, double t) override;
+  PetscErrorCode State(const Problem &, std::vector<TermData> *blocks) const override;
+  PetscErrorCode Restore(Problem &, const std::vector<TermData> &blocks) override;
+  PetscErrorCode Fields(const Problem &, std::vector<TermData> *fields) const override;
+  TermSolverNeeds SolverNeeds() const override;
+  PetscErrorCode Destroy(Problem &) override;
 };
 
-// Creates the chambers of P->scene (after ProblemCreate); those sealed from stage 1 are sealed
-// with the supplied pressure at load time 0. Refuses two chambers on the same side of one foil.
-PetscErrorCode ChamberCreate(Problem *P);
+// Adds the chambers of P->scene as a term (nothing without them; after the pressure loads, which
+// it reads); those sealed from stage 1 are sealed with the supplied pressure at load time 0.
+// Refuses two chambers on the same side of one foil.
+PetscErrorCode AddChamberTerm(Problem *P);
 // Volumes and gauge pressures at the local displacement array u (owned and ghost nodes, the
 // element loops' array). Collective.
 PetscErrorCode ChamberEvaluate(Problem *P, const PetscScalar *u);
@@ -49,7 +66,6 @@ PetscErrorCode ChamberTangent(Problem *P, const PetscScalar *u);
 // not positive, unless it is supplied and layer contact between its own foils keeps them apart
 // (LayerContactKeepsApart): its foils have passed through each other. Collective.
 PetscErrorCode ChamberCommit(Problem *P, double t);
-PetscErrorCode ChamberDestroy(Problem *P);
 // The committed state a checkpoint keeps: per chamber sealed (0/1) and amount (then, with sealing
 // per stage, per chamber the release time and gauge).
 void ChamberStateGet(const Problem *P, std::vector<double> *state);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "etfe/kernels/contact_law.h"
+#include "etfe/physics_term.h"
 #include "etfe/scene.h"
 
 namespace etfe {
@@ -57,7 +58,7 @@ struct ContactPairReport {
   int status;
 };
 
-struct ContactSet {
+struct ContactSet : PhysicsTerm {
   ContactParameters params{};
   FrictionLaw law = FrictionLaw::Implicit;  // the law of the first stage
   // -contact_friction a,b,c: the law of each stage (the last one holds for the stages after it);
@@ -83,6 +84,26 @@ struct ContactSet {
   // Lagged law: an increment whose commit would change a pair's status is solved again with the
   // new statuses, at most this many times (0: the thesis's algorithm, statuses from time t only).
   PetscInt lagged_repeat = 0;
+  // The last commit's counts over all ranks: open, stick, slip, and pairs that lifted off.
+  PetscInt counts[4] = {0, 0, 0, 0};
+
+  // As a physics term (contact_term.cpp): pair forces in the local array, their stiffness, the
+  // commit, the lagged law's repeats, the checkpoint's contact_state, the penalties' round-off
+  // floor, the physics fingerprint's parameters, the rows of Layout::Pairs.
+  const char *Name() const override { return "contact"; }
+  PetscErrorCode AddLocalForces(Problem &, const PetscScalar *u, PetscScalar *f, int *status, double *external2) override;
+  PetscErrorCode AddTangent(Problem &, Vec U, const PetscScalar *u, Mat A) override;
+  PetscErrorCode Commit(Problem &, double t) override;
+  PetscErrorCode State(const Problem &, std::vector<TermData> *blocks) const override;
+  PetscErrorCode Restore(Problem &, const std::vector<TermData> &blocks) override;
+  PetscInt RepeatLimit() const override { return lagged_repeat; }
+  PetscErrorCode BeginRepeats(Problem &) override;
+  PetscErrorCode Revise(Problem &, PetscInt *changed) override;
+  PetscErrorCode UndoRevise(Problem &) override;
+  PetscErrorCode ForceFloor(Problem &, Vec X, double fnorm, double tol, double *floor) override;
+  void Fingerprint(Fnv64 &) const override;
+  bool PairRows(PetscInt *num_global, PetscInt *first, std::vector<PetscInt> *ids) const override;
+  TermSolverNeeds SolverNeeds() const override;
 };
 
 // The -contact_* options, read and range-checked once (collective). default_kn: the penalty when
@@ -98,9 +119,9 @@ struct ContactOptions {
 };
 PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,
                                              ContactOptions *options);
-// Reads the -contact_* options and creates the pairs of the scene's supports (collective).
-PetscErrorCode ContactCreate(Problem *problem, ContactSet **contact);
-PetscErrorCode ContactDestroy(ContactSet **contact);
+// With the scene's supports: reads the -contact_* options, creates the pairs and adds the term
+// (collective; nothing without supports).
+PetscErrorCode AddContactTerm(Problem *problem);
 // Force (global) and tangent of one pair at the film node's displacement u. The gap is
 // g0 + R u rather than R (x - M): penalty gaps are tiny (f/kn) next to the coordinates, and
 // the difference of positions would leave them with few significant digits.

@@ -15,7 +15,9 @@ namespace etfe {
 
 struct Problem;
 
-enum class Layout { Nodes = 0, Cells = 1, Pairs = 2 };
+// Rows of a dataset: per node, element, contact pair, or per item of a physics term (a gas
+// chamber), the same on every rank and written by rank 0 (no natural order to scatter to).
+enum class Layout { Nodes = 0, Cells = 1, Pairs = 2, Items = 3 };
 
 // One row scatter per layout, created on first use; a field of ncomp values per row moves
 // one component at a time, so the cache holds two vectors of one value per row and one index

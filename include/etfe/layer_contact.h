@@ -16,11 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "etfe/physics_term.h"
+
 namespace etfe {
 
 struct Problem;
 
-struct LayerContactSet {
+struct LayerContactSet : PhysicsTerm {
   double penalty = 0.01;                 // N/mm^3 (MPa per mm of penetration)
   std::vector<std::string> slaves, masters;
   std::vector<PetscInt> master_ids;      // PETSc ids of all master nodes (ascending)
@@ -41,17 +43,27 @@ struct LayerContactSet {
   VecScatter scatter = nullptr;
   PetscInt active = 0, paired = 0;       // global counts at the last evaluation / pairing
   double deepest = 0.0;                  // largest penetration at the last evaluation [mm]
+
+  // As a physics term (layer_contact_term.cpp): forces after the ghost sum, stiffness, pairs
+  // found again at each commit and restart, the checkpoint's layer_pairs.
+  const char *Name() const override { return "layer_contact"; }
+  PetscErrorCode AddGlobalForces(Problem &, Vec U, Vec F) override;
+  PetscErrorCode AddTangent(Problem &, Vec U, const PetscScalar *u, Mat A) override;
+  PetscErrorCode Commit(Problem &, double t) override;
+  PetscErrorCode Restarted(Problem &) override;
+  PetscErrorCode State(const Problem &, std::vector<TermData> *blocks) const override;
+  PetscErrorCode Restore(Problem &, const std::vector<TermData> &blocks) override;
+  PetscErrorCode Destroy(Problem &) override;
 };
 
-// Reads -layer_contact (does nothing without it); collective.
-PetscErrorCode LayerContactCreate(Problem *P);
+// Reads -layer_contact and adds the term (does nothing without it); collective.
+PetscErrorCode AddLayerContactTerm(Problem *P);
 // Pairs every slave node with the master triangle under it at the state U. Collective.
 PetscErrorCode LayerContactPair(Problem *P, Vec U);
 // Adds the contact forces to F (global, before the constrained rows are replaced). Collective.
 PetscErrorCode LayerContactResidual(Problem *P, Vec U, Vec F);
 // Adds the contact stiffness to the (not yet assembled) matrix. Collective.
 PetscErrorCode LayerContactJacobian(Problem *P, Vec U, Mat A);
-PetscErrorCode LayerContactDestroy(Problem *P);
 // Whether the pairs of c (nullptr: none) keep a chamber's surface groups apart: two or more
 // groups, each joined to the others by pairs between groups of the list (either way round). Only
 // then may a supplied chamber empty, its foils resting on each other. Otherwise *missing is a pair

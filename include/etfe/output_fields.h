@@ -19,8 +19,10 @@ namespace etfe {
 // As PyLith's vector_field_type: how a reader should treat the components of a row.
 enum class FieldKind { Scalar, Vector, Tensor, Other };
 // When a row is written: once at the file's creation (/mesh), in every step, or in every step of a
-// run with a plastic material, with -membrane_wrinkling tension_field, or with contact.
-enum class FieldWhen { Open, Step, Plastic, Wrinkling, Contact };
+// run with a plastic material, with -membrane_wrinkling tension_field, or with contact; Term: in
+// every step of a run whose problem has the physics term that gives it (PhysicsTerm::Fields: the
+// row <term name>/<field name>, its values from the term, not from OutputValues).
+enum class FieldWhen { Open, Step, Plastic, Wrinkling, Contact, Term };
 
 // The values the writer has at hand, in PETSc order on the owning rank (rows of `components`).
 struct OutputValues {
@@ -116,6 +118,10 @@ inline constexpr OutputField kOutputFields[] = {
      "contact_status", "0 open, 1 stick, 2 slip", [](const OutputValues &v) { return v.status.data(); }},
     {"contact/node", Layout::Pairs, 1, FieldKind::Scalar, true, "1", "contact_node", FieldWhen::Contact, nullptr,
      "scene id of the pair's film node (the XDMF's contact point set)", [](const OutputValues &v) { return v.node.data(); }},
+    {"chambers/gauge_pressure", Layout::Items, 1, FieldKind::Scalar, false, "MPa", "chamber_pressure", FieldWhen::Term,
+     nullptr, "gauge pressure of each gas chamber, the scene's chamber order (not in the XDMF: no mesh entity)", nullptr},
+    {"chambers/volume", Layout::Items, 1, FieldKind::Scalar, false, "mm^3", "chamber_volume", FieldWhen::Term, nullptr,
+     "volume each gas chamber encloses, the scene's chamber order (not in the XDMF: no mesh entity)", nullptr},
 };
 
 // The row of a dataset name, -1 when the table has none.
@@ -144,7 +150,8 @@ static_assert(ViewersAreOneName(), "an output field's viewer name is not one wor
 // The names the file uses, by enum value: vector_field_type, and the field table's location and
 // written columns.
 inline constexpr const char *kFieldKindName[] = {"scalar", "vector", "tensor", "other"};
-inline constexpr const char *kFieldLocationName[] = {"node", "cell", "contact pair"};  // by Layout
-inline constexpr const char *kFieldWhenName[] = {"once", "every step", "plastic material", "wrinkling", "contact"};
+inline constexpr const char *kFieldLocationName[] = {"node", "cell", "contact pair", "item"};  // by Layout
+inline constexpr const char *kFieldWhenName[] = {"once",      "every step", "plastic material",
+                                                 "wrinkling", "contact",    "with its term"};
 
 } // namespace etfe

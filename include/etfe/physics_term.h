@@ -20,6 +20,7 @@
 namespace etfe {
 
 struct Problem;
+class Fnv64;
 
 // A block of a term's committed state for the checkpoint (or of its values for the results
 // file): rows per owned node / element / contact pair in PETSc order (written in the scene's
@@ -42,6 +43,9 @@ struct TermSolverNeeds {
   bool krylov_outer = false;
   // Penalties that delay pivots: MUMPS needs more workspace than its default.
   bool penalty = false;
+  // With krylov_outer: Newton's matrix, the assembled tangent plus the term's part (the problem's
+  // J is its preconditioning matrix); nullptr: J itself.
+  Mat outer = nullptr;
 };
 
 // A progress column (the load stepper's increment lines and the history CSV).
@@ -96,6 +100,50 @@ public:
   virtual PetscErrorCode Report(const Problem &, std::vector<std::string> * /*lines*/) const { return 0; }
 
   virtual TermSolverNeeds SolverNeeds() const { return {}; }
+
+  // Frees what the term holds of PETSc (before the problem's vectors and matrix are destroyed:
+  // a term's matrix may hold a reference to the problem's).
+  virtual PetscErrorCode Destroy(Problem &) { return 0; }
+
+  // Jacobian, inside the element loop: a follower pressure per local element (added into
+  // pressure, num_elements long, allocated by the first term that has one) whose load stiffness
+  // the membrane element adds to its own tangent before the element is assembled.
+  virtual PetscErrorCode AddElementPressure(Problem &, std::vector<double> * /*pressure*/) { return 0; }
+
+  // A restart has set the committed state (U and the load time of the checkpoint): what the term
+  // derives from the state after a commit, derived again (layer contact's pairs).
+  virtual PetscErrorCode Restarted(Problem &) { return 0; }
+
+  // A term whose commit revises a state the solve held fixed (the lagged friction law's
+  // statuses) may have a converged increment solved again, at most RepeatLimit() times (0:
+  // never). BeginRepeats: the increment's start state is the committed one. Revise: *changed,
+  // over all ranks, the parts revised for the next solve (0: settled). UndoRevise: back to the
+  // state the last converged solve used (a repeat failed).
+  virtual PetscInt RepeatLimit() const { return 0; }
+  virtual PetscErrorCode BeginRepeats(Problem &) { return 0; }
+  virtual PetscErrorCode Revise(Problem &, PetscInt *changed) {
+    *changed = 0;
+    return 0;
+  }
+  virtual PetscErrorCode UndoRevise(Problem &) { return 0; }
+
+  // The convergence test's force tolerance: the round-off floor [N] below which the term's forces
+  // cannot balance at the iterate X (a penalty's); *floor is raised to it, never lowered. fnorm,
+  // tol: the residual and the tolerance the test holds it to (a floor too large a part of the
+  // forces to check an answer against is an error).
+  virtual PetscErrorCode ForceFloor(Problem &, Vec /*X*/, double /*fnorm*/, double /*tol*/, double * /*floor*/) {
+    return 0;
+  }
+
+  // What a restart must agree on with its checkpoint, beyond the scene (parameters read from the
+  // options): added to the physics fingerprint.
+  virtual void Fingerprint(Fnv64 &) const {}
+
+  // The rows of Layout::Pairs datasets this term numbers (global count, this rank's first row
+  // and, per local row, its global id): contact pairs. False: the term has none.
+  virtual bool PairRows(PetscInt * /*num_global*/, PetscInt * /*first*/, std::vector<PetscInt> * /*ids*/) const {
+    return false;
+  }
 };
 
 using PhysicsTermList = std::vector<std::unique_ptr<PhysicsTerm>>;

@@ -13,15 +13,13 @@
 #include "etfe/linear_path.h"
 #include "etfe/material.h"
 #include "etfe/mesh/local_mesh.h"
+#include "etfe/physics_term.h"
 #include "etfe/scene.h"
 #include "etfe/solve_diagnostics.h"
 #include "etfe/stage_clock.h"
 
 namespace etfe {
 
-struct ContactSet;
-struct ChamberSet;
-struct LayerContactSet;
 struct Problem;
 
 // What the scene that made the problem watches of a run: its report after the last increment,
@@ -45,15 +43,6 @@ struct SceneObserver {
 };
 // Frees ctx and clears the observer.
 void SceneObserverDestroy(SceneObserver *observer);
-
-// Viscous stabilization of the increment being solved (src/assembly/stabilization.cpp): active
-// while stiffness > 0; the vectors exist once a run has used it.
-struct Stabilization {
-  double stiffness = 0.0;   // N/mm per free DOF
-  Vec anchor = nullptr;     // the state the force pulls towards (the increment's start)
-  Vec diagonal = nullptr;   // stiffness on free DOFs, 0 on constrained ones
-  Vec work = nullptr;
-};
 
 struct Problem {
   MPI_Comm comm;
@@ -90,7 +79,6 @@ struct Problem {
     return young * thickness;
   }
   double TangentShiftAbsolute() const { return tangent_shift * AxialStiffness(); }  // N/mm
-  Stabilization stabilization;
   PetscBool tangent_tension_only = PETSC_FALSE;  // geometric stiffness from the tensile stress only
   PetscBool wrinkling = PETSC_FALSE;  // -membrane_wrinkling tension_field: the law is wrapped (material.h)
   PetscBool near_null_space = PETSC_FALSE;  // rigid-body modes attached to J (AMG preconditioners)
@@ -115,26 +103,11 @@ struct Problem {
   // reference to the current shape; the prescribed value is then measured from there).
   std::vector<double> con_owned_offset;
 
-  // Follower pressures (only when the scene has them): per load its local elements and value.
-  bool has_pressure = false;
-  struct PressureLoad {
-    std::vector<PetscInt> elements;
-    ScheduledValue value;
-    int chamber = -1;  // the boundary of a gas chamber: its pressure (chamber.h) times sign
-    double sign = 1.0;
-  };
-  std::vector<PressureLoad> pressures;
-
-  // Dead nodal forces on owned DOFs (only when the scene has them).
-  std::vector<PetscInt> force_owned_dof;
-  std::vector<ScheduledValue> force_owned_value;
-
-  // Contact with rigid supports (nullptr when the scene has none).
-  ContactSet *contact = nullptr;
-  // Gas chambers (nullptr when the scene has none).
-  ChamberSet *chambers = nullptr;
-  // Contact between film layers (nullptr without -layer_contact).
-  LayerContactSet *layers = nullptr;
+  // What acts on the film besides its elements and the constraints (physics_term.h): follower
+  // pressure, gas chambers, nodal forces, rigid contact, the viscous stabilization, layer
+  // contact; only those the scene uses, created by MakePhysicsTerms (physics_terms.cpp) in the
+  // order their forces are summed.
+  PhysicsTermList terms;
 
   // Seconds of physical time at each load time (-load_stage_duration, -load_hold_*; stage_clock.h).
   StageClock clock;
@@ -171,8 +144,14 @@ PetscErrorCode MembraneOptionsFromCommandLine(MPI_Comm comm, Problem *problem);
 // A form-finding run keeps it (rank 0 writes the found shape with the scene's topology and cuts
 // its patterns).
 PetscErrorCode ProblemReleaseScene(Problem *problem);
-// Hands the contact set (ContactCreate) to the problem, which owns it from then on.
-PetscErrorCode ProblemSetContact(Problem *problem, ContactSet *contact);
 PetscErrorCode ProblemDestroy(Problem *problem);
+
+// The problem's term of type T (nullptr: the scene does not use it): for code that reads one
+// term's own data (a scene's report of contact forces, the chambers' pressure on their loads).
+template <class T> T *FindTerm(const Problem &problem) {
+  for (const auto &term : problem.terms)
+    if (auto *t = dynamic_cast<T *>(term.get())) return t;
+  return nullptr;
+}
 
 } // namespace etfe

@@ -5,7 +5,6 @@
 #include <memory>
 
 #include "etfe/checkpoint.h"
-#include "etfe/contact.h"
 #include "etfe/input_plausibility.h"
 #include "etfe/material.h"
 #include "etfe/linear_path.h"
@@ -55,11 +54,6 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
   // rank 0, which writes the found shape with the scene's topology).
   PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), formfind, P));
   P->observer = observer;
-  if (P->scene.contact.active) {
-    ContactSet *contact;
-    PetscCall(ContactCreate(P, &contact));
-    PetscCall(ProblemSetContact(P, contact));
-  }
   if (P->observer.setup) PetscCall(P->observer.setup(P, P->observer.ctx));
   PetscCall(CreateSolver(P, &c->snes));
   PetscCall(LoadStepperOptionsFromCommandLine(comm, &c->lso));

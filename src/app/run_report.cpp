@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "etfe/contact.h"
+#include "etfe/pressure_term.h"
 #include "etfe/material.h"
 
 namespace etfe {
@@ -95,7 +96,7 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
   PetscCall(PetscPrintf(
       P->comm,
       "  physics: membrane (TL, h0 = %g mm), %s material%s, %" PetscInt_FMT " constrained DOF\n",
-      P->thickness, P->material->Name(), P->has_pressure ? ", follower pressure" : "", ncon_all));
+      P->thickness, P->material->Name(), FindTerm<PressureTerm>(*P) ? ", follower pressure" : "", ncon_all));
   PetscCall(P->material->View(P->comm));
   PetscCall(PrintSolver(P->comm, snes));
   {
@@ -108,14 +109,14 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
                           "(max), %.0f kB (min)\n",
                           all[0], -all[1]));
   }
-  if (P->contact && P->contact->penalty_length > 0)
+  const ContactSet *contact = FindTerm<ContactSet>(*P);
+  if (contact && contact->penalty_length > 0)
     PetscCall(PetscPrintf(P->comm,
                           "  contact: %" PetscInt_FMT
                           " pairs, penalties per unit length (kn %g, kt %g N/mm at a tributary "
                           "length of %g mm; pair factors %.3g-%.3g)\n",
-                          P->contact->num_global, P->contact->params.kn, P->contact->params.kt,
-                          P->contact->penalty_length, P->contact->k_scale_min,
-                          P->contact->k_scale_max));
+                          contact->num_global, contact->params.kn, contact->params.kt, contact->penalty_length,
+                          contact->k_scale_min, contact->k_scale_max));
   if (!P->scene.initial_guess_note.empty())
     PetscCall(PetscPrintf(P->comm, "  initial guess: %s\n", P->scene.initial_guess_note.c_str()));
   PetscCall(PrintPeakMemory(P->comm, "after set-up", true));

@@ -4,11 +4,9 @@
 #include <cstring>
 
 #include "etfe/assembly.h"
-#include "etfe/chamber.h"
 #include "etfe/linesearch.h"
 #include "etfe/pc_refresh.h"
 #include "etfe/pc_shift.h"
-#include "etfe/solver_needs.h"
 #include "etfe/tangent_shift.h"
 
 namespace etfe {
@@ -40,7 +38,8 @@ PetscErrorCode CreateSolver(Problem *P, SNES *snes) {
   // (chamber.h), solved by GMRES preconditioned with the sparse tangent's factorization.
   LinearPathTakeNeeds(&P->linear_path, ProblemSolverNeeds(*P));
   const bool lrc = P->linear_path.needs.krylov_outer;
-  PetscCall(SNESSetJacobian(*snes, lrc && P->chambers ? P->chambers->J : P->J, P->J, FormShiftedJacobian, P));
+  PetscCall(SNESSetJacobian(*snes, lrc && P->linear_path.needs.outer ? P->linear_path.needs.outer : P->J, P->J,
+                            FormShiftedJacobian, P));
   PetscCall(SNESSetType(*snes, SNESNEWTONLS));
   PetscCall(SNESSetTolerances(*snes, 1e-9, 1e-10, 1e-14, 30, 10000));
   PetscCall(SNESGetKSP(*snes, &ksp));

@@ -1,4 +1,4 @@
-// Residual and Jacobian of the membrane (+ follower pressure) as SNES callbacks.
+// Residual and Jacobian of the membrane and the physics terms (physics_term.h) as SNES callbacks.
 //
 // R(u) = f_int(u) - f_ext(u) on free DOFs; R = u - u_prescribed(t) on constrained DOFs. The
 // Jacobian drops the rows and columns of constrained DOFs element by element and puts 1 on their
@@ -10,10 +10,7 @@
 #include <cmath>
 
 #include "etfe/assembly.h"
-#include "etfe/contact.h"
 #include "etfe/kernels/pressure.h"
-#include "etfe/chamber.h"
-#include "etfe/layer_contact.h"
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
 #include "etfe/kernels/wrinkling.h"
@@ -184,44 +181,11 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscCall(PetscLogEventBegin(LogEvents().residual, 0, 0, 0, 0));
   PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
   AddMembraneForces(P, u, f, &status, &bad);
-  if (P->chambers) {
-    PetscCall(ChamberEvaluate(P, u));
-    for (double g : P->chambers->gauge)
-      if (!std::isfinite(g)) status = std::max(status, (int)KERNEL_NONFINITE);  // a chamber turned inside out
-  }
-  for (const Problem::PressureLoad &load : P->pressures) {
-    const double p = load.chamber >= 0 ? ChamberLoadPressure(P, load.chamber, load.sign)
-                                       : load.value.At(P->scene.schedules, P->time);
-    for (PetscInt e : load.elements) {
-      double x[9], fe[9];
-      GatherCoordinates(m, e, u, x);
-      PressureLoad(p, x, fe, nullptr);  // the residual needs no load stiffness
-      for (int a = 0; a < 3; ++a)
-        for (int i = 0; i < 3; ++i) f[3 * m.tri[3 * e + a] + i] -= fe[3 * a + i];
-      for (int k = 0; k < 9; ++k) ext2 += fe[k] * fe[k];
-    }
-  }
-  for (size_t k = 0; k < P->force_owned_dof.size(); ++k) {
-    const double v = P->force_owned_value[k].At(P->scene.schedules, P->time);
-    f[P->force_owned_dof[k]] -= v;
-    ext2 += v * v;
-  }
-  if (P->contact) {
-    PetscCall(PetscLogEventBegin(LogEvents().contact, 0, 0, 0, 0));
-    for (ContactPair &pr : P->contact->pairs) {
-      const PetscInt l = pr.local_node;
-      double fg[3];
-      if (ContactEvaluate(*P->contact, pr, &u[3 * l], P->time, fg, nullptr)) {
-        status = std::max(status, (int)KERNEL_NONFINITE);
-        continue;
-      }
-      for (int i = 0; i < 3; ++i) f[3 * l + i] += fg[i];
-    }
-    PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
-  }
+  // The terms in the list's order (physics_terms.cpp): what they evaluate for the others first.
+  for (auto &term : P->terms) PetscCall(term->Prepare(*P, u));
+  for (auto &term : P->terms) PetscCall(term->AddLocalForces(*P, u, f, &status, &ext2));
   PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
-  if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationForce(P, U, Fout));
-  if (P->layers) PetscCall(LayerContactResidual(P, U, Fout));
+  for (auto &term : P->terms) PetscCall(term->AddGlobalForces(*P, U, Fout));
 
   // Constrained DOFs: keep the internal force as the reaction, then R = u - u_prescribed.
   {
@@ -276,18 +240,12 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   PetscCall(PetscLogEventBegin(LogEvents().jacobian, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(Pmat));
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
-  // Per element the pressure of every load on it (the load stiffness is linear in p). The
-  // chambers are evaluated here again: the tangent predictor asks for J at a load time the last
-  // residual was not evaluated at.
-  if (P->chambers) PetscCall(ChamberEvaluate(P, u));
+  // Per element the pressure of every load on it (the load stiffness is linear in p). The terms
+  // are prepared here again (the chambers' pressures): the tangent predictor asks for J at a load
+  // time the last residual was not evaluated at.
+  for (auto &term : P->terms) PetscCall(term->Prepare(*P, u));
   std::vector<double> pressure;
-  for (const Problem::PressureLoad &load : P->pressures) {
-    const double p = load.chamber >= 0 ? ChamberLoadPressure(P, load.chamber, load.sign)
-                                       : load.value.At(P->scene.schedules, P->time);
-    if (p == 0.0) continue;
-    if (pressure.empty()) pressure.assign(m.num_elements, 0.0);
-    for (PetscInt e : load.elements) pressure[e] += p;
-  }
+  for (auto &term : P->terms) PetscCall(term->AddElementPressure(*P, &pressure));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double x[9], F[6], E[3], S[3], D[9], fe[9], K[81];
     GatherCoordinates(m, e, u, x);
@@ -321,22 +279,8 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     // Global block ids precomputed: no local-to-global lookup per element.
     PetscCall(MatSetValuesBlocked(Pmat, 3, &P->element_global[3 * e], 3, &P->element_global[3 * e], K, ADD_VALUES));
   }
-  if (P->contact) {
-    PetscCall(PetscLogEventBegin(LogEvents().contact, 0, 0, 0, 0));
-    for (ContactPair &pr : P->contact->pairs) {
-      const PetscInt l = pr.local_node;
-      double fg[3], K[9];
-      ContactEvaluate(*P->contact, pr, &u[3 * l], P->time, fg, K);
-      for (int i = 0; i < 3; ++i)
-        if (P->dof_constrained[3 * l + i])
-          for (int j = 0; j < 3; ++j) K[3 * i + j] = K[3 * j + i] = 0.0;
-      PetscCall(MatSetValuesBlockedLocal(Pmat, 1, &l, 1, &l, K, ADD_VALUES));
-    }
-    PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
-  }
-  if (P->chambers) PetscCall(ChamberTangent(P, u));
+  for (auto &term : P->terms) PetscCall(term->AddTangent(*P, U, u, Pmat));
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
-  if (P->layers) PetscCall(LayerContactJacobian(P, U, Pmat));
   if (!P->unassembled)  // unassembled: after the assembly, split over the subdomains
     for (PetscInt d : P->con_owned_dof) {
       const PetscScalar one = 1.0;
@@ -345,7 +289,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   PetscCall(MatAssemblyBegin(Pmat, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Pmat, MAT_FINAL_ASSEMBLY));
   if (P->unassembled) PetscCall(UnassembledAddConstraintDiagonal(P, Pmat));
-  if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationTangent(P, Pmat));
+  for (auto &term : P->terms) PetscCall(term->AddAssembledTangent(*P, Pmat));
   if (J != Pmat) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));

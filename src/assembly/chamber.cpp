@@ -11,6 +11,7 @@
 #include "etfe/kernels/geodesic.h"
 #include "etfe/kernels/pressure.h"
 #include "etfe/layer_contact.h"
+#include "etfe/pressure_term.h"
 #include "etfe/problem.h"
 
 namespace etfe {
@@ -29,7 +30,7 @@ void Coordinates(const LocalMesh &m, PetscInt e, const PetscScalar *u, double x[
 // pressure at the release to the schedule's value at the stage end.
 double SuppliedGauge(const Problem *P, int k) {
   const ScheduledValue &p = P->scene.chambers[k].supplied;
-  const ChamberSet &c = *P->chambers;
+  const ChamberSet &c = *FindTerm<ChamberSet>(*P);
   double g = p.At(P->scene.schedules, P->time);
   const double t0 = c.release_time[k], s = P->time - t0;
   if (t0 >= 0 && s < 1.0) g += (c.release_gauge[k] - p.At(P->scene.schedules, t0)) * (1.0 - s);
@@ -38,7 +39,7 @@ double SuppliedGauge(const Problem *P, int k) {
 
 // The gauge pressure of chamber k at volume V: supplied, or from its sealed amount.
 double Gauge(const Problem *P, int k, double V) {
-  const ChamberSet &c = *P->chambers;
+  const ChamberSet &c = *FindTerm<ChamberSet>(*P);
   if (!c.sealed[k]) return SuppliedGauge(P, k);
   return SealedGauge(c.amount[k], c.atmosphere, V, P->scene.chambers[k].kappa);
 }
@@ -48,13 +49,13 @@ double Gauge(const Problem *P, int k, double V) {
 // volume means its surfaces face into it. Both are input errors, stated before any load step (the
 // scale: the volume of a cube on the chamber's surface area).
 PetscErrorCode ChamberCheckStartVolume(Problem *P) {
-  const ChamberSet &c = *P->chambers;
+  const ChamberSet &c = *FindTerm<ChamberSet>(*P);
   const PetscScalar *u;
   Vec Ul;
   std::vector<double> area(c.volume.size(), 0.0);
   PetscFunctionBeginUser;
   PetscCall(GetLocalArray(P->U, P->U_work, &Ul, &u));
-  for (const Problem::PressureLoad &load : P->pressures) {
+  for (const FollowerPressure &load : PressureLoads(*P)) {
     if (load.chamber < 0) continue;
     for (PetscInt e : load.elements) {
       double x[9];
@@ -137,20 +138,20 @@ PetscErrorCode ChamberCheckSharedSides(Problem *P) {
 // count (a pair top:bottom lets the top foil through a middle one), nor for a sealed chamber,
 // whose gas law has no meaning at a volume of zero.
 PetscErrorCode ChamberCheckInsideOut(Problem *P, double t) {
-  const ChamberSet &c = *P->chambers;
+  const ChamberSet &c = *FindTerm<ChamberSet>(*P);
   PetscFunctionBeginUser;
   for (size_t k = 0; k < c.volume.size(); ++k) {
     if (c.volume[k] > 0) continue;
     const ChamberSpec &s = P->scene.chambers[k];
     std::string missing, groups;
-    const bool apart = LayerContactKeepsApart(P->layers, s.groups, &missing);
+    const bool apart = LayerContactKeepsApart(FindTerm<LayerContactSet>(*P), s.groups, &missing);
     if (apart && !c.sealed[k]) continue;
     for (const std::string &g : s.groups) groups += (groups.empty() ? "" : ",") + g;
     const int stage = std::max(0, std::min((int)std::floor(t - 1e-9), P->scene.NumStages() - 1)) + 1;
     std::string way;  // a sealed chamber cannot empty: its gas law has no meaning there
     if (!c.sealed[k] && !missing.empty())
       way = ", or let its foils rest on each other: contact between them, " + missing + " in -layer_contact" +
-            (P->layers ? " (the pairs given do not join them)" : "");
+            (FindTerm<LayerContactSet>(*P) ? " (the pairs given do not join them)" : "");
     else if (!c.sealed[k])
       way = ", or bound it with two foils and let them rest on each other (-layer_contact)";
     SETERRQ(P->comm, PETSC_ERR_NOT_CONVERGED,
@@ -175,12 +176,12 @@ PetscErrorCode ChamberUpdate(Problem *P, Vec U) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ChamberCreate(Problem *P) {
+PetscErrorCode AddChamberTerm(Problem *P) {
   const size_t n = P->scene.chambers.size();
   PetscFunctionBeginUser;
   if (n == 0) PetscFunctionReturn(0);
   auto *c = new ChamberSet();
-  P->chambers = c;
+  P->terms.emplace_back(c);
   c->atmosphere = P->scene.atmosphere;
   c->volume.assign(n, 0.0), c->gauge.assign(n, 0.0), c->sealed.assign(n, 0), c->amount.assign(n, 0.0);
   c->release_time.assign(n, -1.0), c->release_gauge.assign(n, 0.0);
@@ -231,11 +232,11 @@ PetscErrorCode ChamberCreate(Problem *P) {
 }
 
 PetscErrorCode ChamberEvaluate(Problem *P, const PetscScalar *u) {
-  ChamberSet &c = *P->chambers;
+  ChamberSet &c = *FindTerm<ChamberSet>(*P);
   const size_t n = c.volume.size();
   PetscFunctionBeginUser;
   std::vector<double> V(n, 0.0);
-  for (const Problem::PressureLoad &load : P->pressures) {
+  for (const FollowerPressure &load : PressureLoads(*P)) {
     if (load.chamber < 0) continue;
     const double *o = P->scene.chambers[load.chamber].origin;
     for (PetscInt e : load.elements) {
@@ -252,10 +253,10 @@ PetscErrorCode ChamberEvaluate(Problem *P, const PetscScalar *u) {
   PetscFunctionReturn(0);
 }
 
-double ChamberLoadPressure(const Problem *P, int chamber, double sign) { return sign * P->chambers->gauge[chamber]; }
+double ChamberLoadPressure(const Problem *P, int chamber, double sign) { return sign * FindTerm<ChamberSet>(*P)->gauge[chamber]; }
 
 PetscErrorCode ChamberTangent(Problem *P, const PetscScalar *u) {
-  ChamberSet &c = *P->chambers;
+  ChamberSet &c = *FindTerm<ChamberSet>(*P);
   const size_t n = c.volume.size();
   PetscFunctionBeginUser;
   if (!c.may_seal) PetscFunctionReturn(0);
@@ -265,7 +266,7 @@ PetscErrorCode ChamberTangent(Problem *P, const PetscScalar *u) {
     PetscCall(VecGhostGetLocalForm(c.g_work, &gl));
     PetscCall(VecZeroEntries(gl));
     PetscCall(VecGetArray(gl, &g));
-    for (const Problem::PressureLoad &load : P->pressures) {
+    for (const FollowerPressure &load : PressureLoads(*P)) {
       if (load.chamber != (int)k) continue;
       for (PetscInt e : load.elements) {
         double x[9], f[9];
@@ -298,7 +299,7 @@ PetscErrorCode ChamberTangent(Problem *P, const PetscScalar *u) {
 }
 
 PetscErrorCode ChamberCommit(Problem *P, double t) {
-  ChamberSet &c = *P->chambers;
+  ChamberSet &c = *FindTerm<ChamberSet>(*P);
   PetscFunctionBeginUser;
   PetscCall(ChamberUpdate(P, P->U));
   PetscCall(ChamberCheckInsideOut(P, t));
@@ -327,30 +328,18 @@ PetscErrorCode ChamberCommit(Problem *P, double t) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ChamberDestroy(Problem *P) {
-  PetscFunctionBeginUser;
-  if (!P->chambers) PetscFunctionReturn(0);
-  PetscCall(MatDestroy(&P->chambers->J));
-  PetscCall(MatDestroy(&P->chambers->U));
-  PetscCall(VecDestroy(&P->chambers->c));
-  PetscCall(VecDestroy(&P->chambers->g_work));
-  delete P->chambers;
-  P->chambers = nullptr;
-  PetscFunctionReturn(0);
-}
-
 void ChamberStateGet(const Problem *P, std::vector<double> *state) {
   state->clear();
-  if (!P->chambers) return;
-  const ChamberSet &c = *P->chambers;
+  if (!FindTerm<ChamberSet>(*P)) return;
+  const ChamberSet &c = *FindTerm<ChamberSet>(*P);
   for (size_t k = 0; k < c.sealed.size(); ++k) state->push_back(c.sealed[k]), state->push_back(c.amount[k]);
   if (c.per_stage)
     for (size_t k = 0; k < c.sealed.size(); ++k) state->push_back(c.release_time[k]), state->push_back(c.release_gauge[k]);
 }
 
 void ChamberStateSet(Problem *P, const std::vector<double> &state) {
-  if (!P->chambers) return;
-  ChamberSet &c = *P->chambers;
+  if (!FindTerm<ChamberSet>(*P)) return;
+  ChamberSet &c = *FindTerm<ChamberSet>(*P);
   const size_t n = c.sealed.size();
   for (size_t k = 0; k < n && 2 * k + 1 < state.size(); ++k) c.sealed[k] = state[2 * k] != 0, c.amount[k] = state[2 * k + 1];
   for (size_t k = 0; c.per_stage && k < n && 2 * n + 2 * k + 1 < state.size(); ++k)

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "etfe/free_rigid_motions.h"
+#include "etfe/contact.h"
 
 namespace etfe {
 
@@ -251,7 +252,7 @@ PetscErrorCode CheckSupportsHoldRigidMotions(Problem *P, Vec U, bool refuse) {
   std::string motions;
   for (const RigidMotion &mo : free)
     motions += (motions.empty() ? "" : ", ") + mo.Describe();
-  if (P->contact) { // a rigid support may hold them (a plane, a cylinder with friction)
+  if (FindTerm<ContactSet>(*P)) { // a rigid support may hold them (a plane, a cylinder with friction)
     PetscCall(PetscPrintf(
         P->comm,
         "etfe: the DOF constraints leave %s free; the rigid contact supports are to hold "

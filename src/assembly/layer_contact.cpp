@@ -196,7 +196,7 @@ PetscErrorCode EndArrays(LayerContactSet &c, Vec U, const PetscScalar **u, const
 
 } // namespace
 
-PetscErrorCode LayerContactCreate(Problem *P) {
+PetscErrorCode AddLayerContactTerm(Problem *P) {
   bool given;
   PetscFunctionBeginUser;
   auto *c = new LayerContactSet();
@@ -205,7 +205,7 @@ PetscErrorCode LayerContactCreate(Problem *P) {
     delete c;
     PetscFunctionReturn(0);
   }
-  P->layers = c;
+  P->terms.emplace_back(c);
   PetscCheck(!P->unassembled, P->comm, PETSC_ERR_SUP,
              "-layer_contact couples nodes of different subdomains, which the unassembled tangent (-mat_type is, "
              "-pc_type bddc) cannot hold: use an assembled solver path (e.g. options/solvers/mumps_lu.opts)");
@@ -222,7 +222,7 @@ PetscErrorCode LayerContactCreate(Problem *P) {
 }
 
 PetscErrorCode LayerContactPair(Problem *P, Vec U) {
-  LayerContactSet &c = *P->layers;
+  LayerContactSet &c = *FindTerm<LayerContactSet>(*P);
   const LocalMesh &m = P->mesh;
   const PetscScalar *u, *um;
   PetscFunctionBeginUser;
@@ -284,7 +284,7 @@ PetscErrorCode LayerContactPair(Problem *P, Vec U) {
 }
 
 PetscErrorCode LayerContactResidual(Problem *P, Vec U, Vec F) {
-  LayerContactSet &c = *P->layers;
+  LayerContactSet &c = *FindTerm<LayerContactSet>(*P);
   const LocalMesh &m = P->mesh;
   const PetscScalar *u, *um;
   PetscInt active = 0;
@@ -311,7 +311,7 @@ PetscErrorCode LayerContactResidual(Problem *P, Vec U, Vec F) {
 }
 
 PetscErrorCode LayerContactJacobian(Problem *P, Vec U, Mat A) {
-  LayerContactSet &c = *P->layers;
+  LayerContactSet &c = *FindTerm<LayerContactSet>(*P);
   const LocalMesh &m = P->mesh;
   const PetscScalar *u, *um;
   PetscFunctionBeginUser;
@@ -340,12 +340,13 @@ PetscErrorCode LayerContactJacobian(Problem *P, Vec U, Mat A) {
 
 void LayerContactStateGet(const Problem *P, std::vector<double> *v) {
   v->assign(P->mesh.num_owned, -1.0);
-  for (const LayerContactSet::Node &s : P->layers->nodes)
-    if (s.tri >= 0) (*v)[s.local] = (double)P->layers->tri_natural[s.tri];
+  const LayerContactSet &c = *FindTerm<LayerContactSet>(*P);
+  for (const LayerContactSet::Node &s : c.nodes)
+    if (s.tri >= 0) (*v)[s.local] = (double)c.tri_natural[s.tri];
 }
 
 void LayerContactStateSet(Problem *P, const std::vector<double> &v) {
-  LayerContactSet &c = *P->layers;
+  LayerContactSet &c = *FindTerm<LayerContactSet>(*P);
   std::map<PetscInt, int> tri;
   for (size_t t = 0; t < c.tri_natural.size(); ++t) tri[c.tri_natural[t]] = (int)t;
   for (LayerContactSet::Node &s : c.nodes) {
@@ -379,14 +380,5 @@ bool LayerContactKeepsApart(const LayerContactSet *c, const std::vector<std::str
   return true;
 }
 
-PetscErrorCode LayerContactDestroy(Problem *P) {
-  PetscFunctionBeginUser;
-  if (!P->layers) PetscFunctionReturn(0);
-  PetscCall(VecScatterDestroy(&P->layers->scatter));
-  PetscCall(VecDestroy(&P->layers->master_u));
-  delete P->layers;
-  P->layers = nullptr;
-  PetscFunctionReturn(0);
-}
 
 } // namespace etfe

@@ -12,10 +12,8 @@
 #include <string>
 
 #include "etfe/assembly.h"
-#include "etfe/chamber.h"
-#include "etfe/layer_contact.h"
-#include "etfe/contact.h"
 #include "etfe/gather.h"
+#include "physics_terms.h"
 #include "scene_share.h"
 
 namespace etfe {
@@ -44,7 +42,8 @@ static PetscErrorCode CreateMatrix(Problem *P, const std::vector<PetscInt> &d_nn
   }
   // A new nonzero would mean a wrong preallocation: make it a hard error, never a malloc.
   PetscCall(MatSetOption(P->J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
-  PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, P->has_pressure ? PETSC_FALSE : PETSC_TRUE));
+  // The follower pressure's load stiffness is not symmetric.
+  PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, P->scene.pressures.empty() ? PETSC_TRUE : PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -129,18 +128,6 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
       for (int i = 0; i < 3; ++i) P->element_constrained[e] |= P->dof_constrained[3 * l + i];
     }
 
-  // Pressures only when the scene has them (every rank has the small list, its own elements).
-  P->has_pressure = !P->scene.pressures.empty();
-  for (size_t k = 0; k < P->scene.pressures.size(); ++k)
-    P->pressures.push_back({std::move(share.pressure_elements[k]), P->scene.pressures[k].value,
-                            P->scene.pressures[k].chamber, P->scene.pressures[k].sign});
-
-  // Dead nodal forces on owned DOFs.
-  for (const NodalForce &f : share.forces) {
-    P->force_owned_dof.push_back(3 * f.node + f.comp);
-    P->force_owned_value.push_back(f.value);
-  }
-
   // Vectors and matrix.
   std::vector<PetscInt> ghost_ids(m.global_id.begin() + m.num_owned, m.global_id.end());
   PetscCall(VecCreateGhostBlock(comm, 3, 3 * m.num_owned, PETSC_DECIDE, m.num_ghost,
@@ -162,8 +149,7 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
     PetscCall(VecRestoreArray(P->U, &u));
   }
   PetscCall(ProblemSetLoadTime(P, 0.0, P->U));
-  if (!P->scene.chambers.empty()) PetscCall(ChamberCreate(P));
-  PetscCall(LayerContactCreate(P));
+  PetscCall(MakePhysicsTerms(P, &share.pressure_elements, share.forces));
   PetscFunctionReturn(0);
 }
 
@@ -186,14 +172,6 @@ PetscErrorCode ProblemReleaseScene(Problem *P) {
   if (P->rank == 0) malloc_trim(0);
 #endif
   P->scene_released = true;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode ProblemSetContact(Problem *P, ContactSet *contact) {
-  PetscFunctionBeginUser;
-  P->contact = contact;
-  if (contact->law != FrictionLaw::Fixed && contact->params.mu > 0)
-    PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));  // slip tangent, eq. 4.31
   PetscFunctionReturn(0);
 }
 
@@ -228,17 +206,15 @@ void SceneObserverDestroy(SceneObserver *o) {
 
 PetscErrorCode ProblemDestroy(Problem *P) {
   PetscFunctionBeginUser;
-  PetscCall(ChamberDestroy(P));  // its LRC holds a reference to J
-  PetscCall(LayerContactDestroy(P));
+  for (auto &term : P->terms) PetscCall(term->Destroy(*P));  // the chambers' LRC holds a reference to J
+  P->terms.clear();
   PetscCall(VecDestroy(&P->U));
-  PetscCall(StabilizationDestroy(P));
   PetscCall(VecDestroy(&P->U_work));
   PetscCall(VecDestroy(&P->F_work));
   PetscCall(VecDestroy(&P->reaction));
   PetscCall(MatDestroy(&P->J));
   PetscCall(UnassembledDestroy(P));
   PetscCall(ISLocalToGlobalMappingDestroy(&P->l2g));
-  if (P->contact) PetscCall(ContactDestroy(&P->contact));
   SceneObserverDestroy(&P->observer);
   PetscFunctionReturn(0);
 }

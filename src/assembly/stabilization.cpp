@@ -14,8 +14,44 @@
 
 namespace etfe {
 
+namespace {
+
+// Active while stiffness > 0; the vectors exist once a run has used it.
+struct Stabilization : PhysicsTerm {
+  double stiffness = 0.0;   // N/mm per free DOF
+  Vec anchor = nullptr;     // the state the force pulls towards (the increment's start)
+  Vec diagonal = nullptr;   // stiffness on free DOFs, 0 on constrained ones
+  Vec work = nullptr;
+
+  const char *Name() const override { return "stabilization"; }
+  PetscErrorCode AddGlobalForces(Problem &P, Vec U, Vec F) override;
+  PetscErrorCode AddAssembledTangent(Problem &, Mat A) override {
+    PetscFunctionBeginUser;
+    if (stiffness > 0) PetscCall(MatDiagonalSet(A, diagonal, ADD_VALUES));
+    PetscFunctionReturn(0);
+  }
+  PetscErrorCode Destroy(Problem &) override {
+    PetscFunctionBeginUser;
+    PetscCall(VecDestroy(&anchor));
+    PetscCall(VecDestroy(&diagonal));
+    PetscCall(VecDestroy(&work));
+    stiffness = 0.0;
+    PetscFunctionReturn(0);
+  }
+};
+
+Stabilization &Of(Problem *P) { return *FindTerm<Stabilization>(*P); }
+
+} // namespace
+
+PetscErrorCode AddStabilizationTerm(Problem *P) {
+  PetscFunctionBeginUser;
+  P->terms.push_back(std::make_unique<Stabilization>());
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode StabilizationBegin(Problem *P, double relative, Vec anchor) {
-  Stabilization &s = P->stabilization;
+  Stabilization &s = Of(P);
   PetscFunctionBeginUser;
   if (!s.anchor) {
     PetscCall(VecDuplicate(P->U, &s.anchor));
@@ -35,16 +71,16 @@ PetscErrorCode StabilizationBegin(Problem *P, double relative, Vec anchor) {
 
 PetscErrorCode StabilizationMoveAnchor(Problem *P, Vec U) {
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(U, P->stabilization.anchor));
+  PetscCall(VecCopy(U, Of(P).anchor));
   PetscFunctionReturn(0);
 }
 
-void StabilizationEnd(Problem *P) { P->stabilization.stiffness = 0.0; }
+void StabilizationEnd(Problem *P) { Of(P).stiffness = 0.0; }
 
 namespace {
 // s.work = k (U - anchor) on the free DOFs: the stabilizing force.
 PetscErrorCode FormStabilizingForce(Problem *P, Vec U) {
-  Stabilization &s = P->stabilization;
+  Stabilization &s = Of(P);
   PetscFunctionBeginUser;
   PetscCall(VecWAXPY(s.work, -1.0, s.anchor, U));
   PetscCall(VecPointwiseMult(s.work, s.work, s.diagonal));
@@ -52,28 +88,23 @@ PetscErrorCode FormStabilizingForce(Problem *P, Vec U) {
 }
 } // namespace
 
-PetscErrorCode AddStabilizationForce(Problem *P, Vec U, Vec F) {
+PetscErrorCode Stabilization::AddGlobalForces(Problem &P, Vec U, Vec F) {
   PetscFunctionBeginUser;
-  PetscCall(FormStabilizingForce(P, U));
-  PetscCall(VecAXPY(F, 1.0, P->stabilization.work));
+  if (stiffness <= 0) PetscFunctionReturn(0);
+  PetscCall(FormStabilizingForce(&P, U));
+  PetscCall(VecAXPY(F, 1.0, work));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode StabilizationForceNorm(Problem *P, Vec U, PetscReal *norm) {
   PetscFunctionBeginUser;
   PetscCall(FormStabilizingForce(P, U));
-  PetscCall(VecNorm(P->stabilization.work, NORM_2, norm));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode AddStabilizationTangent(Problem *P, Mat J) {
-  PetscFunctionBeginUser;
-  PetscCall(MatDiagonalSet(J, P->stabilization.diagonal, ADD_VALUES));
+  PetscCall(VecNorm(Of(P).work, NORM_2, norm));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode StabilizationMeasure(Problem *P, Vec U, Vec Fint, StabilizingForce *force) {
-  Stabilization &s = P->stabilization;
+  Stabilization &s = Of(P);
   const LocalMesh &m = P->mesh;
   const PetscScalar *f, *g, *u;
   PetscReal size;
@@ -126,16 +157,6 @@ PetscErrorCode StabilizationMeasure(Problem *P, Vec U, Vec Fint, StabilizingForc
   PetscCall(VecNorm(s.work, NORM_2, &size));
   force->norm = size;
   force->work = size * size / s.stiffness;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode StabilizationDestroy(Problem *P) {
-  Stabilization &s = P->stabilization;
-  PetscFunctionBeginUser;
-  PetscCall(VecDestroy(&s.anchor));
-  PetscCall(VecDestroy(&s.diagonal));
-  PetscCall(VecDestroy(&s.work));
-  s.stiffness = 0.0;
   PetscFunctionReturn(0);
 }
 

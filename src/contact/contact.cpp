@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 
 #include "etfe/assembly.h"
@@ -178,8 +179,7 @@ static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<Petsc
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
-  auto *c = new ContactSet();
+static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
   const ContactSpec &spec = P->scene.contact;
   ContactOptions o;
   PetscFunctionBeginUser;
@@ -194,7 +194,7 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
   // One law (or a list that repeats it) is the single-law run, unchanged.
   if (std::any_of(o.stage_laws.begin(), o.stage_laws.end(), [&](FrictionLaw l) { return l != o.law; }))
     c->stage_laws = o.stage_laws;
-  // ProblemSetContact marks the tangent non-symmetric from the first stage's law; a later stage
+  // AddContactTerm marks the tangent non-symmetric from the first stage's law; a later stage
   // with friction needs it too (slip tangent, eq. 4.31).
   for (FrictionLaw l : c->stage_laws)
     if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->params.mu > 0)
@@ -261,14 +261,17 @@ PetscErrorCode ContactCreate(Problem *P, ContactSet **out) {
                "usually right)",
                c->params.kn, c->params.kt, per_k * k, c->num_global, eh, kPenaltyFloorMax / per_k, 1e3 * eh);
   }
-  *out = c;
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode ContactDestroy(ContactSet **c) {
+PetscErrorCode AddContactTerm(Problem *P) {
   PetscFunctionBeginUser;
-  delete *c;
-  *c = nullptr;
+  if (!P->scene.contact.active) PetscFunctionReturn(0);
+  auto c = std::make_unique<ContactSet>();
+  PetscCall(ContactCreate(P, c.get()));
+  if (c->law != FrictionLaw::Fixed && c->params.mu > 0)
+    PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));  // slip tangent, eq. 4.31
+  P->terms.push_back(std::move(c));
   PetscFunctionReturn(0);
 }
 
@@ -368,7 +371,7 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
 }
 
 PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
-  ContactSet &c = *P->contact;
+  ContactSet &c = *FindTerm<ContactSet>(*P);
   const PetscScalar *u;
   PetscInt local[4] = {0, 0, 0, 0};
   PetscFunctionBeginUser;
@@ -394,7 +397,7 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
 
 PetscErrorCode ContactLaggedBeginStep(Problem *P) {
   PetscFunctionBeginUser;
-  for (ContactPair &pr : P->contact->pairs) {
+  for (ContactPair &pr : FindTerm<ContactSet>(*P)->pairs) {
     pr.step_start = pr.solved = pr.committed;
     pr.step_changes = 0;
   }
@@ -403,12 +406,12 @@ PetscErrorCode ContactLaggedBeginStep(Problem *P) {
 
 PetscErrorCode ContactLaggedUndoRevise(Problem *P) {
   PetscFunctionBeginUser;
-  for (ContactPair &pr : P->contact->pairs) pr.committed = pr.solved;
+  for (ContactPair &pr : FindTerm<ContactSet>(*P)->pairs) pr.committed = pr.solved;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode ContactLaggedRevise(Problem *P, PetscInt *changed) {
-  ContactSet &c = *P->contact;
+  ContactSet &c = *FindTerm<ContactSet>(*P);
   const PetscScalar *u;
   PetscInt local = 0;
   PetscFunctionBeginUser;
@@ -450,14 +453,14 @@ PetscErrorCode ContactLaggedRevise(Problem *P, PetscInt *changed) {
 
 PetscErrorCode ContactWriteProbes(Problem *P, const std::string &stem, PetscInt step, double time) {
   PetscFunctionBeginUser;
-  for (PetscInt node : P->contact->probe_nodes)
-    for (const ContactPair &pr : P->contact->pairs) {
+  for (PetscInt node : FindTerm<ContactSet>(*P)->probe_nodes)
+    for (const ContactPair &pr : FindTerm<ContactSet>(*P)->pairs) {
       if (pr.natural_node != node) continue;
       const std::string path = stem + "_contact_node" + std::to_string((long long)node) + ".csv";
       FILE *f = CsvHistoryOpen(path, step,
                                "step,time,status,slide_x0,slide_y0,slide_X,slide_Y,force_x0,force_y0,force_z0");
       PetscCheck(f, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s", path.c_str());
-      const ContactPairReport r = ContactReport(*P->contact, pr);
+      const ContactPairReport r = ContactReport(*FindTerm<ContactSet>(*P), pr);
       std::fprintf(f, "%lld,%.10g,%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e\n", (long long)step, time, r.status,
                    r.slide_local[0], r.slide_local[1], r.slide_global[0], r.slide_global[1], r.force[0], r.force[1],
                    r.force[2]);

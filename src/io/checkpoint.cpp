@@ -14,9 +14,6 @@
 
 #include "checkpoint_branch.h"
 #include "checkpoint_compare.h"
-#include "etfe/chamber.h"
-#include "etfe/layer_contact.h"
-#include "etfe/contact.h"
 #include "etfe/h5io.h"
 #include "etfe/log_events.h"
 #include "etfe/rank0.h"
@@ -67,9 +64,18 @@ struct Shape {
   long long nodes, elements, pairs, history, stages;
 };
 
+// The rows of Layout::Pairs (contact pairs; 0 without a term that numbers pairs).
+PetscInt PairRows(const Problem *P) {
+  PetscInt n = 0, first;
+  std::vector<PetscInt> ids;
+  for (const auto &term : P->terms)
+    if (term->PairRows(&n, &first, &ids)) break;
+  return n;
+}
+
 Shape ProblemShape(const Problem *P) {
   return {(long long)P->mesh.num_nodes_global, (long long)P->mesh.num_elements_global,
-          (long long)(P->contact ? P->contact->num_global : 0), (long long)P->material->HistorySize(),
+          (long long)PairRows(P), (long long)P->material->HistorySize(),
           (long long)P->scene.NumStages()};
 }
 
@@ -215,15 +221,6 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
   PetscCall(VecRestoreArrayRead(Up, &a));
   if (sh.history > 0)
     PetscCall(H5WriteNatural(tmp, order, f, "history", Layout::Cells, (int)sh.history, P->history.data(), false, &sum));
-  if (P->contact) {
-    std::vector<double> cst(7 * P->contact->pairs.size());
-    for (size_t k = 0; k < P->contact->pairs.size(); ++k) {
-      const ContactState &c = P->contact->pairs[k].committed;
-      for (int i = 0; i < 3; ++i) cst[7 * k + i] = c.g[i], cst[7 * k + 3 + i] = c.f[i];
-      cst[7 * k + 6] = c.status;
-    }
-    PetscCall(H5WriteNatural(tmp, order, f, "contact_state", Layout::Pairs, 7, cst.data(), false, &sum));
-  }
   PetscCall(LoadPathWrite(P, tmp, f, &sum));
   if (P->observer.state_get) {
     std::vector<double> v;
@@ -232,17 +229,18 @@ PetscErrorCode WriteFile(Problem *P, const std::string &tmp, const StepperState 
                           v.data()));
     sum += SceneStateChecksum(v);
   }
-  if (P->layers) {  // the triangle each node keeps (pairing has hysteresis)
-    std::vector<double> v;
-    LayerContactStateGet(P, &v);
-    PetscCall(H5WriteNatural(tmp, order, f, "layer_pairs", Layout::Nodes, 1, v.data(), false, &sum));
-  }
-  if (P->chambers) {  // which chambers are sealed and the gas they hold (the same on every rank)
-    std::vector<double> v;
-    ChamberStateGet(P, &v);
-    PetscCall(H5WriteRows(tmp, f, "chamber_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, P->rank == 0 ? v.size() : 0,
-                          v.data()));
-    sum += SceneStateChecksum(v);
+  // The physics terms' committed state (contact_state, layer_pairs, chamber_state, ...): rows in
+  // the scene's order, or the same values on every rank written once.
+  std::vector<TermData> blocks;
+  for (const auto &term : P->terms) PetscCall(term->State(*P, &blocks));
+  for (const TermData &b : blocks) {
+    if (b.replicated) {
+      PetscCall(H5WriteRows(tmp, f, b.name.c_str(), H5T_NATIVE_DOUBLE, b.values.size(), 1, 0,
+                            P->rank == 0 ? b.values.size() : 0, b.values.data()));
+      sum += SceneStateChecksum(b.values);
+    } else {
+      PetscCall(H5WriteNatural(tmp, order, f, b.name.c_str(), b.layout, b.components, b.values.data(), false, &sum));
+    }
   }
   {
     const unsigned long long stored = sum;
@@ -455,32 +453,24 @@ PetscErrorCode ReadState(Problem *P, const std::string &path, hid_t f, StepperSt
   PetscCall(VecRestoreArray(Up, &a));
   if (sh.history > 0)
     PetscCall(H5ReadNatural(path, order, f, "history", Layout::Cells, (int)sh.history, P->history.data()));
-  if (P->contact) {
-    std::vector<double> cst(7 * P->contact->pairs.size());
-    PetscCall(H5ReadNatural(path, order, f, "contact_state", Layout::Pairs, 7, cst.data()));
-    for (size_t k = 0; k < P->contact->pairs.size(); ++k) {
-      ContactState &c = P->contact->pairs[k].committed;
-      for (int i = 0; i < 3; ++i) c.g[i] = cst[7 * k + i], c.f[i] = cst[7 * k + 3 + i];
-      c.status = (int)cst[7 * k + 6];
-      P->contact->pairs[k].trial = c;
-    }
-  }
-  if (P->layers) {
-    std::vector<double> v(P->mesh.num_owned);
-    PetscCall(H5ReadNatural(path, order, f, "layer_pairs", Layout::Nodes, 1, v.data()));
-    LayerContactStateSet(P, v);
-  }
   if (P->observer.state_set) {
     std::vector<double> v;
     P->observer.state_get(P->observer.ctx, &v);  // its size
     PetscCall(H5ReadRows(path, f, "scene_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, v.size(), v.data()));
     P->observer.state_set(P->observer.ctx, v);
   }
-  if (P->chambers) {
-    std::vector<double> v;
-    ChamberStateGet(P, &v);  // its size
-    PetscCall(H5ReadRows(path, f, "chamber_state", H5T_NATIVE_DOUBLE, v.size(), 1, 0, v.size(), v.data()));
-    ChamberStateSet(P, v);
+  // Each term's blocks as its State gives them now (names, layouts and sizes), read over.
+  for (auto &term : P->terms) {
+    std::vector<TermData> blocks;
+    PetscCall(term->State(*P, &blocks));
+    for (TermData &b : blocks) {
+      if (b.replicated)
+        PetscCall(H5ReadRows(path, f, b.name.c_str(), H5T_NATIVE_DOUBLE, b.values.size(), 1, 0, b.values.size(),
+                             b.values.data()));
+      else
+        PetscCall(H5ReadNatural(path, order, f, b.name.c_str(), b.layout, b.components, b.values.data()));
+    }
+    PetscCall(term->Restore(*P, blocks));
   }
   PetscFunctionReturn(0);
 }

@@ -36,7 +36,6 @@
 #include <map>
 #include <sstream>
 
-#include "etfe/contact.h"
 
 namespace etfe {
 
@@ -228,18 +227,7 @@ std::uint64_t PhysicsFingerprint(const Problem *P) { return PhysicsFingerprintFr
 
 std::uint64_t PhysicsFingerprintFrom(const Problem *P, std::uint64_t scene_state) {
   Fnv64 h(scene_state);
-  if (P->contact) {
-    const ContactSet &c = *P->contact;
-    h.Add(c.params.kn), h.Add(c.params.kt), h.Add(c.params.mu), h.Add(c.law), h.Add(c.follow);
-    h.Add(c.frictionless_until), h.Add(c.num_global);
-    // A law per stage; a single law adds nothing, so its fingerprint is unchanged.
-    if (!c.stage_laws.empty()) {
-      h.Add(std::string("stage_laws")), h.Add(c.stage_laws.size());
-      for (FrictionLaw l : c.stage_laws) h.Add((int)l);
-    }
-    // Penalties per unit length; off adds nothing, so the fingerprint of such runs is unchanged.
-    if (c.penalty_length > 0) h.Add(std::string("penalty_length")), h.Add(c.penalty_length);
-  }
+  for (const auto &term : P->terms) term->Fingerprint(h);  // contact's parameters
   double young = 0.0, nu = 0.0;
   P->material->ElasticConstants(&young, &nu);
   h.Add(std::string(P->material->Name())), h.Add(young), h.Add(nu), h.Add(P->material->HistorySize());

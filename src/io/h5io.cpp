@@ -5,7 +5,6 @@
 #include <cstring>
 #include <vector>
 
-#include "etfe/contact.h"
 #include "etfe/problem.h"
 
 namespace etfe {
@@ -31,7 +30,14 @@ PetscInt NaturalOrder::GlobalRows(Layout layout) const {
   switch (layout) {
   case Layout::Nodes: return P->mesh.num_nodes_global;
   case Layout::Cells: return P->mesh.num_elements_global;
-  case Layout::Pairs: return P->contact ? P->contact->num_global : 0;
+  case Layout::Items: return 0;  // replicated: H5WriteRows, never scattered
+  case Layout::Pairs: {
+    PetscInt n = 0, first;
+    std::vector<PetscInt> ids;
+    for (const auto &term : P->terms)
+      if (term->PairRows(&n, &first, &ids)) break;
+    return n;
+  }
   }
   return 0;
 }
@@ -53,8 +59,10 @@ PetscErrorCode NaturalOrder::Get(Layout layout, Entry **result) {
       nloc = m.num_elements, first = m.element_start;
       to.assign(m.element_natural.begin(), m.element_natural.end());
     } else {
-      nloc = (PetscInt)P->contact->pairs.size(), first = P->contact->pair_start;
-      for (const ContactPair &pr : P->contact->pairs) to.push_back(pr.id);
+      PetscInt n;
+      for (const auto &term : P->terms)
+        if (term->PairRows(&n, &first, &to)) break;
+      nloc = (PetscInt)to.size();
     }
     const PetscInt nglob = GlobalRows(layout);
     Entry e;

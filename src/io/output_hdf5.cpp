@@ -57,7 +57,8 @@ std::vector<const OutputField *> FieldsWritten(const Problem *P, bool open) {
     case FieldWhen::Step: on = !open; break;
     case FieldWhen::Plastic: on = !open && P->material->HasPlasticStrain(); break;
     case FieldWhen::Wrinkling: on = !open && P->wrinkling; break;
-    case FieldWhen::Contact: on = !open && P->contact; break;
+    case FieldWhen::Contact: on = !open && FindTerm<ContactSet>(*P); break;
+    case FieldWhen::Term: break;  // WriteTermFields
     }
     if (on) rows.push_back(&f);
   }
@@ -108,6 +109,35 @@ PetscErrorCode CreateGroup(const std::string &path, hid_t loc, const char *name)
   PetscCheck(g >= 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "HDF5: cannot create the group %s in %s (disk full?)",
              name, path.c_str());
   H5Gclose(g);
+  PetscFunctionReturn(0);
+}
+
+// The physics terms' fields of a step (a chamber's pressure and volume), each the table's row
+// <term>/<field> in the term's group of the step, with that row's self-description.
+PetscErrorCode WriteTermFields(OutputFile *out, const Problem *P, hid_t g) {
+  PetscFunctionBeginUser;
+  for (const auto &term : P->terms) {
+    std::vector<TermData> fields;
+    PetscCall(term->Fields(*P, &fields));
+    if (fields.empty()) continue;
+    PetscCall(CreateGroup(out->path, g, term->Name()));
+    for (const TermData &d : fields) {
+      const std::string name = std::string(term->Name()) + "/" + d.name;
+      const int row = OutputFieldIndex(name);
+      PetscCheck(row >= 0 && kOutputFields[row].when == FieldWhen::Term && !std::strcmp(kOutputFields[row].units, d.units),
+                 P->comm, PETSC_ERR_PLIB,
+                 "the field %s [%s] of the physics term %s is not a row of the field table with those units "
+                 "(include/etfe/output_fields.h, FieldWhen::Term): add it there and to docs/results.md",
+                 name.c_str(), d.units, term->Name());
+      const OutputField &f = kOutputFields[row];
+      if (d.replicated)
+        PetscCall(H5WriteRows(out->path, g, f.name, H5T_NATIVE_DOUBLE, d.values.size(), 1, 0,
+                              P->rank == 0 ? d.values.size() : 0, d.values.data()));
+      else
+        PetscCall(H5WriteNatural(out->path, *out->order, g, f.name, d.layout, d.components, d.values.data(), f.integer));
+      PetscCall(DescribeField(out->path, g, f));
+    }
+  }
   PetscFunctionReturn(0);
 }
 
@@ -228,8 +258,9 @@ XdmfIndex XdmfIndexOf(const OutputFile *out) {
   ix.name = P->scene.name;
   ix.rows[(int)Layout::Nodes] = P->mesh.num_nodes_global;
   ix.rows[(int)Layout::Cells] = P->mesh.num_elements_global;
-  ix.rows[(int)Layout::Pairs] = P->contact ? (long long)P->contact->num_global : 0;
-  ix.contact = P->contact != nullptr;
+  const ContactSet *contact = FindTerm<ContactSet>(*P);
+  ix.rows[(int)Layout::Pairs] = contact ? (long long)contact->num_global : 0;
+  ix.contact = contact != nullptr;
   ix.fields = out->step_fields;
   return ix;
 }
@@ -654,7 +685,7 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   if (!out->steps.empty() && out->steps.back().first == step) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(LogEvents().output, 0, 0, 0, 0));
   PetscCall(ComputeCellFields(P, U_fields ? U_fields : U, &v.cells));
-  if (P->contact) ContactValues(*P->contact, &v);
+  if (const ContactSet *contact = FindTerm<ContactSet>(*P)) ContactValues(*contact, &v);
   char name[64];
   std::snprintf(name, sizeof name, "steps/%06lld", (long long)step);
   hid_t g = H5Gcreate2(out->file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -666,10 +697,11 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(H5WriteAttribute(out->path, g, "time", H5T_NATIVE_DOUBLE, &time));
   PetscCall(H5WriteAttribute(out->path, g, "stage", H5T_NATIVE_INT, &stage));
   PetscCall(H5WriteAttribute(out->path, g, "load_factor", H5T_NATIVE_DOUBLE, &factor));
-  if (P->contact) PetscCall(CreateGroup(out->path, g, "contact"));
+  if (FindTerm<ContactSet>(*P)) PetscCall(CreateGroup(out->path, g, "contact"));
   PetscCall(VecGetArrayRead(U, &v.displacement));
   PetscCall(VecGetArrayRead(P->reaction, &v.reaction));
   PetscCall(WriteFields(out, g, out->step_fields, v));
+  PetscCall(WriteTermFields(out, P, g));
   PetscCall(VecRestoreArrayRead(P->reaction, &v.reaction));
   PetscCall(VecRestoreArrayRead(U, &v.displacement));
   H5Gclose(g);

@@ -16,7 +16,7 @@ struct XdmfIndex {
   std::string path;     // the .xmf (written to path.tmp, then renamed: a reader never sees half)
   std::string results;  // the HDF5 file's name, beside the index
   std::string name;     // the scene: the temporal collection's name
-  long long rows[3] = {0, 0, 0};  // by Layout: nodes, cells, contact pairs
+  long long rows[4] = {0, 0, 0, 0};  // by Layout: nodes, cells, contact pairs, term items (unused)
   // With contact each step is a spatial collection of the film and the contact pairs (a point
   // set, one vertex per pair at its film node); without, the film alone.
   bool contact = false;

@@ -102,11 +102,11 @@ PetscErrorCode Measure(Problem *P, StretchContext *c, const CellFields &f, Probe
   }
   v->i_smin = glob[10], v->i_emin = glob[11], v->ii_smin = glob[12], v->ii_emin = glob[13];
   std::vector<double> sl(2 * c->slide_nodes.size(), 0.0);
-  if (P->contact)
-    for (const ContactPair &pr : P->contact->pairs)
+  if (const ContactSet *contact = FindTerm<ContactSet>(*P))
+    for (const ContactPair &pr : contact->pairs)
       for (size_t k = 0; k < c->slide_nodes.size(); ++k)
         if (pr.natural_node == c->slide_nodes[k]) {
-          const ContactPairReport r = ContactReport(*P->contact, pr);
+          const ContactPairReport r = ContactReport(*contact, pr);
           sl[2 * k] = r.slide_global[0];
           sl[2 * k + 1] = r.slide_global[1];
         }
@@ -127,8 +127,8 @@ PetscErrorCode StretchStep(Problem *P, void *vctx, PetscInt step, double t, Pets
   // Arch pairs open / sticking / slipping after this increment (the lagged law's stick-slip;
   // the progress line prints the same counts).
   PetscInt status[3] = {0, 0, 0}, status_all[3];
-  if (P->contact)
-    for (const ContactPair &pr : P->contact->pairs) status[pr.committed.status]++;
+  if (const ContactSet *contact = FindTerm<ContactSet>(*P))
+    for (const ContactPair &pr : contact->pairs) status[pr.committed.status]++;
   PetscCallMPI(MPI_Allreduce(status, status_all, 3, MPIU_INT, MPI_SUM, P->comm));
   if (P->rank == 0) {
     std::string header = "step,time,A_Exx,A_Eyy,A_Exy,A_mises,B_Exx,B_Eyy,B_Exy,B_mises,I_smin,I_emin,II_smin,II_emin";
@@ -208,10 +208,10 @@ PetscErrorCode StretchReport(Problem *P, void *vctx) {
   }
   // The largest slide of a film node on the arch since the start, measured in the arch's tangent
   // plane (along and across the arch), not its projection on the plan.
-  if (P->contact)
-    for (const ContactPair &pr : P->contact->pairs)
+  if (const ContactSet *contact = FindTerm<ContactSet>(*P))
+    for (const ContactPair &pr : contact->pairs)
     {
-      const ContactPairReport r = ContactReport(*P->contact, pr);
+      const ContactPairReport r = ContactReport(*contact, pr);
       loc[3] = std::max(loc[3], std::hypot(r.slide_local[0], r.slide_local[1]));
     }
   PetscCallMPI(MPI_Allreduce(loc, glob, 2, MPI_DOUBLE, MPI_SUM, P->comm));

@@ -45,19 +45,20 @@ PetscErrorCode CapstanCheckStep(Problem *P, const CheckInput &ck, std::vector<do
   std::vector<char> is_b;
   std::vector<double> &s = *state;
   PetscFunctionBeginUser;
-  PetscCheck(P->contact, P->comm, PETSC_ERR_ARG_WRONG,
+  const ContactSet *contact = FindTerm<ContactSet>(*P);
+  PetscCheck(contact, P->comm, PETSC_ERR_ARG_WRONG,
              "-structure_check capstan needs the pipe: a rigid support (-structure_rigid) the strip slides on");
   PetscCall(ProblemNodeSetFlags(P, "right", &is_b));
   PetscCall(EndBTension(P, ck, is_b, &t2));
-  for (const ContactPair &pr : P->contact->pairs) {
+  for (const ContactPair &pr : contact->pairs) {
     if (is_b[pr.local_node]) continue;  // held by the grip: their slide is prescribed
     local[0] += pr.committed.status != CONTACT_OPEN;
     // Slipping, or sticking at the Coulomb limit: the lagged law commits a slipping pair whose
     // node stopped or turned back within the increment as sticking with its force still on the
     // cone (kernels/contact_law.cpp), so in gross slip pairs pass between the two; either way
     // their friction is fully mobilised. (The implicit law's sticking pairs lie inside the cone.)
-    const ContactPairReport r = ContactReport(*P->contact, pr);
-    const double limit = P->contact->params.mu * std::fabs(r.force[2]);
+    const ContactPairReport r = ContactReport(*contact, pr);
+    const double limit = contact->params.mu * std::fabs(r.force[2]);
     local[1] += pr.committed.status == CONTACT_SLIP ||
                 (pr.committed.status == CONTACT_STICK && std::hypot(r.force[0], r.force[1]) >= limit * (1.0 - 1e-9));
   }
@@ -82,7 +83,7 @@ PetscErrorCode CapstanCheckReport(Problem *P, const CheckInput &ck, std::vector<
   PetscCheck(s[kOnsetStep] >= 0, P->comm, PETSC_ERR_NOT_CONVERGED,
              "capstan: no gross slip by the end of the pull (T2/T1 = %.4f); pull end B further", s[kLastT2] / ck.t1);
   const double mu_eff = std::log(s[kOnsetT2] / ck.t1) / ck.theta;
-  const double mu = P->contact->params.mu;
+  const double mu = FindTerm<ContactSet>(*P)->params.mu;
   PetscCall(PetscPrintf(P->comm,
                         "capstan: theta = %.6f rad, T1 = %.6e N, T2 at slip onset = %.6e N (step %" PetscInt_FMT "), "
                         "T2 at the end = %.6e N, exp(mu theta) = %.6f\n",

@@ -172,12 +172,12 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
   PetscCall(VecRestoreArrayRead(P->reaction, &r));
   PetscCall(VecRestoreArrayRead(P->U, &u));
   PetscInt pairs[3] = {0, 0, 0};
-  if (P->contact)
-    for (const ContactPair &pr : P->contact->pairs) {
+  if (const ContactSet *contact = FindTerm<ContactSet>(*P))
+    for (const ContactPair &pr : contact->pairs) {
       pairs[pr.committed.status]++;
       for (size_t k = 0; k < npn; ++k)
         if (pr.natural_node == c->probe_nodes[k]) {
-          const ContactPairReport rep = ContactReport(*P->contact, pr);
+          const ContactPairReport rep = ContactReport(*contact, pr);
           probe_n[5 * k + 3] = rep.slide_global[0], probe_n[5 * k + 4] = rep.slide_global[1];
         }
     }
@@ -195,10 +195,10 @@ PetscErrorCode Measure(Problem *P, StructureContext *c, const CellFields &f, Fig
   v->probe_n.assign(probe_n, probe_n + 5 * npn);
   v->reaction.assign(probe_n + 5 * npn, probe_n + 5 * npn + 3 * c->supports.size());
   v->chamber.clear();
-  if (P->chambers) {
+  if (const ChamberSet *chambers = FindTerm<ChamberSet>(*P)) {
     PetscCall(ChamberUpdate(P, P->U));
-    for (size_t k = 0; k < P->chambers->volume.size(); ++k)
-      v->chamber.push_back(1e3 * P->chambers->gauge[k]), v->chamber.push_back(1e-9 * P->chambers->volume[k]);
+    for (size_t k = 0; k < chambers->volume.size(); ++k)
+      v->chamber.push_back(1e3 * chambers->gauge[k]), v->chamber.push_back(1e-9 * chambers->volume[k]);
   }
   PetscFunctionReturn(0);
 }
@@ -233,7 +233,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt pr
   PetscCall(ComputeCellFields(P, P->U, &f));
   PetscCall(Measure(P, c, f, &v));
   if (P->rank != 0) PetscFunctionReturn(0);
-  const bool contact = P->contact != nullptr;
+  const bool contact = FindTerm<ContactSet>(*P) != nullptr;
   FILE *out = CsvHistoryOpen(path, step, Header(P, c, contact).c_str());
   PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "cannot write %s (-structure_history)", path.c_str());
   std::fprintf(out, "%lld,%.10g", (long long)step, t);
@@ -284,19 +284,20 @@ PetscErrorCode Report(Problem *P, void *vctx) {
     PetscCall(PetscPrintf(P->comm, "structure: support %s reaction = (%.6e, %.6e, %.6e) N%s\n", c->supports[k].c_str(),
                           v.reaction[3 * k], v.reaction[3 * k + 1], v.reaction[3 * k + 2], shared));
   }
-  if (P->layers)
+  const ContactSet *contact = FindTerm<ContactSet>(*P);
+  if (const LayerContactSet *layers = FindTerm<LayerContactSet>(*P))
     PetscCall(PetscPrintf(P->comm,
                           "structure: layer contact: %" PetscInt_FMT " of %" PetscInt_FMT
                           " paired nodes touching the layer below, deepest penetration %.4f mm\n",
-                          P->layers->active, P->layers->paired, P->layers->deepest));
+                          layers->active, layers->paired, layers->deepest));
   for (size_t k = 0; k < P->scene.chambers.size(); ++k)
     PetscCall(PetscPrintf(P->comm, "structure: chamber %s: gauge pressure %.6f kPa, volume %.6f m^3 (%s)\n",
                           P->scene.chambers[k].name.c_str(), v.chamber[2 * k], v.chamber[2 * k + 1],
-                          P->chambers->sealed[k] ? "sealed" : "supplied"));
-  if (P->contact) {
+                          FindTerm<ChamberSet>(*P)->sealed[k] ? "sealed" : "supplied"));
+  if (contact) {
     double slide = 0.0;
-    for (const ContactPair &pr : P->contact->pairs) {
-      const ContactPairReport r = ContactReport(*P->contact, pr);
+    for (const ContactPair &pr : contact->pairs) {
+      const ContactPairReport r = ContactReport(*contact, pr);
       slide = std::max(slide, std::hypot(r.slide_local[0], r.slide_local[1]));
     }
     PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &slide, 1, MPI_DOUBLE, MPI_MAX, P->comm));
@@ -313,7 +314,7 @@ PetscErrorCode Report(Problem *P, void *vctx) {
                           v.probe_e[2 * k], v.probe_e[2 * k + 1]));
   for (size_t k = 0; k < c->probe_nodes.size(); ++k) {
     char slide[96] = "";
-    if (P->contact) std::snprintf(slide, sizeof slide, ", slide (%.4f, %.4f) mm", v.probe_n[5 * k + 3], v.probe_n[5 * k + 4]);
+    if (contact) std::snprintf(slide, sizeof slide, ", slide (%.4f, %.4f) mm", v.probe_n[5 * k + 3], v.probe_n[5 * k + 4]);
     const double *X = &c->probe_node_X[3 * k];
     PetscCall(PetscPrintf(P->comm,
                           "structure: probe node %zu (nearest plan %.10g, %.10g): scene node %" PetscInt_FMT

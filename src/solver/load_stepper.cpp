@@ -24,9 +24,8 @@
 #include <cstring>
 #include <string>
 
-#include "etfe/chamber.h"
-#include "etfe/layer_contact.h"
 #include "etfe/assembly.h"
+#include "etfe/chamber.h"
 #include "etfe/contact.h"
 #include "etfe/free_rigid_motions.h"
 #include "etfe/interrupt.h"
@@ -223,10 +222,11 @@ PetscErrorCode RestartFromCheckpoint(LoadStepper *s) {
   // stress-free shape of a laid-on pattern, hence the internal forces of the increment's work)
   // is that of the uninterrupted run.
   PetscCall(ProblemSetLoadTime(s->P, s->t, s->P->U));
-  if (s->P->layers) PetscCall(LayerContactPair(s->P, s->P->U));  // as after the checkpoint's increment
+  for (auto &term : s->P->terms) PetscCall(term->Restarted(*s->P));  // as after the checkpoint's increment
   // A branch's chambers follow its own scene from the next stage on (sealed or supplied): decided
   // again at the base's stage end as the commit of the increment that ended there does.
-  if (s->ck.branch && s->P->chambers) PetscCall(ChamberCommit(s->P, s->t));
+  if (s->ck.branch)
+    if (ChamberSet *chambers = FindTerm<ChamberSet>(*s->P)) PetscCall(chambers->Commit(*s->P, s->t));
   PetscCall(PetscPrintf(s->P->comm, "%s: from %s at increment %" PetscInt_FMT ", load time %g\n",
                         s->ck.branch ? "restart (branch)" : "restart", s->ck.restart, s->step, s->t));
   PetscFunctionReturn(0);
@@ -397,20 +397,35 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   PetscFunctionReturn(0);
 }
 
-// Lagged law with -contact_lagged_repeat: a converged increment is solved again, from its answer,
-// while the statuses its commit would set differ from those it was solved with
-// (ContactLaggedRevise), at most that many times. A repeat that fails to converge leaves the last
-// converged solve and its statuses, which the commit then treats as the thesis's law does: a
-// repeat never cuts an increment back.
+// The largest number of repeats a term asks for (PhysicsTerm::RepeatLimit; 0: none).
+PetscInt RepeatLimit(const Problem &P) {
+  PetscInt limit = 0;
+  for (const auto &term : P.terms) limit = std::max(limit, term->RepeatLimit());
+  return limit;
+}
+
+// A term whose commit revises what the solve held fixed (the lagged law with
+// -contact_lagged_repeat): a converged increment is solved again, from its answer, while the
+// states its commit would set differ from those it was solved with (PhysicsTerm::Revise), at
+// most that many times. A repeat that fails to converge leaves the last converged solve and its
+// states, which the commit then treats as the thesis's law does: a repeat never cuts an
+// increment back.
 PetscErrorCode RepeatLaggedIncrement(LoadStepper *s, Increment *inc) {
   Problem *P = s->P;
   PetscInt changed = 0, r = 0;
   PetscFunctionBeginUser;
-  if (!P->contact || P->contact->lagged_repeat <= 0) PetscFunctionReturn(0);
+  const PetscInt limit = RepeatLimit(*P);
+  if (limit <= 0) PetscFunctionReturn(0);
   if (!s->U_solved) PetscCall(VecDuplicate(P->U, &s->U_solved));
-  PetscCall(ContactLaggedBeginStep(P));
-  for (; r < P->contact->lagged_repeat; ++r) {
-    PetscCall(ContactLaggedRevise(P, &changed));
+  for (auto &term : P->terms)
+    if (term->RepeatLimit() > 0) PetscCall(term->BeginRepeats(*P));
+  for (; r < limit; ++r) {
+    changed = 0;
+    for (auto &term : P->terms) {
+      PetscInt mine = 0;
+      if (term->RepeatLimit() > r) PetscCall(term->Revise(*P, &mine));
+      changed += mine;
+    }
     if (!changed) break;
     ++s->lagged_repeats;
     PetscCall(VecCopy(P->U, s->U_solved));
@@ -418,7 +433,8 @@ PetscErrorCode RepeatLaggedIncrement(LoadStepper *s, Increment *inc) {
     PetscCall(NewtonSolve(s, inc));
     if (!inc->Converged()) {
       PetscCall(VecCopy(s->U_solved, P->U));
-      PetscCall(ContactLaggedUndoRevise(P));
+      for (auto &term : P->terms)
+        if (term->RepeatLimit() > 0) PetscCall(term->UndoRevise(*P));
       inc->reason = solved;
       break;
     }
@@ -447,23 +463,23 @@ PetscErrorCode AccountIncrementWork(LoadStepper *s) {
   PetscFunctionReturn(0);
 }
 
-// Commits a converged attempt: material history and contact states (history is committed here
-// only), the work, and U and the load time as the new committed state. contact_counts: the
-// pairs open, stick, slip and lifted off in this increment (ContactCommit).
+// Commits a converged attempt: material history (committed here only), the work, U and the load
+// time as the new committed state, and the physics terms' states (contact, chambers, layer
+// pairs). contact_counts: the pairs open, stick, slip and lifted off in this increment
+// (ContactCommit; zeros without contact).
 PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]) {
   Problem *P = s->P;
   PetscFunctionBeginUser;
   PetscCall(CommitHistory(P, P->U));
   P->material->SetIncrementSeconds(0.0);  // from here on the committed state's own stress
   PetscCall(AccountIncrementWork(s));
-  for (int i = 0; i < 4; ++i) contact_counts[i] = 0;
-  if (P->contact) PetscCall(ContactCommit(P, contact_counts));
   PetscCall(VecCopy(s->U_committed, s->U_previous));
   PetscCall(VecCopy(P->U, s->U_committed));
   s->dt_last = inc.t_new - inc.t;
   s->t = inc.t_new;
-  if (P->chambers) PetscCall(ChamberCommit(P, s->t));
-  if (P->layers) PetscCall(LayerContactPair(P, P->U));  // the pairs for the next increment
+  for (auto &term : P->terms) PetscCall(term->Commit(*P, s->t));
+  const ContactSet *contact = FindTerm<ContactSet>(*P);
+  for (int i = 0; i < 4; ++i) contact_counts[i] = contact ? contact->counts[i] : 0;
   ++s->converged_states;
   ++s->step;
   AccountStabilizedIncrement(s, inc);
@@ -531,12 +547,12 @@ PetscErrorCode LoadStepperEnd(LoadStepper *s) {
                           s->work_total, s->shift_work_total,
                           s->work_total != 0 ? s->shift_work_total / std::fabs(s->work_total) : 0.0,
                           s->ck.restart[0] ? " since the restart" : ""));
-  if (P->contact && P->contact->lagged_repeat > 0)
+  if (RepeatLimit(*P) > 0)
     PetscCall(PetscPrintf(P->comm,
                           "etfe: lagged law: %" PetscInt_FMT " repeated solves with revised statuses "
                           "(-contact_lagged_repeat %" PetscInt_FMT "); %" PetscInt_FMT " increments committed at that "
                           "limit or after a repeat that failed (statuses possibly not settled)\n",
-                          s->lagged_repeats, P->contact->lagged_repeat, s->lagged_unsettled));
+                          s->lagged_repeats, RepeatLimit(*P), s->lagged_unsettled));
   PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, s->snes_max_it, s->snes_max_f));
   PetscCall(VecDestroy(&s->Fint));
   PetscCall(VecDestroy(&s->Fint_committed));

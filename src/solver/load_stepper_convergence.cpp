@@ -1,11 +1,11 @@
 // The load stepper's convergence test (see LoadStepperSetConvergenceTest in load_stepper.h):
 // SNES's own test, plus force balance against the size of the forces in play, with the
-// round-off floors of the contact penalties and of the membrane forces as the tolerance's lower
-// bounds where they are set.
+// round-off floors of the physics terms' forces (contact's penalties: PhysicsTerm::ForceFloor)
+// and of the membrane forces as the tolerance's lower bounds where they are set.
 #include <algorithm>
 #include <cmath>
 
-#include "etfe/contact.h"
+#include "etfe/assembly.h"
 #include "etfe/interrupt.h"
 #include "etfe/load_stepper.h"
 #include "etfe/tangent_shift.h"
@@ -56,24 +56,11 @@ PetscErrorCode ConvergedForceBalance(SNES snes, PetscInt it, PetscReal xnorm, Pe
   const bool step_small = *reason == SNES_CONVERGED_SNORM_RELATIVE;
   Problem *P = t->problem;
   PetscReal tol = t->rtol * P->diagnostics.force_scale;
-  if (P->contact) {
-    // A penalty force k w is computed from displacements of size |u|, so it carries a
-    // round-off of about eps k |u| per pair: no Newton iterate can balance below that.
+  if (!P->terms.empty()) {  // round-off floors of the terms' forces (a penalty's)
     Vec X;
-    PetscReal umax;
+    double floor = 0.0;
     PetscCall(SNESGetSolution(snes, &X));
-    PetscCall(VecNorm(X, NORM_INFINITY, &umax));
-    const double k = std::max(P->contact->params.kn, P->contact->params.kt) * P->contact->k_scale_max;
-    const double floor = PenaltyRoundoffFloor(k, umax, P->contact->num_global);
-    // Accepting on a floor that is a visible part of the forces would report a wrong answer as
-    // converged; ContactCreate refuses most such penalties up front, this catches the rest.
-    PetscCheck(!(fnorm > tol && fnorm <= floor && floor > kPenaltyFloorMax * P->diagnostics.force_scale), P->comm,
-               PETSC_ERR_ARG_OUTOFRANGE,
-               "-contact_kn %g / -contact_kt %g: the round-off of the penalty forces (%.3g N) is %.2g of the forces "
-               "balanced (%.3g N), above the force tolerance of the test (%g of them), so this answer cannot be "
-               "checked; the largest usable penalty here is ~%.1e N/mm",
-               P->contact->params.kn, P->contact->params.kt, floor, floor / P->diagnostics.force_scale, P->diagnostics.force_scale,
-               kPenaltyFloorMax, k * kPenaltyFloorMax * P->diagnostics.force_scale / floor);
+    for (auto &term : P->terms) PetscCall(term->ForceFloor(*P, X, fnorm, tol, &floor));
     tol = std::max(tol, floor);
   }
   if (t->roundoff > 0) {

@@ -74,7 +74,7 @@ PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const P
   const int stage = std::min((int)std::floor(t - 1e-9), s.nstages - 1) + 1;
   const double done = t / s.t_end, elapsed_s = now - s.t0;
   std::string contact;
-  if (P->contact) {
+  if (FindTerm<ContactSet>(*P)) {
     char buf[128], lifted[64] = "";
     if (counts[3]) std::snprintf(lifted, sizeof lifted, " (%lld lift-offs since the last line)", (long long)counts[3]);
     std::snprintf(buf, sizeof buf, "  contact open %lld stick %lld slip %lld%s", (long long)counts[0],
@@ -121,7 +121,8 @@ PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, Incre
   PetscCall(WorstNode(P, s.F, &f->worst_node, &f->worst));
   f->bad_element = P->diagnostics.bad_element;
   f->bad_status = P->diagnostics.bad_status;
-  f->stiff_penalty = P->linear_path.needs.penalty;  // what the physics asked of the solver (solver_needs.cpp)
+  const ContactSet *contact = FindTerm<ContactSet>(*P);
+  f->stiff_penalty = contact && contact->params.kn > 1e5 * P->AxialStiffness();
   f->load_max_it = inc.max_it < s.snes_max_it;
   {
     KSP ksp;
@@ -157,7 +158,7 @@ PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt co
     s->lifted_since_print = 0;
   }
   if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, s->step, s->t, o.monitor));
-  if (P->contact && s->out) PetscCall(ContactWriteProbes(P, OutputStem(s->out), s->step, s->t));
+  if (FindTerm<ContactSet>(*P) && s->out) PetscCall(ContactWriteProbes(P, OutputStem(s->out), s->step, s->t));
   PetscFunctionReturn(0);
 }
 

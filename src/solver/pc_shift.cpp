@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "etfe/chamber.h"
+#include "etfe/assembly.h"
 #include "etfe/log_events.h"
 #include "etfe/owned_context.h"
 #include "etfe/tangent_shift.h"
@@ -111,7 +111,7 @@ PetscErrorCode PcShiftSetUp(Problem *P, SNES snes) {
   PetscCheck(s >= 0, P->comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-etfe_pc_shift %g: the foundation is relative to E h and must be >= 0", (double)s);
   if (s == 0) PetscFunctionReturn(0);
-  PetscCheck(!(P->chambers && P->chambers->may_seal), P->comm, PETSC_ERR_SUP,
+  PetscCheck(!ProblemSolverNeeds(*P).krylov_outer, P->comm, PETSC_ERR_SUP,
              "-etfe_pc_shift does not combine with sealed gas chambers (their rank-one tangent is Newton's matrix "
              "already): drop the option");
   auto *c = new PcShift;

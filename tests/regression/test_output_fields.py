@@ -41,7 +41,8 @@ def markdown(table):
     out = ["| dataset | rows | columns | type | vector_field_type | units | family | written | in ParaView | "
            "description |", "|---|---|---|---|---|---|---|---|---|---|"]
     for r in table:
-        viewer = ", ".join("`%s`" % w for w in r["xdmf"].split()) or "(grid)"
+        # no viewer name: the grid's geometry or topology, or a term's item (a chamber: no mesh entity)
+        viewer = ", ".join("`%s`" % w for w in r["xdmf"].split()) or ("(none)" if r["location"] == "item" else "(grid)")
         out.append("| `%s` | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             r["name"], r["location"], r["components"], r["number_type"], r["vector_field_type"], r["units"],
             r["family"], r["written"], viewer, r["description"]))
