@@ -12,6 +12,7 @@
 
 #include "etfe/material.h"
 #include "etfe/mesh/local_mesh.h"
+#include "etfe/physics_term.h"
 #include "etfe/scene.h"
 #include "etfe/solve_diagnostics.h"
 #include "etfe/stage_clock.h"
@@ -128,6 +129,9 @@ struct Problem {
   ChamberSet *chambers = nullptr;
   // Contact between film layers (nullptr without -layer_contact).
   LayerContactSet *layers = nullptr;
+
+  // Physics terms (physics_term.h): for now the cables (cable_term.h).
+  PhysicsTermList terms;
 
   // Seconds of physical time at each load time (-load_stage_duration, -load_hold_*; stage_clock.h).
   StageClock clock;

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <memory>
 
+#include "etfe/cable_term.h"
 #include "etfe/checkpoint.h"
 #include "etfe/contact.h"
 #include "etfe/input_plausibility.h"
@@ -49,6 +50,7 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
   // A load history keeps only each rank's part (form finding keeps the global description on
   // rank 0, which writes the found shape with the scene's topology).
   PetscCall(ProblemCreate(comm, std::move(scene), std::move(material), formfind, P));
+  PetscCall(CableTermAdd(P));  // physics-term hook (cables), until the registry is merged
   P->observer = observer;
   if (P->scene.contact.active) {
     ContactSet *contact;

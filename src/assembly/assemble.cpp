@@ -219,6 +219,10 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
     }
     PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
   }
+  for (auto &term : P->terms) {  // physics-term hook (cables), until the term loops are merged
+    PetscCall(term->Prepare(*P, u));
+    PetscCall(term->AddLocalForces(*P, u, f, &status, &ext2));
+  }
   PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
   if (P->stabilization.stiffness > 0) PetscCall(AddStabilizationForce(P, U, Fout));
   if (P->layers) PetscCall(LayerContactResidual(P, U, Fout));
@@ -335,6 +339,10 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     PetscCall(PetscLogEventEnd(LogEvents().contact, 0, 0, 0, 0));
   }
   if (P->chambers) PetscCall(ChamberTangent(P, u));
+  for (auto &term : P->terms) {  // physics-term hook (cables), until the term loops are merged
+    PetscCall(term->Prepare(*P, u));
+    PetscCall(term->AddTangent(*P, U, u, Pmat));
+  }
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   if (P->layers) PetscCall(LayerContactJacobian(P, U, Pmat));
   if (!P->unassembled)  // unassembled: after the assembly, split over the subdomains

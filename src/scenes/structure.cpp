@@ -152,10 +152,12 @@ PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserv
     PetscCall(StructureAddSupports(comm, in, 1, scene));
     if (SceneHoldsMesh(comm)) FormFindingRatios(in, scene);
     PetscCall(StructureFilmParts(comm, in, scene));
+    PetscCall(StructureAddCables(comm, in, 1, scene));
   } else {
     PetscCall(StructureFilmParts(comm, in, scene));
     PetscCall(StructureAddSupports(comm, in, stages, scene));
     PetscCall(BuildLoadHistory(comm, in, stages, scene));
+    PetscCall(StructureAddCables(comm, in, stages, scene));
   }
   // Form finding reports its own figures (the surface found is written as a mesh).
   if (!scene->form_finding) PetscCall(StructureObserverCreate(in, observer));

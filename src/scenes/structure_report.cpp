@@ -216,6 +216,11 @@ std::string Header(const Problem *P, const StructureContext *c, bool contact) {
   }
   for (const std::string &g : c->supports) h += "," + g + "_RX," + g + "_RY," + g + "_RZ";
   for (const ChamberSpec &s : P->scene.chambers) h += "," + s.name + "_p_kPa," + s.name + "_V_m3";
+  for (const auto &term : P->terms) {  // physics-term hook (cable columns), until the history loop is merged
+    std::vector<TermColumn> cols;
+    term->Columns(*P, &cols);
+    for (const TermColumn &col : cols) h += "," + col.name;
+  }
   if (contact) h += ",pairs_open,pairs_stick,pairs_slip";
   return h + ",work,shift_work";
 }
@@ -229,6 +234,9 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f));
   PetscCall(Measure(P, c, f, &v));
+  std::vector<TermColumn> term_columns;  // physics-term hook (cable columns), until the history loop is merged
+  if (!P->terms.empty()) PetscCall(ProblemUpdateReactions(P, P->U));
+  for (const auto &term : P->terms) PetscCall(term->Columns(*P, &term_columns));
   if (P->rank != 0) PetscFunctionReturn(0);
   const bool contact = P->contact != nullptr;
   FILE *out = CsvHistoryOpen(path, step, Header(P, c, contact).c_str());
@@ -245,6 +253,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt) {
     for (int i = 0; i < (contact ? 5 : 3); ++i) std::fprintf(out, ",%.8e", v.probe_n[5 * k + i]);
   for (double x : v.reaction) std::fprintf(out, ",%.8e", x);
   for (double x : v.chamber) std::fprintf(out, ",%.8e", x);
+  for (const TermColumn &col : term_columns) std::fprintf(out, ",%.8e", col.value);
   if (contact) std::fprintf(out, ",%lld,%lld,%lld", (long long)v.pairs[0], (long long)v.pairs[1], (long long)v.pairs[2]);
   std::fprintf(out, ",%.8e,%.8e\n", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
   std::fclose(out);
@@ -290,6 +299,12 @@ PetscErrorCode Report(Problem *P, void *vctx) {
     PetscCall(PetscPrintf(P->comm, "structure: chamber %s: gauge pressure %.6f kPa, volume %.6f m^3 (%s)\n",
                           P->scene.chambers[k].name.c_str(), v.chamber[2 * k], v.chamber[2 * k + 1],
                           P->chambers->sealed[k] ? "sealed" : "supplied"));
+  for (const auto &term : P->terms) {  // physics-term hook (cable lines), until the report loop is merged
+    std::vector<std::string> lines;
+    PetscCall(ProblemUpdateReactions(P, P->U));  // the terms' figures at the converged state
+    PetscCall(term->Report(*P, &lines));
+    for (const std::string &l : lines) PetscCall(PetscPrintf(P->comm, "structure: %s\n", l.c_str()));
+  }
   if (P->contact) {
     double slide = 0.0;
     for (const ContactPair &pr : P->contact->pairs) {

@@ -460,6 +460,7 @@ PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt co
   s->dt_last = inc.t_new - inc.t;
   s->t = inc.t_new;
   if (P->chambers) PetscCall(ChamberCommit(P, s->t));
+  for (auto &term : P->terms) PetscCall(term->Commit(*P, s->t));  // physics-term hook, until the term loops are merged
   if (P->layers) PetscCall(LayerContactPair(P, P->U));  // the pairs for the next increment
   ++s->converged_states;
   ++s->step;
