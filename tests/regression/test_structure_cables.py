@@ -8,7 +8,8 @@
 * a sliding cable over a pulled-down node: one force along it (both end pulls equal), the loads
   balanced; the same cable fixed carries two different forces;
 * form finding: a flat film of stress n with edge cables of force T: the edges are circles of
-  radius T/n, the cut length l / (1 + T / EA);
+  radius T/n, the cut length l / (1 + T / EA); the four-point sail's edges curve by n/T;
+* cable forces, lengths and slack flags in the results file and the history CSV;
 * a restart mid-load gives the uninterrupted run's results bit for bit;
 * bad inputs refused by name.
 The film under the cable in the static checks is nearly without stiffness (E = 0.001 MPa), so the
@@ -91,8 +92,20 @@ def test(etfe, chk):
         cat = FILM + ["-mesh_file", irv, "-bc_far_fix", "xyz", "-bc_anchor_fix", "xyz", "-bc_end_fix", "xyz",
                       "-cable_cable_EA", EA, "-cable_cable_prestress", T0, "-cable_cable_weight", w, "-load_increments", 10]
         full = os.path.join(tmp, "full.h5")
-        _, out = run(etfe, cat + ["-output", 1, "-output_file", full])
+        hist = os.path.join(tmp, "full.csv")
+        _, out = run(etfe, cat + ["-output", 1, "-output_file", full, "-structure_history", hist])
         c = cables(out)["cable"]
+        step, _, data = T.read_steps(full)[-1]
+        force = data.get("cable_cable_force")
+        chk.check(force is not None and len(force) == 40 and T.printed_agree("%.6e" % force.max(), "%.6e" % c["max"])
+                  and T.printed_agree("%.6e" % force.min(), "%.6e" % c["min"]) and not data["cable_cable_slack"].any()
+                  and len(data["cable_cable_length"]) == 40,
+                  "catenary: the results file's last step holds the 40 segment forces, lengths and slack flags, "
+                  "as reported")
+        row = T.read_history(hist)[-1]
+        chk.check(T.printed_agree("%.6e" % float(row["cable_cable_force_max"]), "%.6e" % c["max"]) and
+                  row["cable_cable_slack_segments"] == "0.00000000e+00",
+                  "catenary: the history CSV's last row has the cable's largest force and no slack segment")
         H0, sag0 = irvine(10000.0, 10000.0 / (1 + T0 / EA), EA, w * 1e-3)
         H = c["pull"][0][0]
         sag = float(re.search(r"structure: largest displacement (\S+) mm", out).group(1))
@@ -150,6 +163,24 @@ def test(etfe, chk):
                      "form finding: cable %s's cut length %.6f mm is l / (1 + T/EA)" % (name, c[name]["cut"]))
             chk.check(c[name]["min"] == 500.0 and c[name]["max"] == 500.0, "form finding: cable %s carries 500 N" % name)
 
+        # --- The four-point sail (options/structure/sail_formfind.opts): each edge's discrete curvature
+        # |e_i - e_(i-1)| / mean segment length at every interior cable node against n / T = 1 / 20 m.
+        sail = os.path.join(tmp, "sail.msh")
+        _, out = run(etfe, ["-options_file", os.path.join(T.OPTIONS, "structure", "sail_formfind.opts"), "-output", 0,
+                            "-formfind_monitor", 0, "-formfind_mesh_out", sail])
+        xyz = read_nodes41(sail)
+        worst = 0.0
+        for name, c in cables(out).items():
+            chain = [xyz[k + 1] for k in chain_nodes(name, 12)]
+            for i in range(1, 12):
+                a, b, d = chain[i - 1], chain[i], chain[i + 1]
+                l1, l2 = math.dist(a, b), math.dist(b, d)
+                kappa = math.dist([(b[k] - a[k]) / l1 for k in range(3)], [(d[k] - b[k]) / l2 for k in range(3)]) / (
+                    0.5 * (l1 + l2))
+                worst = max(worst, abs(kappa * 20000.0 - 1))
+        chk.less(worst, 2e-3, "four-point sail: the edges' curvature against n/T (12 segments each), largest relative "
+                              "difference")
+
         # --- Bad inputs, each refused by name before the run.
         branch = os.path.join(tmp, "branch.msh")
         cable_meshes.strip(branch, 1000.0, 100.0, 10, lines={"branch": [(i, i + 1) for i in range(10)] + [(5, 16)],
@@ -178,6 +209,13 @@ def test(etfe, chk):
                             "-bc_east_fix", "xyz", "-output", 0], expect_fail=True)
         chk.check("the film's edge from node 0 (tag 1 in the file, at 0, 0, 0) to node 1 (tag 2 in the file, at 100, 0, "
                   "0) is free (no cable, no support)" in out, "refused: form finding with a free edge, named")
+
+
+def chain_nodes(edge, n):
+    """Node indices along an edge of meshes/sail_4point.msh (meshes/sail_4point.py)."""
+    idx = lambda i, j: j * (n + 1) + i  # noqa: E731
+    return {"edge_1": [idx(i, 0) for i in range(n + 1)], "edge_2": [idx(n, j) for j in range(n + 1)],
+            "edge_3": [idx(n - i, n) for i in range(n + 1)], "edge_4": [idx(0, n - j) for j in range(n + 1)]}[edge]
 
 
 def read_nodes41(path):
