@@ -6,9 +6,10 @@
 * Irvine's elastic catenary (a cable under its weight between two supports at one level): the
   horizontal force and the midspan sag against the closed form;
 * a sliding cable over a pulled-down node: one force along it (both end pulls equal), the loads
-  balanced; the same cable fixed carries two different forces;
+  balanced, the same on 2 ranks; the same cable fixed carries two different forces;
 * form finding: a flat film of stress n with edge cables of force T: the edges are circles of
-  radius T/n, the cut length l / (1 + T / EA); the four-point sail's edges curve by n/T;
+  radius T/n, the cut length l / (1 + T / EA); the four-point sail's edges curve by n/T, and its
+  found mesh keeps the edge groups for the loaded run;
 * cable forces, lengths and slack flags in the results file and the history CSV;
 * a restart mid-load gives the uninterrupted run's results bit for bit;
 * bad inputs refused by name.
@@ -140,6 +141,9 @@ def test(etfe, chk):
                  "sliding cable: both end pulls equal the force (%.6f, %.6f, %.6f N), relative difference"
                  % (p0, p1, c["max"]))
         chk.less(abs(-c["pull"][0][2] - c["pull"][1][2] - 100.0), 1e-2, "sliding cable: the ends carry the 100 N, N off")
+        _, out2 = run(etfe, pulley + ["-cable_cable_sliding"], np=2)
+        c2 = cables(out2)["cable"]
+        chk.less(abs(c2["max"] / c["max"] - 1), 1e-9, "sliding cable: 2 ranks against 1, force relative difference")
         _, out = run(etfe, pulley)
         c = cables(out)["cable"]
         chk.check(c["max"] > 2 * c["min"], "the same cable fixed: the short leg pulls harder (%.1f vs %.1f N)"
@@ -169,7 +173,7 @@ def test(etfe, chk):
         _, out = run(etfe, ["-options_file", os.path.join(T.OPTIONS, "structure", "sail_formfind.opts"), "-output", 0,
                             "-formfind_monitor", 0, "-formfind_mesh_out", sail])
         xyz = read_nodes41(sail)
-        worst = 0.0
+        worst, found_cut = 0.0, {name: c["cut"] for name, c in cables(out).items()}
         for name, c in cables(out).items():
             chain = [xyz[k + 1] for k in chain_nodes(name, 12)]
             for i in range(1, 12):
@@ -180,6 +184,15 @@ def test(etfe, chk):
                 worst = max(worst, abs(kappa * 20000.0 - 1))
         chk.less(worst, 2e-3, "four-point sail: the edges' curvature against n/T (12 segments each), largest relative "
                               "difference")
+        # The found surface keeps its 1-D groups (line elements): the loaded sail takes its cables from it.
+        corners = sum((["-bc_c%d_fix" % k, "xyz"] for k in range(1, 5)), [])
+        ropes = sum((["-cable_edge_%d_EA" % k, 1.2e7, "-cable_edge_%d_prestress" % k, 5000] for k in range(1, 5)), [])
+        _, out = run(etfe, ["-scene", "structure", "-mesh_file", sail, "-membrane_thickness", 0.25, "-output", 0,
+                            "-structure_self_weight", 1, "-load_increments", 2] + corners + ropes)
+        loaded = cables(out)
+        chk.check(sorted(loaded) == ["edge_1", "edge_2", "edge_3", "edge_4"] and
+                  all(abs(c["cut"] / found_cut[n] - 1) < 1e-6 for n, c in loaded.items()),
+                  "the form-found sail's mesh carries its four edge cables into a static run (cut length as found)")
 
         # --- Bad inputs, each refused by name before the run.
         branch = os.path.join(tmp, "branch.msh")
