@@ -126,7 +126,7 @@ PetscErrorCode SceneBuild_Structure(MPI_Comm comm, SceneSpec *scene, SceneObserv
     // -help without a mesh: the scene-wide options; the per-group ones need the mesh's groups.
     PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
     PetscCall(PetscPrintf(comm, "  (-scene structure -mesh_file <mesh> -help also lists -bc_<group>_*, -film_<group>_*, "
-                                "-rigid_<name>_* and -region_<name>_* for the groups of that mesh)\n"));
+                                "-cable_<group>_*, -rigid_<name>_* and -region_<name>_* for the groups of that mesh)\n"));
     PetscFunctionReturn(0);
   }
   PetscCheck(!mesh.file.empty(), comm, PETSC_ERR_ARG_WRONG,
