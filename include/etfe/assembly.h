@@ -23,6 +23,9 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec F, void *ctx);
 PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat P, void *ctx);
 // What the problem's physics terms ask of the linear solver, over all of them (physics_terms.cpp).
 TermSolverNeeds ProblemSolverNeeds(const Problem &problem);
+// Whether a term's columns, fields or report read its last evaluation (PhysicsTerm::ReportsLastEvaluation):
+// the residual is then evaluated at the state reported first (ProblemUpdateReactions).
+bool TermsReportLastEvaluation(const Problem &problem);
 
 // Viscous stabilization (stabilization.cpp), a physics term every problem has (any load history
 // may need it): Begin makes the residual carry relative * E h0 * (U - anchor) on free DOFs and

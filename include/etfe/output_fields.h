@@ -122,6 +122,15 @@ inline constexpr OutputField kOutputFields[] = {
      nullptr, "gauge pressure of each gas chamber, the scene's chamber order (not in the XDMF: no mesh entity)", nullptr},
     {"chambers/volume", Layout::Items, 1, FieldKind::Scalar, false, "mm^3", "chamber_volume", FieldWhen::Term, nullptr,
      "volume each gas chamber encloses, the scene's chamber order (not in the XDMF: no mesh entity)", nullptr},
+    {"cables/force", Layout::Items, 1, FieldKind::Scalar, false, "N", "cable_force", FieldWhen::Term, nullptr,
+     "axial force of each cable segment, the cables in the scene's order, each from its first end (not in the XDMF)",
+     nullptr},
+    {"cables/length", Layout::Items, 1, FieldKind::Scalar, false, "mm", "cable_length", FieldWhen::Term, nullptr,
+     "current length of each cable segment, as cables/force", nullptr},
+    {"cables/slack", Layout::Items, 1, FieldKind::Scalar, false, "1", "cable_slack", FieldWhen::Term, nullptr,
+     "1 where a cable segment is slack (carries nothing), as cables/force", nullptr},
+    {"cables/cable", Layout::Items, 1, FieldKind::Scalar, false, "1", "cable_index", FieldWhen::Term, nullptr,
+     "the cable of each segment: its index in the scene's cable order", nullptr},
 };
 
 // The row of a dataset name, -1 when the table has none.

@@ -100,6 +100,9 @@ public:
   virtual PetscErrorCode Report(const Problem &, std::vector<std::string> * /*lines*/) const { return 0; }
 
   virtual TermSolverNeeds SolverNeeds() const { return {}; }
+  // Its Columns, Fields and Report read what its last evaluation left (the cables' segment
+  // forces): the reader evaluates the residual at the state it reports first.
+  virtual bool ReportsLastEvaluation() const { return false; }
 
   // Frees what the term holds of PETSc (before the problem's vectors and matrix are destroyed:
   // a term's matrix may hold a reference to the problem's).

@@ -106,7 +106,7 @@ struct Problem {
   // What acts on the film besides its elements and the constraints (physics_term.h): follower
   // pressure, gas chambers, nodal forces, rigid contact, the viscous stabilization, layer
   // contact; only those the scene uses, created by MakePhysicsTerms (physics_terms.cpp) in the
-  // order their forces are summed.
+  // order their forces are summed; the cables last.
   PhysicsTermList terms;
 
   // Seconds of physical time at each load time (-load_stage_duration, -load_hold_*; stage_clock.h).

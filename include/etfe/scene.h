@@ -87,6 +87,19 @@ struct ContactSpec {
   double search_tol = 1e-6;  // mm, | distance to the support surface | below this makes a pair
 };
 
+// A cable along a chain of the film's nodes (the general scene's -cable_<group>_*; the physics is
+// a term, src/assembly/cable_term.cpp). Small: the same on every rank.
+struct CableSpec {
+  std::string name;        // its 1-D group
+  std::vector<int> nodes;  // the chain n0 ... nk, scene node ids
+  double EA = 0.0;         // axial stiffness [N]
+  double length = 0.0;     // stress-free length of the whole cable [mm] (0: from prestress)
+  double prestress = 0.0;  // force at the reference geometry [N]; form finding: the prescribed force
+  bool sliding = false;    // one force along the whole chain (a frictionless pocket)
+  bool weighted = false;
+  ScheduledValue weight;   // self-weight [N/mm of stress-free length], acting along -z
+};
+
 // The mesh and every list indexed by its nodes or elements (constraints, nodal forces, pressure
 // elements, element ratios and stress-free shapes, initial guess) are filled on rank 0 only, the
 // reader; the other fields are the same on every rank (scene_registry.h).
@@ -107,6 +120,7 @@ struct SceneSpec {
   std::vector<ChamberSpec> chambers;
   double atmosphere = 0.101325;  // MPa, absolute: the chambers' gas laws
   std::vector<NodalForce> nodal_forces;
+  std::vector<CableSpec> cables;  // every rank
   ContactSpec contact;
   std::vector<double> element_stress_ratio;  // form finding: MD:TD per element (empty: uniform)
   std::vector<double> initial_guess;     // 3 per node or empty (zero displacement)

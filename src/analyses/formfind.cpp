@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "etfe/assembly.h"
+#include "etfe/cable_term.h"
 #include "etfe/cutpattern.h"
 #include "etfe/formfind.h"
 #include "etfe/kernels/status.h"
@@ -153,6 +154,14 @@ PetscErrorCode IterateShape(Problem *P, SNES snes, const FormFindOptions &o, dou
     if (o.mesh_control) PetscCall(ProjectOnNormals(P, P->U));
     PetscCall(MaxNormalMove(P, P->U, &move));
     PetscCall(VecMaxNodalNorm(P->U, &all));
+    // Cables: the edges they hold move in the film's tangent plane, so their nodes' moves across
+    // the cable count too (the tangential drift of the interior, and of the cable nodes along
+    // the cable, does not shape the surface).
+    if (!P->scene.cables.empty()) {
+      PetscReal cable_move;
+      PetscCall(CableLargestMove(P, P->U, &cable_move));
+      move = PetscMax(move, cable_move);
+    }
     PetscCall(VecAXPY(U_total, 1.0, P->U));
     PetscCall(UpdateReference(P, P->U));
     if (P->diagnostics.bad_status != KERNEL_OK) {
@@ -267,6 +276,11 @@ PetscErrorCode FormFindRun(Problem *P, SNES snes, OutputFile *out, const FormFin
     PetscCall(WriteFoundSurface(P, out, o, shape, &path));
     PetscCall(PetscPrintf(P->comm, "formfind: converged after %" PetscInt_FMT " iterations; surface written to %s\n",
                           res->iterations, path.c_str()));
+    for (const auto &term : P->terms) {  // the terms' lines (cables: force, length, cut length)
+      std::vector<std::string> lines;
+      PetscCall(term->Report(*P, &lines));
+      for (const std::string &l : lines) PetscCall(PetscPrintf(P->comm, "formfind: %s\n", l.c_str()));
+    }
     if (o.cutpattern.enabled) PetscCall(CutFoundSurface(P, o, shape, path));
   }
   // P->U now holds the total displacement so that scene reports see the found shape.

@@ -5,10 +5,12 @@
 // changed order changes the answers' last bits: the pressure loads (which read the chambers'
 // pressures, evaluated in every term's Prepare before any term's forces), the chambers (made
 // after the loads on their boundaries), the nodal forces, rigid contact; after the ghost sum the
-// stabilization, then layer contact.
+// stabilization, then layer contact; the cables (new, last: their
+// nodes' forces are added after all the others').
 #include "physics_terms.h"
 
 #include "etfe/assembly.h"
+#include "etfe/cable_term.h"
 #include "etfe/chamber.h"
 #include "etfe/contact.h"
 #include "etfe/layer_contact.h"
@@ -25,6 +27,7 @@ PetscErrorCode MakePhysicsTerms(Problem *P, std::vector<std::vector<PetscInt>> *
   PetscCall(AddContactTerm(P));
   PetscCall(AddStabilizationTerm(P));
   PetscCall(AddLayerContactTerm(P));
+  PetscCall(CableTermAdd(P));
   PetscFunctionReturn(0);
 }
 
@@ -38,6 +41,12 @@ TermSolverNeeds ProblemSolverNeeds(const Problem &P) {
       all.outer = n.outer; // one term at most has its own outer matrix (the chambers')
   }
   return all;
+}
+
+bool TermsReportLastEvaluation(const Problem &P) {
+  for (const auto &term : P.terms)
+    if (term->ReportsLastEvaluation()) return true;
+  return false;
 }
 
 } // namespace etfe

@@ -701,9 +701,11 @@ PetscErrorCode OutputWriteStep(OutputFile *out, Problem *P, Vec U, PetscInt step
   PetscCall(VecGetArrayRead(U, &v.displacement));
   PetscCall(VecGetArrayRead(P->reaction, &v.reaction));
   PetscCall(WriteFields(out, g, out->step_fields, v));
-  PetscCall(WriteTermFields(out, P, g));
   PetscCall(VecRestoreArrayRead(P->reaction, &v.reaction));
   PetscCall(VecRestoreArrayRead(U, &v.displacement));
+  // A term that reports what its last evaluation left (the cables) is evaluated at the state written.
+  if (TermsReportLastEvaluation(*P)) PetscCall(ProblemUpdateReactions(P, U_fields ? U_fields : U));
+  PetscCall(WriteTermFields(out, P, g));
   H5Gclose(g);
   out->steps.push_back({step, time});
   long long count = (long long)out->steps.size();

@@ -69,6 +69,7 @@ std::string TypeName(long long type) {
 struct Carrier {
   std::vector<int> nodes;
   std::vector<int> tris;
+  std::vector<int> lines;  // 2 file-order node indices per line element (cables follow them)
 };
 
 using Key = std::pair<int, long long>;  // (dimension, tag)
@@ -490,6 +491,7 @@ class Reader {
           if (!AddQuadrangle(idx, carrier, tag)) return false;
         } else if (carrier) {
           carrier->nodes.insert(carrier->nodes.end(), idx, idx + npe);
+          if (type == 1) carrier->lines.insert(carrier->lines.end(), idx, idx + 2);
         }
       }
     }
@@ -550,6 +552,7 @@ class Reader {
       } else {
         prev_tris = 0;
         if (carrier) carrier->nodes.insert(carrier->nodes.end(), idx, idx + npe);
+        if (carrier && type == 1) carrier->lines.insert(carrier->lines.end(), idx, idx + 2);
       }
     }
     return true;
@@ -605,7 +608,7 @@ class Reader {
     const size_t limit = kSetEntriesPerByte * in_.size() + (1u << 20);
     for (const auto &g : groups) {
       entries += kGroupCost;
-      for (const Carrier *c : g.second) entries += c->nodes.size() + c->tris.size();
+      for (const Carrier *c : g.second) entries += c->nodes.size() + c->tris.size() + c->lines.size();
       if (entries > limit) {
         return in_.FailAt(elements_pos_, "the physical groups would need more than " +
                                              Str((unsigned long long)limit) +
@@ -619,6 +622,13 @@ class Reader {
         for (int v : c->nodes) {
           if (new_id[(size_t)v] >= 0) ns.push_back(new_id[(size_t)v]);
         }
+      }
+      if (g.first.first == 1) {
+        // Line elements in file order; a node no triangle uses maps to -1 (the cable set-up
+        // refuses it by its group's name).
+        std::vector<int> &ls = mesh.line_sets[name];
+        for (const Carrier *c : g.second)
+          for (int v : c->lines) ls.push_back(new_id[(size_t)v]);
       }
       if (g.first.first == 2) {
         std::vector<int> &es = mesh.element_sets[name];

@@ -84,6 +84,14 @@ bool WriterCheck(const std::string &path, const MeshData &mesh, std::string *err
       }
     }
   }
+  for (const auto &s : mesh.line_sets) {
+    if (s.first.empty() || s.first.find_first_of("\"\n\r") != std::string::npos || s.second.size() % 2 != 0)
+      return WriteFail(path, mesh, "line set " + Quote(s.first) + " has a bad name or an odd number of node ids", err);
+    for (int v : s.second)
+      if (v < -1 || v >= (long long)nn)
+        return WriteFail(path, mesh, "line set " + Quote(s.first) + " holds node " + Str((long long)v) + ", out of range",
+                         err);
+  }
   return true;
 }
 
@@ -93,8 +101,10 @@ bool WriterCheck(const std::string &path, const MeshData &mesh, std::string *err
 // the same name (the reader derives it) plus, for the nodes that adds, a 0-D physical group of
 // the same name carried by one point entity per node, as Gmsh itself models points.
 struct GmshLayout {
-  // 2-D physical tags 1..E for the element sets, then 0-D tags for the node sets that need them.
-  std::vector<std::pair<long long, const std::string *>> phys2, phys0;
+  // 2-D physical tags 1..E for the element sets, then 1-D tags for the line sets (one curve
+  // entity each, tag 1..C in their order), then 0-D tags for the node sets that need them.
+  std::vector<std::pair<long long, const std::string *>> phys2, phys1, phys0;
+  std::vector<const std::vector<int> *> curves;  // curve entity - 1 -> its segments (2 node ids each)
   std::vector<std::vector<long long>> tri_groups;      // triangle -> 2-D physical tags
   std::map<int, std::vector<long long>> point_groups;  // node -> 0-D physical tags
   // Surface entities 1..S: one per distinct group combination, in order of first use.
@@ -116,6 +126,11 @@ void PhysicalGroups(const MeshData &mesh, GmshLayout *g) {
       }
     }
   }
+  // Line sets (cables run along them): a 1-D group on one curve entity; its nodes need no points.
+  for (const auto &s : mesh.line_sets) {
+    g->phys1.emplace_back((long long)(g->phys2.size() + g->phys1.size()) + 1, &s.first);
+    g->curves.push_back(&s.second);
+  }
   for (const auto &s : mesh.node_sets) {
     std::vector<char> covered;
     const auto es = mesh.element_sets.find(s.first);
@@ -125,13 +140,19 @@ void PhysicalGroups(const MeshData &mesh, GmshLayout *g) {
         for (int k = 0; k < 3; ++k) covered[(size_t)mesh.triangles[3 * (size_t)e + k]] = 1;
       }
     }
+    const auto ls = mesh.line_sets.find(s.first);
+    if (ls != mesh.line_sets.end()) {
+      if (covered.empty()) covered.assign(nn, 0);
+      for (int v : ls->second)
+        if (v >= 0) covered[(size_t)v] = 1;
+    }
     std::vector<int> extra;
     for (int v : s.second) {
       if (covered.empty() || !covered[(size_t)v]) extra.push_back(v);
     }
     // An empty node set without an element set is kept as a named group with no entity.
     if (extra.empty() && !(s.second.empty() && es == mesh.element_sets.end())) continue;
-    const long long tag = (long long)(g->phys2.size() + g->phys0.size()) + 1;
+    const long long tag = (long long)(g->phys2.size() + g->phys1.size() + g->phys0.size()) + 1;
     g->phys0.emplace_back(tag, &s.first);
     for (int v : extra) {
       std::vector<long long> &groups = g->point_groups[v];
@@ -169,9 +190,12 @@ void SurfaceEntities(const MeshData &mesh, GmshLayout *g) {
 
 void AppendPhysicalNames(const GmshLayout &g, std::string *out) {
   *out += "$PhysicalNames\n";
-  Line(out, (long long)(g.phys0.size() + g.phys2.size()));
+  Line(out, (long long)(g.phys0.size() + g.phys1.size() + g.phys2.size()));
   for (const auto &p : g.phys0) {
     Line(out, 0LL, p.first, ("\"" + *p.second + "\"").c_str());
+  }
+  for (const auto &p : g.phys1) {
+    Line(out, 1LL, p.first, ("\"" + *p.second + "\"").c_str());
   }
   for (const auto &p : g.phys2) {
     Line(out, 2LL, p.first, ("\"" + *p.second + "\"").c_str());
@@ -182,7 +206,7 @@ void AppendPhysicalNames(const GmshLayout &g, std::string *out) {
 void AppendEntities(const MeshData &mesh, const GmshLayout &g, std::string *out) {
   const size_t nsurf = g.surface_groups.size();
   *out += "$Entities\n";
-  Line(out, (long long)g.point_groups.size(), 0LL, (long long)nsurf, 0LL);
+  Line(out, (long long)g.point_groups.size(), (long long)g.curves.size(), (long long)nsurf, 0LL);
   long long point_tag = 0;
   for (const auto &pg : g.point_groups) {
     const double *x = &mesh.coords[3 * (size_t)pg.first];
@@ -191,6 +215,22 @@ void AppendEntities(const MeshData &mesh, const GmshLayout &g, std::string *out)
     Field(out, (long long)pg.second.size());
     for (long long t : pg.second) Field(out, t);
     *out += '\n';
+  }
+  for (size_t c = 0; c < g.curves.size(); ++c) {
+    double box[6] = {0, 0, 0, 0, 0, 0};
+    bool first = true;
+    for (int v : *g.curves[c]) {
+      if (v < 0) continue;
+      for (int k = 0; k < 3; ++k) {
+        const double x = mesh.coords[3 * (size_t)v + k];
+        if (first || x < box[k]) box[k] = x;
+        if (first || x > box[3 + k]) box[3 + k] = x;
+      }
+      first = false;
+    }
+    Append(out, (long long)c + 1);
+    for (int k = 0; k < 6; ++k) Field(out, box[k]);
+    Line(out, "", 1LL, g.phys1[c].first, 0LL);  // one physical group, no bounding points
   }
   for (size_t s = 0; s < nsurf; ++s) {
     Append(out, (long long)s + 1);
@@ -220,8 +260,18 @@ void AppendElements(const MeshData &mesh, const GmshLayout &g, std::string *out)
   *out += "$Elements\n";
   size_t nruns = 0;
   for (size_t e = 0; e < ne; ++e) nruns += (e == 0 || g.tri_surface[e] != g.tri_surface[e - 1]);
-  const size_t nelem = ne + g.point_groups.size();
-  Line(out, (long long)(nruns + g.point_groups.size()), (long long)nelem, nelem ? 1LL : 0LL,
+  // A line segment with a node the mesh lacks (the reader's -1) cannot be written: left out.
+  std::vector<size_t> nseg(g.curves.size(), 0);
+  size_t nlines = 0;
+  for (size_t c = 0; c < g.curves.size(); ++c) {
+    for (size_t k = 0; k + 1 < g.curves[c]->size(); k += 2)
+      nseg[c] += (*g.curves[c])[k] >= 0 && (*g.curves[c])[k + 1] >= 0;
+    nlines += nseg[c];
+  }
+  size_t nblocks_1d = 0;
+  for (size_t n : nseg) nblocks_1d += n > 0;
+  const size_t nelem = ne + g.point_groups.size() + nlines;
+  Line(out, (long long)(nruns + g.point_groups.size() + nblocks_1d), (long long)nelem, nelem ? 1LL : 0LL,
        (long long)nelem);
   for (size_t e = 0; e < ne;) {
     size_t end = e;
@@ -236,6 +286,13 @@ void AppendElements(const MeshData &mesh, const GmshLayout &g, std::string *out)
   for (const auto &pg : g.point_groups) {
     Line(out, 0LL, ++point_tag, 15LL, 1LL);
     Line(out, ++elem_tag, (long long)pg.first + 1);
+  }
+  for (size_t c = 0; c < g.curves.size(); ++c) {
+    if (!nseg[c]) continue;
+    Line(out, 1LL, (long long)c + 1, 1LL, (long long)nseg[c]);
+    const std::vector<int> &l = *g.curves[c];
+    for (size_t k = 0; k + 1 < l.size(); k += 2)
+      if (l[k] >= 0 && l[k + 1] >= 0) Line(out, ++elem_tag, (long long)l[k] + 1, (long long)l[k + 1] + 1);
   }
   *out += "$EndElements\n";
 }

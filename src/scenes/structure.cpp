@@ -151,7 +151,7 @@ PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *ob
       // -help without a mesh: the scene-wide options; the per-group ones need the mesh's groups.
       PetscCall(StructureOptionsRead(comm, scene->mesh, scene->form_finding, &in));
       PetscCall(PetscPrintf(comm, "  (-scene structure -mesh_file <mesh> -help also lists -bc_<group>_*, "
-                                  "-film_<group>_*, -rigid_<name>_* and -region_<name>_* for the groups of that mesh)\n"));
+                                  "-film_<group>_*, -cable_<group>_*, -rigid_<name>_* and -region_<name>_* for the groups of that mesh)\n"));
       PetscFunctionReturn(0);
     }
     PetscCheck(!mesh.file.empty(), comm, PETSC_ERR_ARG_WRONG,
@@ -180,10 +180,12 @@ PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *ob
     PetscCall(StructureAddSupports(comm, in, 1, scene));
     if (SceneHoldsMesh(comm)) FormFindingRatios(in, scene);
     PetscCall(StructureFilmParts(comm, in, scene));
+    PetscCall(StructureAddCables(comm, in, 1, scene));
   } else {
     PetscCall(StructureFilmParts(comm, in, scene));
     PetscCall(StructureAddSupports(comm, in, stages, scene));
     PetscCall(BuildLoadHistory(comm, in, stages, scene));
+    PetscCall(StructureAddCables(comm, in, stages, scene));
   }
   // Form finding reports its own figures (the surface found is written as a mesh), then the check.
   StructureCheckFn check;

@@ -115,6 +115,14 @@ struct CheckInput {
   bool given = false;                       // the values above are set
 };
 
+// -cable_<group>_*: a cable along a 1-D group of the mesh (structure_cables.cpp).
+struct CableInput {
+  std::string group;
+  double EA = 0.0, length = 0.0, prestress = 0.0;
+  bool sliding = false;
+  StageArray weight;  // N/m per stage
+};
+
 struct StructureInputs {
   std::vector<std::string> node_groups, element_groups;  // the mesh's, on every rank
   MeshGenInput generator;
@@ -134,6 +142,7 @@ struct StructureInputs {
   std::vector<RigidInput> rigids;
   std::vector<RegionInput> regions;
   std::vector<ChamberInput> chambers;
+  std::vector<CableInput> cables;
   double atmosphere = 101.325;                            // kPa
   std::vector<std::string> report;                        // element groups and regions reported
   std::vector<double> probe_elements, probe_nodes;        // plan points, 2 each
@@ -161,6 +170,12 @@ PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, Scen
 PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
 // Rigid supports and their candidate nodes (node set "structure_contact").
 PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
+
+// -cable_<group>_* for the mesh's 1-D groups (every rank; refuses a cable option of a group that
+// is not one); then the cables' chains and weights into scene->cables. With form finding, a free
+// edge of the film that has neither a cable nor a support is refused.
+PetscErrorCode StructureCablesRead(MPI_Comm comm, const MeshData &mesh, bool form_finding, StructureInputs *in);
+PetscErrorCode StructureAddCables(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
 
 // The observer: per-group report at the end and the history CSV per increment, then the
 // closed-form check of -structure_check.

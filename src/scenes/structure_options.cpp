@@ -519,6 +519,7 @@ PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool fo
                "-structure_report: %s is neither a surface group of the mesh nor a region of -structure_regions",
                g.c_str());
   }
+  PetscCall(StructureCablesRead(comm, mesh, form_finding, in));  // cables (structure_cables.cpp)
   PetscCall(CheckKeyedOptions(comm, *in));
   PetscFunctionReturn(0);
 }

@@ -218,6 +218,11 @@ std::string Header(const Problem *P, const StructureContext *c, bool contact) {
   }
   for (const std::string &g : c->supports) h += "," + g + "_RX," + g + "_RY," + g + "_RZ";
   for (const ChamberSpec &s : P->scene.chambers) h += "," + s.name + "_p_kPa," + s.name + "_V_m3";
+  for (const auto &term : P->terms) {  // the physics terms' columns
+    std::vector<TermColumn> cols;
+    term->Columns(*P, &cols);
+    for (const TermColumn &col : cols) h += "," + col.name;
+  }
   if (contact) h += ",pairs_open,pairs_stick,pairs_slip";
   return h + ",work,shift_work";
 }
@@ -232,6 +237,9 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt pr
   if (path.empty()) PetscFunctionReturn(0);
   PetscCall(ComputeCellFields(P, P->U, &f));
   PetscCall(Measure(P, c, f, &v));
+  std::vector<TermColumn> term_columns;  // the physics terms' columns
+  if (TermsReportLastEvaluation(*P)) PetscCall(ProblemUpdateReactions(P, P->U));
+  for (const auto &term : P->terms) PetscCall(term->Columns(*P, &term_columns));
   if (P->rank != 0) PetscFunctionReturn(0);
   const bool contact = FindTerm<ContactSet>(*P) != nullptr;
   FILE *out = CsvHistoryOpen(path, step, Header(P, c, contact).c_str());
@@ -248,6 +256,7 @@ PetscErrorCode Step(Problem *P, void *vctx, PetscInt step, double t, PetscInt pr
     for (int i = 0; i < (contact ? 5 : 3); ++i) std::fprintf(out, ",%.8e", v.probe_n[5 * k + i]);
   for (double x : v.reaction) std::fprintf(out, ",%.8e", x);
   for (double x : v.chamber) std::fprintf(out, ",%.8e", x);
+  for (const TermColumn &col : term_columns) std::fprintf(out, ",%.8e", col.value);
   if (contact) std::fprintf(out, ",%lld,%lld,%lld", (long long)v.pairs[0], (long long)v.pairs[1], (long long)v.pairs[2]);
   std::fprintf(out, ",%.8e,%.8e\n", P->diagnostics.increment_work, P->diagnostics.increment_shift_work);
   std::fclose(out);
@@ -294,6 +303,12 @@ PetscErrorCode Report(Problem *P, void *vctx) {
     PetscCall(PetscPrintf(P->comm, "structure: chamber %s: gauge pressure %.6f kPa, volume %.6f m^3 (%s)\n",
                           P->scene.chambers[k].name.c_str(), v.chamber[2 * k], v.chamber[2 * k + 1],
                           FindTerm<ChamberSet>(*P)->sealed[k] ? "sealed" : "supplied"));
+  {
+    std::vector<std::string> lines;  // the physics terms' own lines (the cables': forces, lengths, anchors)
+    if (TermsReportLastEvaluation(*P)) PetscCall(ProblemUpdateReactions(P, P->U));  // at the converged state
+    for (const auto &term : P->terms) PetscCall(term->Report(*P, &lines));
+    for (const std::string &l : lines) PetscCall(PetscPrintf(P->comm, "structure: %s\n", l.c_str()));
+  }
   if (contact) {
     double slide = 0.0;
     for (const ContactPair &pr : contact->pairs) {

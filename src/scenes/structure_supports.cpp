@@ -113,6 +113,7 @@ PetscErrorCode StructureStageCount(MPI_Comm comm, const StructureInputs &in, int
   see(in.wind, in.wind.values.size());
   for (const ChamberInput &c : in.chambers) see(c.pressure, c.pressure.values.size());
   see(in.self_weight, in.self_weight.values.size());
+  for (const CableInput &c : in.cables) see(c.weight, c.weight.values.size());
   PetscCheck(in.stages <= 0 || (size_t)in.stages >= longest, comm, PETSC_ERR_ARG_SIZ,
              "-structure_stages %d: %s gives %zu stages; raise -structure_stages or shorten the option",
              (int)in.stages, which.c_str(), longest);

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Options nobody reads are refused before the run, not reported after it:
-  * an option whose first word neither this program nor PETSc uses (-cable_edge_1_EA) stops the
+  * an option whose first word neither this program nor PETSc uses (-tendon_edge_1_EA) stops the
     run before it computes (no increment, no results file), naming it; a misspelt first word gets
     the closest known name (-snse_rtol: -snes_rtol, -materal_young: -material_young);
   * PETSc's options of many families still pass (-snes_, -sub_, -mg_levels_, -fieldsplit_0_,
@@ -32,7 +32,7 @@ def refused(etfe, chk, tmp, extra, name, hint):
 
 def main_test(etfe, chk):
     with T.scratch_dir("options_unknown") as tmp:
-        refused(etfe, chk, tmp, ["-cable_edge_1_EA", 5], "-cable_edge_1_EA", None)
+        refused(etfe, chk, tmp, ["-tendon_edge_1_EA", 5], "-tendon_edge_1_EA", None)
         refused(etfe, chk, tmp, ["-snse_rtol", "1e-9"], "-snse_rtol", "-snes_rtol")
         refused(etfe, chk, tmp, ["-materal_young", 800], "-materal_young", "-material_young")
         refused(etfe, chk, tmp, ["-kps_type", "preonly"], "-kps_type", "-ksp_type")
@@ -47,8 +47,8 @@ def main_test(etfe, chk):
                   "PETSc's option families pass the check; those nothing read are warned about at the end: %s"
                   % (warn[:1] or T.tail(out, 2)))
 
-        rc, out = T.run(etfe, PATCH + ["-cable_edge_1_EA", 5, "-options_allow_unused", "-output", 0], expect_fail=None)
-        chk.check(rc == 0 and len(T.increments(out)) == 2, "-options_allow_unused accepts -cable_edge_1_EA (exit %d)" % rc)
+        rc, out = T.run(etfe, PATCH + ["-tendon_edge_1_EA", 5, "-options_allow_unused", "-output", 0], expect_fail=None)
+        chk.check(rc == 0 and len(T.increments(out)) == 2, "-options_allow_unused accepts -tendon_edge_1_EA (exit %d)" % rc)
 
         rc, out = T.run(etfe, ["-scene", "patch", "-patch_strain_x", 0, "-output", 0], expect_fail=None)
         never = [l for l in out.splitlines() if "never used" in l]

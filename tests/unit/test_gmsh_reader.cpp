@@ -75,6 +75,20 @@ void CheckSquare(const MeshData &m, const std::string &what) {
       }
     }
   }
+  // The 1-D groups' line elements (cables run along them): 4 segments per edge, both nodes on it.
+  CHECK(m.line_sets.size() == 4, "%s: %zu line sets", what.c_str(), m.line_sets.size());
+  for (const auto &s : kSets) {
+    if (s.axis < 0) continue;
+    const auto it = m.line_sets.find(s.name);
+    CHECK(it != m.line_sets.end() && it->second.size() == 8, "%s: line set %s missing or not 4 segments", what.c_str(),
+          s.name);
+    if (it == m.line_sets.end()) continue;
+    for (size_t k = 0; k + 1 < it->second.size(); k += 2) {
+      const int a = it->second[k], b = it->second[k + 1];
+      CHECK(a >= 0 && b >= 0 && a != b && m.coords[3 * a + s.axis] == s.value && m.coords[3 * b + s.axis] == s.value,
+            "%s: segment %zu of %s is not an edge segment", what.c_str(), k / 2, s.name);
+    }
+  }
   const auto corner = m.node_sets.find("corner");
   if (corner != m.node_sets.end() && corner->second.size() == 1) {
     const int v = corner->second[0];

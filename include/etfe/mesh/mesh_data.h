@@ -14,6 +14,9 @@ struct MeshData {
   // points/lines), 2-D groups become element sets and also node sets. Generators fill them too.
   std::map<std::string, std::vector<int>> node_sets;     // sorted, unique node ids
   std::map<std::string, std::vector<int>> element_sets;  // sorted, unique element ids
+  // 1-D Gmsh physical groups as their line elements, 2 node ids per segment in file order (-1
+  // where a line's node is no triangle's: the reader keeps only the film's nodes). Cables.
+  std::map<std::string, std::vector<int>> line_sets;
   std::string source;            // file name or generator description, for messages
   // Gmsh tags of the nodes and triangles (empty for a generated mesh), so that messages name
   // what the user sees in the file; both halves of a split quadrangle carry the quad's tag.

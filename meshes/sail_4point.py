@@ -1,0 +1,46 @@
+#!/usr/bin/env python3
+"""Writes meshes/sail_4point.msh: a four-point sail, 6 m x 6 m in plan, corners c1 (0,0) and c3
+(6,6) at z = 0, c2 (6,0) and c4 (0,6) raised 1.5 m, on the hyperbolic paraboloid through the four
+corners (a start for form finding), n x n squares split into triangles. Groups: the film "film",
+its four free edges edge_1 (c1-c2), edge_2 (c2-c3), edge_3 (c3-c4), edge_4 (c4-c1) as 1-D groups
+(line elements: the cables run along them), the corners c1..c4 as point groups (the masts).
+Usage: python3 meshes/sail_4point.py [n] (default 12)."""
+import os
+import sys
+
+n = int(sys.argv[1]) if len(sys.argv) > 1 else 12
+L, H = 6000.0, 1500.0
+idx = lambda i, j: j * (n + 1) + i  # noqa: E731
+nodes = []
+for j in range(n + 1):
+    for i in range(n + 1):
+        x, y = L * i / n, L * j / n
+        nodes.append((x, y, H * (x / L + y / L - 2 * x * y / (L * L))))
+tris = []
+for j in range(n):
+    for i in range(n):
+        a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+        tris += [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+edges = {"edge_1": [(idx(i, 0), idx(i + 1, 0)) for i in range(n)],
+         "edge_2": [(idx(n, j), idx(n, j + 1)) for j in range(n)],
+         "edge_3": [(idx(n - i, n), idx(n - i - 1, n)) for i in range(n)],
+         "edge_4": [(idx(0, n - j), idx(0, n - j - 1)) for j in range(n)]}
+corners = {"c1": idx(0, 0), "c2": idx(n, 0), "c3": idx(n, n), "c4": idx(0, n)}
+names = list(corners) + list(edges) + ["film"]
+tag = {k: t + 1 for t, k in enumerate(names)}
+elems = ["15 2 %d %d %d" % (tag[k], tag[k], v + 1) for k, v in corners.items()]
+elems += ["1 2 %d %d %d %d" % (tag[k], tag[k], a + 1, b + 1) for k, ls in edges.items() for a, b in ls]
+elems += ["2 2 %d %d %d %d %d" % (tag["film"], tag["film"], a + 1, b + 1, c + 1) for a, b, c in tris]
+path = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sail_4point.msh")
+with open(path, "w") as f:
+    f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(names))
+    for k in names:
+        f.write('%d %d "%s"\n' % (0 if k in corners else 1 if k in edges else 2, tag[k], k))
+    f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(nodes))
+    for i, (x, y, z) in enumerate(nodes):
+        f.write("%d %.17g %.17g %.17g\n" % (i + 1, x, y, z))
+    f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
+    for i, e in enumerate(elems):
+        f.write("%d %s\n" % (i + 1, e))
+    f.write("$EndElements\n")
+print(path)

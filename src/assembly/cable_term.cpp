@@ -1,0 +1,364 @@
+// The cable term: every cable of the scene (SceneSpec::cables) on the problem's term list.
+//
+// Cables are small beside the film (hundreds of nodes, not hundreds of thousands), so each rank
+// keeps the whole of every cable: before each residual and Jacobian the current positions of the
+// cable nodes are summed over the ranks (each node's owner gives it, the others zero), and every
+// rank evaluates every cable the same way. A rank then adds the forces and the tangent rows of the
+// cable nodes it owns. So the cable forces do not depend on the partition (1 rank or 2: the same
+// numbers), and a sliding cable's single force, which depends on the whole chain, needs no more
+// communication than that.
+//
+// Tension only: a slack segment (or a slack sliding cable) carries nothing and adds no stiffness;
+// Newton stays regular because every cable node is a film node (the set-up refuses others), and
+// the film's own stiffness holds a node whose cables are slack.
+//
+// Form finding (P->scene.form_finding): a cable carries its prescribed force T whatever its length
+// (kernels/cable.h: CableSegmentConstantForce); its stress-free (cut) length is then found from T
+// and EA (CableLengthForForce) and reported.
+#include "etfe/cable_term.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <unordered_map>
+
+#include "etfe/kernels/cable.h"
+#include "etfe/physics_term.h"
+
+namespace etfe {
+
+namespace {
+
+struct Cable {
+  const CableSpec *spec = nullptr;
+  int first = 0, count = 0;  // its nodes: entries first .. first + count - 1 of the term's arrays
+  std::vector<double> L0;    // stress-free length per segment [mm]
+  double L0_total = 0.0;
+  // At the last evaluation:
+  std::vector<CableState> segment;  // per segment (a sliding cable: its one state in chain)
+  CableState chain;                 // whole cable: length, (sliding) force
+  double weight = 0.0;              // N/mm
+};
+
+class CableTerm : public PhysicsTerm {
+ public:
+  const char *Name() const override { return "cables"; }
+  bool ReportsLastEvaluation() const override { return true; }
+  PetscErrorCode SetUp(Problem &P) override;
+  PetscErrorCode Prepare(Problem &P, const PetscScalar *u) override;
+  PetscErrorCode AddLocalForces(Problem &P, const PetscScalar *u, PetscScalar *f, int *status, double *external2) override;
+  PetscErrorCode AddTangent(Problem &P, Vec U, const PetscScalar *u, Mat A) override;
+  PetscErrorCode Columns(const Problem &P, std::vector<TermColumn> *columns) const override;
+  PetscErrorCode Fields(const Problem &P, std::vector<TermData> *fields) const override;
+  PetscErrorCode Report(const Problem &P, std::vector<std::string> *lines) const override;
+  // The largest move in U of a cable node across its cable (along the cable a node may drift: the
+  // constant force on both sides does not hold it there, and that drift does not change the shape).
+  PetscErrorCode LargestMove(Problem &P, Vec U, PetscReal *move);
+
+ private:
+  void Evaluate(const Problem &P);
+  PetscErrorCode AddRows(Problem &P, Mat A, int row_entry, const std::vector<int> &col_entries, const double *K,
+                         int ncols_total, int row_offset);
+
+  std::vector<Cable> cables_;
+  std::vector<PetscInt> local_;  // per entry: local node id when this rank owns it, else -1
+  std::vector<PetscInt> gid_;    // per entry: PETSc node id
+  std::vector<char> con_;        // per entry: 3 flags, the DOF is prescribed
+  std::vector<double> x_;        // per entry: 3 current coordinates
+  std::vector<double> fint_;     // per entry: 3, cable internal force minus its weight (residual part)
+  std::vector<double> wload_;    // per entry: 3, the weight's nodal load
+  bool form_finding_ = false;
+};
+
+PetscErrorCode CableTerm::SetUp(Problem &P) {
+  const LocalMesh &m = P.mesh;
+  PetscFunctionBeginUser;
+  form_finding_ = P.scene.form_finding;
+  PetscCheck(!P.unassembled, P.comm, PETSC_ERR_SUP,
+             "cables with an unassembled matrix (-mat_type is): not supported; use the default matrix type");
+  std::unordered_map<int, int> natural;  // scene id -> first entry (for ownership lookup)
+  int entries = 0;
+  for (const CableSpec &s : P.scene.cables) {
+    Cable c;
+    c.spec = &s, c.first = entries, c.count = (int)s.nodes.size();
+    entries += c.count;
+    cables_.push_back(c);
+  }
+  std::unordered_map<int, std::vector<int>> entries_of;
+  for (const Cable &c : cables_)
+    for (int k = 0; k < c.count; ++k) entries_of[c.spec->nodes[k]].push_back(c.first + k);
+  local_.assign(entries, -1);
+  std::vector<PetscInt> owners(entries, 0), gid(entries, 0), con(3 * entries, 0);
+  std::vector<double> X(3 * entries, 0.0);
+  for (PetscInt l = 0; l < m.num_owned; ++l) {
+    const auto it = entries_of.find((int)m.natural_id[l]);
+    if (it == entries_of.end()) continue;
+    for (int k : it->second) {
+      local_[k] = l, owners[k] = 1, gid[k] = m.global_id[l];
+      for (int i = 0; i < 3; ++i) con[3 * k + i] = P.dof_constrained[3 * l + i], X[3 * k + i] = m.X[3 * l + i];
+    }
+  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, owners.data(), entries, MPIU_INT, MPI_SUM, P.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, gid.data(), entries, MPIU_INT, MPI_SUM, P.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, con.data(), 3 * entries, MPIU_INT, MPI_MAX, P.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, X.data(), 3 * entries, MPI_DOUBLE, MPI_SUM, P.comm));
+  for (const Cable &c : cables_)
+    for (int k = 0; k < c.count; ++k)
+      PetscCheck(owners[c.first + k] == 1, P.comm, PETSC_ERR_PLIB, "cable %s: node %d is owned by %d ranks",
+                 c.spec->name.c_str(), c.spec->nodes[k], (int)owners[c.first + k]);
+  gid_ = gid;
+  con_.assign(con.begin(), con.end());
+  x_ = X;
+  fint_.assign(3 * entries, 0.0);
+  wload_.assign(3 * entries, 0.0);
+  // Stress-free lengths from the reference geometry: as meshed, scaled to the given length, or
+  // shortened for the prestress (SPEC §15: L0 = L / (1 + T / EA)).
+  for (Cable &c : cables_) {
+    const CableSpec &s = *c.spec;
+    double total = 0.0;
+    for (int k = 0; k + 1 < c.count; ++k) {
+      const double *a = &X[3 * (c.first + k)], *b = a + 3;
+      const double L = std::sqrt((b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]) + (b[2] - a[2]) * (b[2] - a[2]));
+      PetscCheck(L > 0, P.comm, PETSC_ERR_ARG_WRONG, "cable %s: its segment %d has zero length in the mesh",
+                 s.name.c_str(), k);
+      c.L0.push_back(L), total += L;
+    }
+    for (double &L : c.L0) L = s.length > 0 ? L * s.length / total : CableLengthForForce(L, s.prestress, s.EA);
+    for (double L : c.L0) c.L0_total += L;
+    c.segment.assign(c.count - 1, CableState());
+  }
+  // A sliding cable couples all its nodes (a dense rank-one block) and a cable may join film
+  // nodes no triangle shares: both are nonzeros the film's preallocation lacks.
+  PetscCall(MatSetOption(P.J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+// Every cable at x_: segment states, the internal forces (minus the weight) per entry.
+void CableTerm::Evaluate(const Problem &P) {
+  std::fill(fint_.begin(), fint_.end(), 0.0);
+  std::fill(wload_.begin(), wload_.end(), 0.0);
+  for (Cable &c : cables_) {
+    const CableSpec &s = *c.spec;
+    double *x = &x_[3 * c.first], *f = &fint_[3 * c.first], *w = &wload_[3 * c.first];
+    c.chain = CableState();
+    if (!form_finding_ && s.sliding) {
+      // One force from the total length (SPEC §15, engineering strain over the whole cable).
+      for (int k = 0; k + 1 < c.count; ++k) {
+        double scratch[6];
+        c.chain.length += CableSlidingSegment(&x[3 * k], 0.0, 0.0, scratch, nullptr);
+      }
+      c.chain.slack = !(c.chain.length > c.L0_total);
+      c.chain.force = c.chain.slack ? 0.0 : s.EA * (c.chain.length - c.L0_total) / c.L0_total;
+    }
+    for (int k = 0; k + 1 < c.count; ++k) {
+      double fe[6];
+      if (form_finding_) {
+        c.segment[k] = CableSegmentConstantForce(&x[3 * k], s.prestress, fe, nullptr);
+      } else if (s.sliding) {
+        c.segment[k].length = CableSlidingSegment(&x[3 * k], c.chain.force, 0.0, fe, nullptr);
+        c.segment[k].force = c.chain.force, c.segment[k].slack = c.chain.slack;
+      } else {
+        c.segment[k] = CableSegment(&x[3 * k], c.L0[k], s.EA, fe, nullptr);
+      }
+      for (int i = 0; i < 6; ++i) f[3 * k + i] += fe[i];
+      if (!s.sliding || form_finding_) c.chain.length += c.segment[k].length;
+    }
+    if (!s.sliding || form_finding_) {
+      c.chain.force = 0.0, c.chain.slack = true;
+      for (const CableState &st : c.segment) c.chain.force = std::max(c.chain.force, st.force), c.chain.slack &= st.slack;
+    }
+    // Self-weight: each segment's weight w L0 shared by its two nodes, along -z (a dead load).
+    c.weight = (!form_finding_ && s.weighted) ? s.weight.At(P.scene.schedules, P.time) : 0.0;
+    if (c.weight != 0.0)
+      for (int k = 0; k + 1 < c.count; ++k) {
+        const double half = 0.5 * c.weight * c.L0[k];
+        w[3 * k + 2] -= half, w[3 * (k + 1) + 2] -= half;
+      }
+    for (int i = 0; i < 3 * c.count; ++i) f[i] -= w[i];
+  }
+}
+
+PetscErrorCode CableTerm::Prepare(Problem &P, const PetscScalar *u) {
+  PetscFunctionBeginUser;
+  std::fill(x_.begin(), x_.end(), 0.0);
+  for (size_t k = 0; k < local_.size(); ++k)
+    if (local_[k] >= 0)
+      for (int i = 0; i < 3; ++i) x_[3 * k + i] = P.mesh.X[3 * local_[k] + i] + u[3 * local_[k] + i];
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, x_.data(), (int)x_.size(), MPI_DOUBLE, MPI_SUM, P.comm));
+  Evaluate(P);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CableTerm::AddLocalForces(Problem &, const PetscScalar *, PetscScalar *f, int *, double *external2) {
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < local_.size(); ++k) {
+    if (local_[k] < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      f[3 * local_[k] + i] += fint_[3 * k + i];
+      *external2 += wload_[3 * k + i] * wload_[3 * k + i];
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+// Adds the three rows of entry row_entry (rows row_offset .. row_offset + 2 of the row-major K
+// with ncols_total columns, the columns being the blocks of col_entries), constrained rows and
+// columns left out, when this rank owns the row.
+PetscErrorCode CableTerm::AddRows(Problem &P, Mat A, int row_entry, const std::vector<int> &col_entries, const double *K,
+                                  int ncols_total, int row_offset) {
+  PetscFunctionBeginUser;
+  if (local_[row_entry] < 0) PetscFunctionReturn(0);
+  const int nb = (int)col_entries.size();
+  std::vector<double> v(3 * 3 * nb);
+  std::vector<PetscInt> cols(nb);
+  for (int b = 0; b < nb; ++b) cols[b] = gid_[col_entries[b]];
+  for (int i = 0; i < 3; ++i)
+    for (int c = 0; c < 3 * nb; ++c) {
+      const bool off = con_[3 * row_entry + i] || con_[3 * col_entries[c / 3] + c % 3];
+      v[i * 3 * nb + c] = off ? 0.0 : K[(row_offset + i) * ncols_total + c];
+    }
+  const PetscInt row = gid_[row_entry];
+  PetscCall(MatSetValuesBlocked(A, 1, &row, nb, cols.data(), v.data(), ADD_VALUES));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CableTerm::AddTangent(Problem &P, Vec, const PetscScalar *, Mat A) {
+  PetscFunctionBeginUser;
+  for (Cable &c : cables_) {
+    const CableSpec &s = *c.spec;
+    const double *x = &x_[3 * c.first];
+    const bool sliding = s.sliding && !form_finding_;
+    for (int k = 0; k + 1 < c.count; ++k) {
+      double fe[6], K[36];
+      if (form_finding_) CableSegmentConstantForce(&x[3 * k], s.prestress, fe, K);
+      else if (sliding) CableSlidingSegment(&x[3 * k], c.chain.force, 0.0, fe, K);
+      else CableSegment(&x[3 * k], c.L0[k], s.EA, fe, K);
+      const std::vector<int> cols = {c.first + k, c.first + k + 1};
+      PetscCall(AddRows(P, A, c.first + k, cols, K, 6, 0));
+      PetscCall(AddRows(P, A, c.first + k + 1, cols, K, 6, 3));
+    }
+    if (sliding && !c.chain.slack) {
+      // The rank-one part (EA / L0) g g^T over the whole chain, g = dl/dx (node i: e_{i-1} - e_i).
+      const int n = c.count;
+      std::vector<double> g(3 * n, 0.0), K(3 * 3 * n);
+      for (int k = 0; k + 1 < n; ++k) {
+        const double *a = &x[3 * k], *b = a + 3;
+        const double l = c.segment[k].length;
+        for (int i = 0; i < 3; ++i) g[3 * k + i] -= (b[i] - a[i]) / l, g[3 * k + 3 + i] += (b[i] - a[i]) / l;
+      }
+      std::vector<int> cols(n);
+      for (int j = 0; j < n; ++j) cols[j] = c.first + j;
+      const double ka = s.EA / c.L0_total;
+      for (int r = 0; r < n; ++r) {
+        if (local_[c.first + r] < 0) continue;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3 * n; ++j) K[i * 3 * n + j] = ka * g[3 * r + i] * g[j];
+        PetscCall(AddRows(P, A, c.first + r, cols, K.data(), 3 * n, 0));
+      }
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CableTerm::Columns(const Problem &, std::vector<TermColumn> *columns) const {
+  PetscFunctionBeginUser;
+  for (const Cable &c : cables_) {
+    double nmax = 0.0;
+    int slack = 0;
+    for (const CableState &s : c.segment) nmax = std::max(nmax, s.force), slack += s.slack;
+    columns->push_back({"cable_" + c.spec->name + "_force_max", "N", nmax});
+    columns->push_back({"cable_" + c.spec->name + "_length", "mm", c.chain.length});
+    columns->push_back({"cable_" + c.spec->name + "_slack_segments", "1", (double)slack});
+  }
+  PetscFunctionReturn(0);
+}
+
+// Every segment of every cable, the cables in the scene's order (cables/cable: which one).
+PetscErrorCode CableTerm::Fields(const Problem &, std::vector<TermData> *fields) const {
+  PetscFunctionBeginUser;
+  TermData force{"force", Layout::Items, true, 1, {}, "N", "axial force per segment"};
+  TermData length{"length", Layout::Items, true, 1, {}, "mm", "length per segment"};
+  TermData slack{"slack", Layout::Items, true, 1, {}, "1", "1 where a segment is slack"};
+  TermData cable{"cable", Layout::Items, true, 1, {}, "1", "the segment's cable"};
+  for (size_t k = 0; k < cables_.size(); ++k)
+    for (const CableState &st : cables_[k].segment)
+      force.values.push_back(st.force), length.values.push_back(st.length), slack.values.push_back(st.slack),
+          cable.values.push_back((double)k);
+  for (TermData *d : {&force, &length, &slack, &cable}) fields->push_back(std::move(*d));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CableTerm::Report(const Problem &, std::vector<std::string> *lines) const {
+  char buf[512];
+  PetscFunctionBeginUser;
+  for (const Cable &c : cables_) {
+    const CableSpec &s = *c.spec;
+    double nmin = 1e300, nmax = 0.0;
+    int slack = 0;
+    for (const CableState &st : c.segment) nmin = std::min(nmin, st.force), nmax = std::max(nmax, st.force), slack += st.slack;
+    // Cut length: the stress-free length; form finding finds it from the force at the shape found.
+    double cut = c.L0_total;
+    if (form_finding_) {
+      cut = 0.0;
+      for (const CableState &st : c.segment) cut += CableLengthForForce(st.length, s.prestress, s.EA);
+    }
+    std::snprintf(buf, sizeof buf,
+                  "cable %s (%d segments%s): force min = %.6e N, max = %.6e N, length = %.6f mm, cut_length = %.6f mm, "
+                  "slack = %d segments",
+                  s.name.c_str(), c.count - 1, s.sliding ? ", sliding" : "", nmin, nmax, c.chain.length, cut, slack);
+    lines->push_back(buf);
+    // What the cable pulls on its two end nodes (its anchors): minus its residual part there.
+    for (int end = 0; end < 2; ++end) {
+      const int k = c.first + (end ? c.count - 1 : 0);
+      std::snprintf(buf, sizeof buf, "cable %s end %d (node %d): pull = (%.6e, %.6e, %.6e) N", s.name.c_str(), end,
+                    s.nodes[end ? c.count - 1 : 0], -fint_[3 * k], -fint_[3 * k + 1], -fint_[3 * k + 2]);
+      lines->push_back(buf);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CableTerm::LargestMove(Problem &P, Vec U, PetscReal *move) {
+  const PetscScalar *ua;
+  PetscFunctionBeginUser;
+  std::vector<double> u(x_.size(), 0.0), x(x_.size(), 0.0);
+  PetscCall(VecGetArrayRead(U, &ua));
+  for (size_t k = 0; k < local_.size(); ++k)
+    if (local_[k] >= 0)
+      for (int i = 0; i < 3; ++i) u[3 * k + i] = ua[3 * local_[k] + i], x[3 * k + i] = P.mesh.X[3 * local_[k] + i] + ua[3 * local_[k] + i];
+  PetscCall(VecRestoreArrayRead(U, &ua));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, u.data(), (int)u.size(), MPI_DOUBLE, MPI_SUM, P.comm));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, x.data(), (int)x.size(), MPI_DOUBLE, MPI_SUM, P.comm));
+  PetscReal m = 0.0;
+  for (const Cable &c : cables_)
+    for (int k = 0; k < c.count; ++k) {
+      const int a = c.first + std::max(k - 1, 0), b = c.first + std::min(k + 1, c.count - 1), e = c.first + k;
+      double t[3], tt = 0.0, ut = 0.0, uu = 0.0;
+      for (int i = 0; i < 3; ++i) t[i] = x[3 * b + i] - x[3 * a + i], tt += t[i] * t[i];
+      for (int i = 0; i < 3; ++i) ut += u[3 * e + i] * t[i], uu += u[3 * e + i] * u[3 * e + i];
+      m = std::max(m, std::sqrt(std::max(uu - (tt > 0 ? ut * ut / tt : 0.0), 0.0)));
+    }
+  *move = std::max(*move, m);
+  PetscFunctionReturn(0);
+}
+
+} // namespace
+
+PetscErrorCode CableLargestMove(Problem *P, Vec U, PetscReal *move) {
+  PetscFunctionBeginUser;
+  *move = 0.0;
+  for (auto &term : P->terms)
+    if (auto *c = dynamic_cast<CableTerm *>(term.get())) PetscCall(c->LargestMove(*P, U, move));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CableTermAdd(Problem *P) {
+  PetscFunctionBeginUser;
+  if (P->scene.cables.empty()) PetscFunctionReturn(0);
+  auto term = std::make_unique<CableTerm>();
+  PetscCall(term->SetUp(*P));
+  P->terms.push_back(std::move(term));
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe

@@ -1,0 +1,240 @@
+// The general scene's cables (-cable_<group>_*, docs/cables.md): a cable runs along a 1-D physical
+// group of the mesh whose line elements join film nodes into one open chain. This file reads the
+// options, checks each group is a chain, and hands the chains to the scene (SceneSpec::cables);
+// the physics is the cable term (src/assembly/cable_term.cpp).
+#include <petscsys.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <set>
+
+#include "etfe/rank0.h"
+#include "etfe/scene_registry.h"
+#include "real_array_option.h"
+#include "structure_inputs.h"
+
+namespace etfe {
+
+namespace {
+
+PetscErrorCode BroadcastLineGroups(MPI_Comm comm, const MeshData &mesh, std::vector<std::string> *names) {
+  std::string joined;
+  PetscFunctionBeginUser;
+  for (const auto &kv : mesh.line_sets) joined += kv.first + '\n';
+  unsigned long long len = joined.size();
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
+  joined.resize(len);
+  PetscCallMPI(MPI_Bcast(joined.data(), (int)len, MPI_CHAR, 0, comm));
+  names->clear();
+  for (size_t a = 0, b; a < joined.size(); a = b + 1) {
+    b = joined.find('\n', a);
+    names->push_back(joined.substr(a, b - a));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_finding, CableInput *c, bool *any) {
+  const std::string prefix = "cable_" + group + "_";
+  PetscBool ea_set = PETSC_FALSE, len_set = PETSC_FALSE, pre_set = PETSC_FALSE, sl_set = PETSC_FALSE, w_set = PETSC_FALSE;
+  PetscBool sliding = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  c->group = group;
+  PetscOptionsBegin(comm, prefix.c_str(), ("Cable along the 1-D group " + group).c_str(), "Scene");
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-EA", "Axial stiffness EA of the cable [N] (steel strand: E A)", "N",
+                              &c->EA, &ea_set));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-length",
+                              "Stress-free (cut) length of the whole cable [mm] (default: its length in the mesh, or "
+                              "from -cable_<group>_prestress)",
+                              "mm", &c->length, &len_set));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-prestress",
+                              "Force [N] the cable carries at the mesh's geometry (sets its stress-free length); form "
+                              "finding: the cable's prescribed force",
+                              "N", &c->prestress, &pre_set));
+  PetscCall(PetscOptionsBool("-sliding", "One force along the whole cable (a frictionless pocket) instead of a force per segment",
+                             "", sliding, &sliding, &sl_set));
+  c->weight.option = "-" + prefix + "weight";
+  PetscCall(OptionsRealArray(PetscOptionsObject, "-weight",
+                             "Self-weight [N/m of stress-free length] at the end of each stage, acting along -z", &c->weight.values,
+                             &w_set));
+  PetscOptionsEnd();
+  c->sliding = sliding;
+  *any = ea_set || len_set || pre_set || sl_set || w_set;
+  if (!*any) PetscFunctionReturn(0);
+  PetscCheck(ea_set, comm, PETSC_ERR_ARG_WRONG,
+             "cable %s: give its axial stiffness -%sEA <N> (a cable option was given for the group)", group.c_str(),
+             prefix.c_str());
+  PetscCheck(c->EA > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sEA %s: a cable's axial stiffness must be positive (E A in N, e.g. 2e7 for a 12 mm strand)",
+             prefix.c_str(), OptionNum(c->EA).c_str());
+  PetscCheck(!(len_set && pre_set), comm, PETSC_ERR_ARG_INCOMP,
+             "cable %s: give its stress-free length (-%slength) or its prestress (-%sprestress), not both", group.c_str(),
+             prefix.c_str(), prefix.c_str());
+  PetscCheck(!len_set || c->length > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%slength %s: a length must be positive (mm)",
+             prefix.c_str(), OptionNum(c->length).c_str());
+  PetscCheck(c->prestress >= 0 && c->prestress < c->EA, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sprestress %s: a cable carries tension only; give a force between 0 and EA (%s N)", prefix.c_str(),
+             OptionNum(c->prestress).c_str(), OptionNum(c->EA).c_str());
+  PetscCheck(!form_finding || c->prestress > 0, comm, PETSC_ERR_ARG_WRONG,
+             "cable %s: form finding needs the cable's force: -%sprestress <N> (the film's stress and each cable's "
+             "force give the shape)",
+             group.c_str(), prefix.c_str());
+  for (double w : c->weight.values)
+    PetscCheck(w >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sweight %s: a self-weight is not negative (N/m)", prefix.c_str(),
+               OptionNum(w).c_str());
+  PetscFunctionReturn(0);
+}
+
+// A -cable_ option no 1-D group took: its group does not exist (or is not a line group).
+PetscErrorCode CheckUnknownCables(MPI_Comm comm, const std::vector<std::string> &groups) {
+  PetscInt n;
+  char **names, **values;
+  std::string bad;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
+  for (PetscInt i = 0; i < n && bad.empty(); ++i)
+    if (std::strncmp(names[i], "cable_", 6) == 0) bad = names[i];
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
+  if (bad.empty()) PetscFunctionReturn(0);
+  std::string list;
+  for (const std::string &g : groups) list += (list.empty() ? "" : ", ") + g;
+  SETERRQ(comm, PETSC_ERR_ARG_WRONG,
+          "-%s: no such cable option or 1-D group. -cable_<group>_* takes a 1-D physical group (line elements) of the "
+          "mesh (%s) and EA, length, prestress, weight or sliding",
+          bad.c_str(), list.empty() ? "the mesh has none" : list.c_str());
+}
+
+std::string NodeName(const MeshData &m, int n) {
+  char buf[160];
+  if ((size_t)n < m.node_tags.size())
+    std::snprintf(buf, sizeof buf, "node %d (tag %lld in the file, at %g, %g, %g)", n, m.node_tags[n], m.coords[3 * n],
+                  m.coords[3 * n + 1], m.coords[3 * n + 2]);
+  else
+    std::snprintf(buf, sizeof buf, "node %d (at %g, %g, %g)", n, m.coords[3 * n], m.coords[3 * n + 1], m.coords[3 * n + 2]);
+  return buf;
+}
+
+// Rank 0: the group's line elements as one open chain from one end to the other (the end with the
+// lower node id first), or a message why they are not one.
+std::string Chain(const MeshData &m, const std::string &group, std::vector<int> *chain) {
+  const auto it = m.line_sets.find(group);
+  const std::vector<int> &lines = it->second;
+  if (lines.empty()) return "cable " + group + ": its group has no line elements";
+  std::map<int, std::vector<int>> adj;
+  std::set<std::pair<int, int>> seen;
+  for (size_t k = 0; k + 1 < lines.size(); k += 2) {
+    const int a = lines[k], b = lines[k + 1];
+    if (a < 0 || b < 0)
+      return "cable " + group + ": a line element of the group has a node on no triangle of the film; a cable runs "
+             "through the film's nodes (along an edge of it, or a line of its mesh)";
+    if (a == b) return "cable " + group + ": a line element joins " + NodeName(m, a) + " to itself";
+    if (!seen.insert({std::min(a, b), std::max(a, b)}).second)
+      return "cable " + group + ": the segment from " + NodeName(m, a) + " to " + NodeName(m, b) + " is listed twice";
+    adj[a].push_back(b), adj[b].push_back(a);
+  }
+  int start = -1;
+  for (const auto &kv : adj) {
+    if (kv.second.size() > 2)
+      return "cable " + group + " is not one chain: " + NodeName(m, kv.first) + " joins " +
+             std::to_string(kv.second.size()) + " of its segments (a branch); give each branch its own group";
+    if (kv.second.size() == 1 && start < 0) start = kv.first;
+  }
+  if (start < 0) return "cable " + group + " is a closed loop; a cable has two ends (split the loop into two groups)";
+  chain->assign(1, start);
+  for (int prev = -1, cur = start;;) {
+    int next = -1;
+    for (int v : adj[cur])
+      if (v != prev) next = v;
+    if (next < 0) break;
+    chain->push_back(next), prev = cur, cur = next;
+  }
+  if (chain->size() != adj.size())
+    return "cable " + group + " is not one connected chain: its line elements form separate pieces (" +
+           std::to_string(chain->size()) + " of its " + std::to_string(adj.size()) + " nodes follow from " +
+           NodeName(m, start) + "); give each piece its own group";
+  return "";
+}
+
+// Rank 0, form finding: every boundary edge of the film (an edge of one triangle) is a cable
+// segment or has both nodes held; else the message naming the first free one.
+std::string FreeEdge(const SceneSpec &scene) {
+  const MeshData &m = scene.mesh;
+  std::map<std::pair<int, int>, int> count;
+  for (int e = 0; e < m.NumElements(); ++e)
+    for (int a = 0; a < 3; ++a) {
+      const int p = m.triangles[3 * e + a], q = m.triangles[3 * e + (a + 1) % 3];
+      count[{std::min(p, q), std::max(p, q)}]++;
+    }
+  std::set<std::pair<int, int>> cable;
+  for (const CableSpec &c : scene.cables)
+    for (size_t k = 0; k + 1 < c.nodes.size(); ++k)
+      cable.insert({std::min(c.nodes[k], c.nodes[k + 1]), std::max(c.nodes[k], c.nodes[k + 1])});
+  std::vector<char> held(m.NumNodes(), 0);
+  for (const DofConstraint &d : scene.constraints) held[d.node] = 1;
+  for (const auto &kv : count) {
+    if (kv.second != 1 || cable.count(kv.first)) continue;
+    if (held[kv.first.first] && held[kv.first.second]) continue;
+    return "form finding: the film's edge from " + NodeName(m, kv.first.first) + " to " + NodeName(m, kv.first.second) +
+           " is free (no cable, no support); a free edge under a prescribed stress has no equilibrium shape: run a "
+           "cable along it (a 1-D group with -cable_<group>_EA and _prestress) or hold it with -bc_<group>_fix";
+  }
+  return "";
+}
+
+} // namespace
+
+PetscErrorCode StructureCablesRead(MPI_Comm comm, const MeshData &mesh, bool form_finding, StructureInputs *in) {
+  std::vector<std::string> groups;
+  PetscFunctionBeginUser;
+  PetscCall(BroadcastLineGroups(comm, mesh, &groups));
+  for (const std::string &g : groups) {
+    CableInput c;
+    bool any = false;
+    PetscCall(ReadCable(comm, g, form_finding, &c, &any));
+    if (any) in->cables.push_back(c);
+  }
+  PetscCall(CheckUnknownCables(comm, groups));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode StructureAddCables(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
+  PetscFunctionBeginUser;
+  std::string err;
+  for (const CableInput &c : in.cables) {
+    CableSpec s;
+    s.name = c.group, s.EA = c.EA, s.length = c.length, s.prestress = c.prestress, s.sliding = c.sliding;
+    if (SceneHoldsMesh(comm) && err.empty()) err = Chain(scene->mesh, c.group, &s.nodes);
+    if (c.weight.Given() && !scene->form_finding) {
+      std::vector<double> v;
+      for (double w : c.weight.values) v.push_back(w * 1e-3);  // N/m -> N/mm
+      const int id = StructureAddSchedule(scene, "cable." + c.group + ".weight", v, stages, "N/m", 1e3);
+      s.weighted = true;
+      s.weight.coef[0] = 1.0, s.weight.schedule[0] = id;
+    }
+    scene->cables.push_back(s);
+  }
+  // A node on two sliding cables would be pulled by both pockets' single forces: ambiguous.
+  if (SceneHoldsMesh(comm) && err.empty()) {
+    std::map<int, std::string> sliding;
+    for (const CableSpec &c : scene->cables) {
+      if (!c.sliding) continue;
+      for (int n : c.nodes) {
+        auto r = sliding.emplace(n, c.name);
+        if (!r.second && err.empty())
+          err = "sliding cables " + r.first->second + " and " + c.name + " share " + NodeName(scene->mesh, n) +
+                "; a node runs in one sliding cable's pocket only (make one of them a fixed cable, or end them apart)";
+      }
+    }
+  }
+  if (SceneHoldsMesh(comm) && err.empty() && scene->form_finding) err = FreeEdge(*scene);
+  PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
+  for (CableSpec &s : scene->cables) {
+    int n = (int)s.nodes.size();
+    PetscCallMPI(MPI_Bcast(&n, 1, MPI_INT, 0, comm));
+    s.nodes.resize(n);
+    PetscCallMPI(MPI_Bcast(s.nodes.data(), n, MPI_INT, 0, comm));
+  }
+  PetscFunctionReturn(0);
+}
+
+} // namespace etfe
