@@ -288,7 +288,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     if (pressure.empty()) pressure.assign(m.num_elements, 0.0);
     for (PetscInt e : load.elements) pressure[e] += p;
   }
-  PetscScalar *direct = nullptr;  // the matrix's values when the blocks' places are known
+  ElementBlockValues direct;  // the matrix's values when the blocks' places are known
   if (!P->unassembled) PetscCall(ElementBlocksGet(Pmat, P->element_global, &P->element_blocks, &direct));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double x[9], F[6], E[3], S[3], D[9], fe[9], K[81];
@@ -316,14 +316,11 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
       PetscCall(UnassembledAddElement(Pmat, tri, K));
       continue;
     }
-    if (direct) {
-      ElementBlocksAdd(P->element_blocks, e, K, direct);
-      continue;
-    }
+    if (direct.diag && ElementBlocksAdd(P->element_blocks, e, K, direct)) continue;
     // Global block ids precomputed: no local-to-global lookup per element.
     PetscCall(MatSetValuesBlocked(Pmat, 3, &P->element_global[3 * e], 3, &P->element_global[3 * e], K, ADD_VALUES));
   }
-  PetscCall(ElementBlocksRestore(Pmat, &direct));
+  PetscCall(ElementBlocksRestore(&direct));
   if (P->contact) {
     PetscCall(PetscLogEventBegin(LogEvents().contact, 0, 0, 0, 0));
     for (ContactPair &pr : P->contact->pairs) {

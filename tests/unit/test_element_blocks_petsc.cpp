@@ -11,14 +11,16 @@
 
 namespace {
 
-// Four nodes, three triangles sharing edges (every node pair of a triangle is a block).
-const std::vector<PetscInt> kElements = {0, 1, 2, 1, 3, 2, 2, 3, 0};
+// Five nodes, four triangles sharing edges (every node pair of a triangle is a block; nodes 0
+// and 4 share none).
+const int kNumElements = 4;
+const std::vector<PetscInt> kElements = {0, 1, 2, 1, 3, 2, 2, 3, 0, 2, 4, 3};
 
 Mat Create(MatType type) {
   Mat A;
-  const PetscInt nnz[4] = {4, 4, 4, 4};
+  const PetscInt nnz[5] = {5, 5, 5, 5, 5};
   MatCreate(PETSC_COMM_SELF, &A);
-  MatSetSizes(A, 12, 12, 12, 12);
+  MatSetSizes(A, 15, 15, 15, 15);
   MatSetBlockSize(A, 3);
   MatSetType(A, type);
   MatXAIJSetPreallocation(A, 3, nnz, nullptr, nullptr, nullptr);
@@ -32,7 +34,7 @@ void ElementMatrix(int e, int pass, double K[81]) {
 }
 
 void AssembleReference(Mat A, int pass) {
-  for (int e = 0; e < 3; ++e) {
+  for (int e = 0; e < kNumElements; ++e) {
     double K[81];
     ElementMatrix(e, pass, K);
     MatSetValuesBlocked(A, 3, &kElements[3 * e], 3, &kElements[3 * e], K, ADD_VALUES);
@@ -42,7 +44,7 @@ void AssembleReference(Mat A, int pass) {
 }
 
 bool SameValues(Mat A, Mat B) {
-  for (PetscInt r = 0; r < 12; ++r) {
+  for (PetscInt r = 0; r < 15; ++r) {
     PetscInt na, nb;
     const PetscInt *ca, *cb;
     const PetscScalar *va, *vb;
@@ -63,9 +65,9 @@ int main(int argc, char **argv) {
   {
     Mat ref = Create(MATSEQBAIJ), A = Create(MATSEQBAIJ);
     etfe::ElementBlockMap map;
-    PetscScalar *values;
+    etfe::ElementBlockValues values;
     etfe::ElementBlocksGet(A, kElements, &map, &values);
-    CHECK(values == nullptr, "an unassembled matrix has no structure to write into");
+    CHECK(values.diag == nullptr, "an unassembled matrix has no structure to write into");
     AssembleReference(ref, 0);
     AssembleReference(A, 0);
     for (int pass = 1; pass <= 2; ++pass) {
@@ -73,24 +75,24 @@ int main(int argc, char **argv) {
       AssembleReference(ref, pass);
       MatZeroEntries(A);
       etfe::ElementBlocksGet(A, kElements, &map, &values);
-      CHECK(values != nullptr, "pass %d: the assembled BAIJ matrix takes the direct path", pass);
-      if (!values) break;
-      for (int e = 0; e < 3; ++e) {
+      CHECK(values.diag != nullptr, "pass %d: the assembled BAIJ matrix takes the direct path", pass);
+      if (!values.diag) break;
+      for (int e = 0; e < kNumElements; ++e) {
         double K[81];
         ElementMatrix(e, pass, K);
-        etfe::ElementBlocksAdd(map, e, K, values);
+        CHECK(etfe::ElementBlocksAdd(map, e, K, values), "pass %d: element %d has its blocks", pass, e);
       }
-      etfe::ElementBlocksRestore(A, &values);
+      etfe::ElementBlocksRestore(&values);
       MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY);
       MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY);
       CHECK(SameValues(A, ref), "pass %d: direct insertion differs from MatSetValuesBlocked", pass);
     }
-    // An element with a node outside the matrix's rows: the map is not usable, the caller
-    // falls back to MatSetValuesBlocked.
+    // An element whose block (0, 4) the structure lacks: the map is not usable, the caller
+    // falls back to MatSetValuesBlocked (which reports the new nonzero).
     const std::vector<PetscInt> outside = {0, 1, 4};
     etfe::ElementBlockMap other;
     etfe::ElementBlocksGet(A, outside, &other, &values);
-    CHECK(values == nullptr && !other.usable, "a block outside the structure disables the direct path");
+    CHECK(values.diag == nullptr && !other.usable, "a block outside the structure disables the direct path");
     MatDestroy(&A);
     MatDestroy(&ref);
   }
@@ -98,9 +100,9 @@ int main(int argc, char **argv) {
     Mat A = Create(MATSEQAIJ);
     AssembleReference(A, 0);
     etfe::ElementBlockMap map;
-    PetscScalar *values;
+    etfe::ElementBlockValues values;
     etfe::ElementBlocksGet(A, kElements, &map, &values);
-    CHECK(values == nullptr, "an AIJ matrix keeps MatSetValuesBlocked");
+    CHECK(values.diag == nullptr, "an AIJ matrix keeps MatSetValuesBlocked");
     MatDestroy(&A);
   }
   PetscFinalize();
