@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "etfe/element_blocks.h"
 #include "etfe/linear_path.h"
 #include "etfe/material.h"
 #include "etfe/mesh/local_mesh.h"
@@ -97,6 +98,7 @@ struct Problem {
   std::vector<char> dof_constrained;   // per local DOF
   std::vector<char> element_constrained;    // per local element: has a constrained DOF
   std::vector<PetscInt> element_global;     // per local element: PETSc block ids of its nodes
+  ElementBlockMap element_blocks;           // where those blocks sit in a one-rank BAIJ matrix
   std::vector<PetscInt> con_owned_dof; // owned constrained DOFs (local index < 3*num_owned)
   std::vector<ScheduledValue> con_owned_value;
   // Prescribed displacement already absorbed into the reference (form finding moves the

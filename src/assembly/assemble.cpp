@@ -246,6 +246,8 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   for (auto &term : P->terms) PetscCall(term->Prepare(*P, u));
   std::vector<double> pressure;
   for (auto &term : P->terms) PetscCall(term->AddElementPressure(*P, &pressure));
+  ElementBlockValues direct;  // the matrix's values when the blocks' places are known
+  if (!P->unassembled) PetscCall(ElementBlocksGet(Pmat, P->element_global, &P->element_blocks, &direct));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
     double x[9], F[6], E[3], S[3], D[9], fe[9], K[81];
     GatherCoordinates(m, e, u, x);
@@ -261,11 +263,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     } else {
       MembraneForce(m.ref[e], P->Thickness(e), F, S, D, fe, K);
     }
-    if (!pressure.empty() && pressure[e] != 0.0) {
-      double L[81];
-      PressureLoad(pressure[e], x, fe, L);
-      for (int k = 0; k < 81; ++k) K[k] -= L[k];
-    }
+    if (!pressure.empty() && pressure[e] != 0.0) PressureLoadSubtractTangent(pressure[e], x, fe, K);
     const int *tri = &m.tri[3 * e];
     if (P->element_constrained[e])
       for (int r = 0; r < 9; ++r) {
@@ -276,9 +274,11 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
       PetscCall(UnassembledAddElement(Pmat, tri, K));
       continue;
     }
+    if (direct.diag && ElementBlocksAdd(P->element_blocks, e, K, direct)) continue;
     // Global block ids precomputed: no local-to-global lookup per element.
     PetscCall(MatSetValuesBlocked(Pmat, 3, &P->element_global[3 * e], 3, &P->element_global[3 * e], K, ADD_VALUES));
   }
+  PetscCall(ElementBlocksRestore(&direct));
   for (auto &term : P->terms) PetscCall(term->AddTangent(*P, U, u, Pmat));
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
   if (!P->unassembled)  // unassembled: after the assembly, split over the subdomains

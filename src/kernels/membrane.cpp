@@ -153,40 +153,42 @@ void MembraneForce(const MembraneReference &ref, double thickness, const double 
   }
   if (!K) return;
 
-  // B_a rows (xx, yy, 2xy), columns the three displacement components.
-  double B[3][3][3];
-  for (int a = 0; a < 3; ++a) {
-    const double gx = ref.dNdx[a], gy = ref.dNdy[a];
-    for (int i = 0; i < 3; ++i) {
-      B[a][0][i] = gx * F[2 * i];
-      B[a][1][i] = gy * F[2 * i + 1];
-      B[a][2][i] = gx * F[2 * i + 1] + gy * F[2 * i];
+  // B[r][3b+j]: strain row r (xx, yy, 2xy) of node b's B matrix, displacement component j. Rows
+  // of 9 contiguous values, so the products below run over whole rows of K (vectorizable with
+  // the baseline SSE2); every entry is still formed by the same operations in the same order
+  // as B_a^T D B_b + geo written entry by entry (no FMA on baseline x86-64), so K is unchanged.
+  double B[3][9];
+  for (int b = 0; b < 3; ++b) {
+    const double gx = ref.dNdx[b], gy = ref.dNdy[b];
+    for (int j = 0; j < 3; ++j) {
+      B[0][3 * b + j] = gx * F[2 * j];
+      B[1][3 * b + j] = gy * F[2 * j + 1];
+      B[2][3 * b + j] = gx * F[2 * j + 1] + gy * F[2 * j];
     }
   }
 
   // D == nullptr with K requested gives the geometric (initial-stress) stiffness alone, the
   // form-finding case.
-  double DB[3][3][3];
+  double DB[3][9];
   if (D) {
-    for (int b = 0; b < 3; ++b)
-      for (int r = 0; r < 3; ++r)
-        for (int j = 0; j < 3; ++j)
-          DB[b][r][j] =
-              D[3 * r] * B[b][0][j] + D[3 * r + 1] * B[b][1][j] + D[3 * r + 2] * B[b][2][j];
+    for (int r = 0; r < 3; ++r)
+      for (int k = 0; k < 9; ++k) DB[r][k] = D[3 * r] * B[0][k] + D[3 * r + 1] * B[1][k] + D[3 * r + 2] * B[2][k];
   }
 
   for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) {
-      const double geo = w * (ref.dNdx[a] * sg[b][0] + ref.dNdy[a] * sg[b][1]);
-      for (int i = 0; i < 3; ++i) {
-        double *row = K + 9 * (3 * a + i) + 3 * b;
-        for (int j = 0; j < 3; ++j) {
-          double m = 0.0;
-          if (D)
-            m = B[a][0][i] * DB[b][0][j] + B[a][1][i] * DB[b][1][j] + B[a][2][i] * DB[b][2][j];
-          row[j] = w * m + (i == j ? geo : 0.0);
-        }
+    double geo[3];
+    for (int b = 0; b < 3; ++b) geo[b] = w * (ref.dNdx[a] * sg[b][0] + ref.dNdy[a] * sg[b][1]);
+    for (int i = 0; i < 3; ++i) {
+      double *row = K + 9 * (3 * a + i);
+      if (D) {
+        const double b0 = B[0][3 * a + i], b1 = B[1][3 * a + i], b2 = B[2][3 * a + i];
+        for (int k = 0; k < 9; ++k) row[k] = w * (b0 * DB[0][k] + b1 * DB[1][k] + b2 * DB[2][k]);
+      } else {
+        for (int k = 0; k < 9; ++k) row[k] = 0.0;
       }
+      // The geometric part sits on the diagonal of every 3x3 block (zero elsewhere: adding it
+      // only there changes at most the sign of a zero, which no sum into the matrix sees).
+      for (int b = 0; b < 3; ++b) row[3 * b + i] += geo[b];
     }
   }
 }

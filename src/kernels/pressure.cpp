@@ -33,4 +33,21 @@ void PressureLoad(double p, const double x[9], double f[9], double L[81]) {
   }
 }
 
+void PressureLoadSubtractTangent(double p, const double x[9], double f[9], double K[81]) {
+  PressureLoad(p, x, f, nullptr);
+  const double s = p / 6.0;
+  for (int k = 0; k < 3; ++k) {
+    const double *xp = x + 3 * ((k + 2) % 3);
+    const double *xn = x + 3 * ((k + 1) % 3);
+    const double v[3] = {s * (xp[0] - xn[0]), s * (xp[1] - xn[1]), s * (xp[2] - xn[2])};
+    // K_(row,k) -= [v]_x for every row block; [v]_x's diagonal is zero.
+    for (int row = 0; row < 3; ++row) {
+      double *b = K + 9 * (3 * row) + 3 * k;
+      b[1] -= -v[2], b[2] -= v[1];
+      b[9] -= v[2], b[11] -= -v[0];
+      b[18] -= -v[1], b[19] -= v[0];
+    }
+  }
+}
+
 } // namespace etfe

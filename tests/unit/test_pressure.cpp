@@ -1,6 +1,6 @@
 // Follower pressure load (src/kernels/pressure.cpp): the load stiffness is the exact derivative
 // of the load, the resultant is p times the area vector, and reversing the node order (the
-// normal) reverses the load.
+// normal) reverses the load; the Jacobian's fused K -= L matches the load stiffness bitwise.
 #include "etfe/kernels/pressure.h"
 
 #include "check.h"
@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace {
 
@@ -52,6 +53,16 @@ int main() {
     for (int k = 0; k < 81; ++k) diff[k] = L[k] - Lfd[k];
     const double rel = MaxAbs(diff, 81) / MaxAbs(L, 81);
     CHECK(rel < 1e-7, "trial %d: |L - L_fd|/|L| = %g", trial, rel);
+
+    // The Jacobian loop's fused form: K -= L in place, bitwise as subtracting the whole L.
+    double K0[81], K1[81], f1[9];
+    for (int k = 0; k < 81; ++k) K0[k] = K1[k] = scale * rng.Next();
+    for (int k = 0; k < 81; ++k) K0[k] -= L[k];
+    etfe::PressureLoadSubtractTangent(p, x, f1, K1);
+    bool same = true;
+    for (int k = 0; k < 81; ++k) same = same && std::memcmp(&K0[k], &K1[k], sizeof(double)) == 0;
+    for (int k = 0; k < 9; ++k) same = same && std::memcmp(&f[k], &f1[k], sizeof(double)) == 0;
+    CHECK(same, "trial %d: PressureLoadSubtractTangent differs from PressureLoad and K -= L", trial);
 
     // Resultant = p * (area vector) = p * area * unit normal.
     double a[3], b[3], n[3];

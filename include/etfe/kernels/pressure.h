@@ -9,4 +9,9 @@ namespace etfe {
 
 void PressureLoad(double p, const double x[9], double f[9], double L[81]);
 
+// The same load f, with K -= L applied in place (the Jacobian loop's use): only L's 54 nonzero
+// entries are subtracted, with the values PressureLoad gives them, so K comes out bitwise as
+// after PressureLoad and K[k] -= L[k] (subtracting +0.0 changes no double).
+void PressureLoadSubtractTangent(double p, const double x[9], double f[9], double K[81]);
+
 } // namespace etfe
