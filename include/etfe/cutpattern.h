@@ -6,6 +6,7 @@
 #pragma once
 #include <petscsys.h>
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -53,9 +54,12 @@ MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const
 // shape: the 3D surface (valid on rank 0). Writes <dir>/<stem>_<strip>.{dxf,svg,msh},
 // <dir>/<stem>_lines.csv, <dir>/<stem>_errors.csv (pattern_errors.h) and, with a roll width,
 // <dir>/<stem>_nesting.{dxf,svg}; prints one line per named line and edge, warns of errors above
-// the first-yield strain and prints the roll length and waste. Collective.
+// the first-yield strain and prints the roll length and waste. flattened (rank 0, may be null):
+// strips already flattened with o.flatten (uncompensated), by name, used instead of flattening
+// them again (the roll fit's last try). Collective.
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o,
-                             const std::string &dir, const std::string &stem);
+                             const std::string &dir, const std::string &stem,
+                             const std::map<std::string, FlattenResult> *flattened = nullptr);
 
 // -analysis cutpattern (cutpattern_surface.cpp): the strips of any surface mesh.
 struct CutPatternSurfaceOptions {

@@ -104,6 +104,9 @@ struct FlattenResult {
   int iterations = 0;               // all stages together
   int stages = 0;                   // boundary weight stages run (FlattenOptions::weight_growth)
   int second_order_steps = 0;       // iterations that took the opt.second_order step
+  // The iteration with opt.second_order failed or folded, so the strip was flattened again from
+  // the same layout by plain Gauss-Newton (second_order 0): iterations, S and the stages are its.
+  bool gauss_newton_retry = false;
   bool converged = false;
   double max_rel_error = 0.0, rms_rel_error = 0.0;  // |l - L| / L over all links
   double max_rel_error_boundary = 0.0, max_rel_error_interior = 0.0;

@@ -256,18 +256,24 @@ const char *CompensationName(Compensation c) {
   return c == Compensation::Uniform ? "uniform" : c == Compensation::Stress ? "stress" : "none";
 }
 
-// Flattens the strip `name` of shape into *r (*strip: the strip as a mesh of its own). With
+// Flattens the strip `name` of shape into *r (*strip: the strip as a mesh of its own), or takes
+// its flattening from *flattened when that has it. With
 // compensation, the design pattern first (its axes define MD/TD) into *design, then the pattern
 // of the compensated link lengths, started again from the strip's own layouts.
-bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const CutPatternOptions &o, MeshData *strip,
-                       FlattenResult *r, FlattenResult *design, std::string *err) {
+bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const CutPatternOptions &o,
+                       const std::map<std::string, FlattenResult> *flattened, MeshData *strip, FlattenResult *r,
+                       FlattenResult *design, std::string *err) {
   auto it = shape.element_sets.find(name);
   if (it == shape.element_sets.end() || it->second.empty()) {
     *err = "cutting pattern: the surface has no element set \"" + name + "\" (check -cutpattern_strips)";
     return false;
   }
   *strip = ExtractStrip(shape, it->second, name);
-  if (!FlattenStrip(*strip, o.flatten, r, err)) {
+  const FlattenResult *done = nullptr;
+  if (flattened && flattened->count(name)) done = &flattened->at(name);
+  if (done) {
+    *r = *done;  // the same strip, flattened with the same options
+  } else if (!FlattenStrip(*strip, o.flatten, r, err)) {
     *err = "cutting pattern of strip " + name + ": " + *err;
     return false;
   }
@@ -299,9 +305,10 @@ std::string StripReport(const std::string &name, const std::string &base, const 
   std::string report;
   char line[512];
   std::snprintf(line, sizeof line,
-                "cutpattern: strip %s: %d nodes, %d links, %d iterations (%s start), S = %.3e mm^2, link error "
+                "cutpattern: strip %s: %d nodes, %d links, %d iterations (%s start%s), S = %.3e mm^2, link error "
                 "max %.3e rms %.3e; files %s.{dxf,svg,pdf,msh}\n",
                 name.c_str(), strip.NumNodes(), (int)r.link_length3d.size(), r.iterations, r.initial_guess.c_str(),
+                r.gauss_newton_retry ? "; Gauss-Newton, the second-order step having failed or folded" : "",
                 r.S, r.max_rel_error, r.rms_rel_error, base.c_str());
   report += line;
   std::snprintf(line, sizeof line, "cutpattern: strip %s outline: 3D %.3f mm, 2D %.3f mm, expansion %.4f %%\n",
@@ -328,7 +335,7 @@ std::string StripReport(const std::string &name, const std::string &base, const 
 } // namespace
 
 PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatternOptions &o, const std::string &dir,
-                             const std::string &stem) {
+                             const std::string &stem, const std::map<std::string, FlattenResult> *flattened) {
   PetscMPIInt rank;
   int ok = 1;
   std::string err, report;
@@ -354,7 +361,7 @@ PetscErrorCode CutPatternRun(MPI_Comm comm, const MeshData &shape, const CutPatt
     for (size_t k = 0; k < names.size() && ok; ++k) {
       MeshData strip;
       const std::string base = dir + "/" + stem + "_" + names[k];
-      if (!FlattenNamedStrip(shape, names[k], o, &strip, &results[k], &design[k], &err) ||
+      if (!FlattenNamedStrip(shape, names[k], o, flattened, &strip, &results[k], &design[k], &err) ||
           !WriteStripFiles(base, names[k], strip, results[k], drawing, &err)) {
         ok = 0;
         break;

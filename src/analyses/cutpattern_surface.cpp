@@ -207,43 +207,79 @@ double PatternLeastWidth(const std::vector<double> &xy) {
 
 namespace {
 
-// -cutpattern_strip_fit_roll: cuts a copy of *mesh at the width W, flattens every strip and
-// measures its least width; while the widest one is wider than the roll's usable width (roll
-// width less the seam allowance on both sides), W shrinks by their ratio (and 2 % more) and
-// the surface is cut again; a strip that folds over when flattened (too strongly curved for one
-// piece) shrinks W by 0.8. Notes say each try.
-bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::vector<std::string> *notes,
-                  std::string *err) {
+// The widest of the flattened strips of m (least width, mm) into *widest / *which, each strip's
+// flattening into *flat. False with *err; *folded names a strip that folds over when flattened
+// (too strongly curved for one piece), which is not an error here.
+bool WidestFlattened(const MeshData &m, const FlattenOptions &fo, std::map<std::string, FlattenResult> *flat,
+                     double *widest, std::string *which, std::string *folded, std::string *err) {
+  *widest = 0;
+  flat->clear();
+  for (const auto &kv : m.element_sets) {
+    FlattenResult &r = (*flat)[kv.first];
+    if (!FlattenStrip(ExtractStrip(m, kv.second, kv.first), fo, &r, err)) {
+      if (err->find("folds over") != std::string::npos) {
+        *folded = kv.first;
+        return true;
+      }
+      *err = "-cutpattern_strip_fit_roll: strip " + kv.first + ": " + *err;
+      return false;
+    }
+    const double w = PatternLeastWidth(r.xy);
+    if (w > *widest) *widest = w, *which = kv.first;
+  }
+  return true;
+}
+
+// -cutpattern_strip_fit_roll: cuts a copy of *mesh at the width W, prepares its strips
+// (CutPatternPrepareSurface: the cut_* lines they share) and measures the least width of each
+// flattened strip; while the widest one is wider than the roll's usable width (roll width less
+// the seam allowance on both sides), W shrinks by their ratio (and 2 % more) and the surface is
+// cut again; a strip that folds over when flattened (too strongly curved for one piece) shrinks W
+// by 0.8. Notes say each try.
+//
+// A try first estimates the widths from a quick flattening (every link weighted alike, one
+// stage, loose tolerance: a few Gauss-Newton steps instead of the weight stages), scaled by the
+// ratio of the true to the estimated widest strip of the last full flattening; only a try whose
+// estimate fits is flattened in full, which decides. Why: at 10^5 triangles a full flattening of
+// all strips takes most of a try. The kept try's flattenings go to *flat, by strip (the same
+// strips with the same lines), which the pattern files then use instead of flattening again.
+bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::map<std::string, FlattenResult> *flat,
+                  std::vector<std::string> *notes, std::string *err) {
   const double usable = o.cutpattern.roll_width - 2 * o.cutpattern.seam_allowance;
   GeodesicCutOptions g = o.geodesic;
   g.whole_if_narrow = true;
   g.equal = true;
   if (!o.width_given) g.width = usable;
+  FlattenOptions quick = o.cutpattern.flatten;
+  quick.boundary_weight = quick.interior_weight;
+  quick.weight_growth = 0.0;
+  quick.step_rtol = quick.stage_step_rtol;
+  quick.s_rtol = 1e-8;
+  double scale = 1.0;  // true / estimated width of the widest strip, from the last full flattening
   char line[400];
   for (int attempt = 1; attempt <= 8; ++attempt) {
     MeshData m = *mesh;
     std::vector<std::string> n;
-    if (!GeodesicCutStrips(&m, g, &n, err)) {
+    if (!GeodesicCutStrips(&m, g, &n, err) || !CutPatternPrepareSurface(&m, o.cutpattern.strips, &n, err)) {
       *err = "-cutpattern_strip_fit_roll (try " + std::to_string(attempt) + "): " + *err;
       return false;
     }
-    double widest = 0;
+    double widest = 0, estimate = 0;
     std::string which, folded;
-    for (const auto &kv : m.element_sets) {
-      FlattenResult r;
-      const MeshData strip = ExtractStrip(m, kv.second, kv.first);
-      if (!FlattenStrip(strip, o.cutpattern.flatten, &r, err)) {
-        // A strip too strongly curved to lie flat in one piece: narrower strips may.
-        if (err->find("folds over") != std::string::npos) {
-          folded = kv.first;
-          break;
-        }
-        *err = "-cutpattern_strip_fit_roll: strip " + kv.first + ": " + *err;
-        return false;
-      }
-      const double w = PatternLeastWidth(r.xy);
-      if (w > widest) widest = w, which = kv.first;
+    std::string qerr;
+    // A quick flattening that fails says nothing: the full one decides.
+    if (WidestFlattened(m, quick, flat, &estimate, &which, &folded, &qerr) && folded.empty() &&
+        estimate * scale > usable) {
+      std::snprintf(line, sizeof line,
+                    "roll fit, try %d: strip width %.1f mm, %zu strips, the widest quickly flattened strip %s "
+                    "%.1f mm across (an estimate; usable width of the roll %.1f mm)",
+                    attempt, g.width, m.element_sets.size(), which.c_str(), estimate * scale, usable);
+      notes->push_back(line);
+      g.width *= 0.98 * usable / (estimate * scale);
+      continue;
     }
+    folded.clear();
+    if (!WidestFlattened(m, o.cutpattern.flatten, flat, &widest, &which, &folded, err)) return false;
     if (!folded.empty()) {
       std::snprintf(line, sizeof line,
                     "roll fit, try %d: strip width %.1f mm, %zu strips, strip %s folds over when flattened: "
@@ -252,6 +288,7 @@ bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::vector
       g.width *= 0.8;
       continue;
     }
+    if (estimate > 0 && flat->count(which)) scale = std::max(1.0, widest / estimate);
     std::snprintf(line, sizeof line,
                   "roll fit, try %d: strip width %.1f mm, %zu strips, the widest flattened strip %s %.1f mm across "
                   "(usable width of the roll %.1f mm: %.1f mm less twice the seam allowance %.1f mm)",
@@ -265,6 +302,7 @@ bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::vector
     }
     g.width *= 0.98 * usable / widest;
   }
+  flat->clear();
   *err = "-cutpattern_strip_fit_roll: after 8 tries the widest flattened strip is still wider than the roll's usable "
          "width (see the notes); give a smaller -cutpattern_strip_width to start from, or a wider roll";
   for (const auto &n : *notes) *err += "\n  " + n;
@@ -342,6 +380,7 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
   PetscMPIInt rank;
   MeshData mesh;
   std::vector<std::string> notes;
+  std::map<std::string, FlattenResult> flat;  // the roll fit's flattenings, by strip
   std::string err;
   int ok = 1;
   PetscFunctionBeginUser;
@@ -360,9 +399,9 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
     std::error_code ec;
     if (cutting) std::filesystem::create_directories(dir, ec);
     ok = ReadMeshFile(o.mesh_file, o.cad_size, &mesh, &err) && MeshOrient(&mesh, &err) && MeshCheck(mesh, 0.0, &err) &&
-         (o.fit_roll ? CutToFitRoll(&mesh, o, &notes, &err)
-                     : (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err))) &&
-         CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err) &&
+         (o.fit_roll ? CutToFitRoll(&mesh, o, &flat, &notes, &err)  // prepares the strips itself
+                     : (o.geodesic.width <= 0 || GeodesicCutStrips(&mesh, o.geodesic, &notes, &err)) &&
+                           CutPatternPrepareSurface(&mesh, o.cutpattern.strips, &notes, &err)) &&
          (!cutting || WriteGmshFile(cut_file, mesh, &err));
   }
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
@@ -370,7 +409,10 @@ PetscErrorCode CutPatternSurfaceRun(MPI_Comm comm, const CutPatternSurfaceOption
   if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(mesh, o.mesh_file)));
   for (const std::string &n : notes) PetscCall(PetscPrintf(comm, "cutpattern: %s\n", n.c_str()));
   if (cutting) PetscCall(PetscPrintf(comm, "cutpattern: the cut surface: %s\n", cut_file.c_str()));
-  PetscCall(CutPatternRun(comm, mesh, o.cutpattern, dir, out.stem().string()));
+  if (!flat.empty())
+    PetscCall(PetscPrintf(comm, "cutpattern: the patterns are the roll fit's flattenings of its last try (%zu strips, "
+                                "not flattened again)\n", flat.size()));
+  PetscCall(CutPatternRun(comm, mesh, o.cutpattern, dir, out.stem().string(), flat.empty() ? nullptr : &flat));
   PetscFunctionReturn(0);
 }
 

@@ -41,6 +41,10 @@ struct LinearSystem {
   Mat K = nullptr;
   Vec r = nullptr, dx = nullptr;
   KSP ksp = nullptr;
+  // After the first assembly: 16 per link, where each entry of its 4x4 block (row-major) lies in
+  // K's value array (-1: a fixed coordinate), so later assemblies add there directly.
+  std::vector<PetscInt> slot;
+  PetscInt nnz = 0;
 };
 
 // flatten_topology.cpp

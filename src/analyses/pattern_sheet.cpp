@@ -48,6 +48,10 @@ bool InPolygon(const std::vector<double> &p, double x, double y) {
 
 // Liang-Barsky: does the segment a-b meet the box?
 bool SegmentMeetsBox(const double *a, const double *b, const double box[4]) {
+  // Both ends beyond one side: the common case when a label box is tried against a long outline
+  // (a strip of 6525 nodes spent 26 % of a pattern run's instructions here without it).
+  for (int k = 0; k < 2; ++k)
+    if ((a[k] < box[k] && b[k] < box[k]) || (a[k] > box[k + 2] && b[k] > box[k + 2])) return false;
   double t0 = 0, t1 = 1;
   const double d[2] = {b[0] - a[0], b[1] - a[1]};
   for (int k = 0; k < 2; ++k) {
@@ -70,15 +74,16 @@ bool BoxesMeet(const double *a, const double *b) {
 
 bool BoxClear(const double box[4], const std::vector<double> *inside, const std::vector<const SheetPolyline *> &polys,
               const std::vector<double> &avoid) {
+  // The cheap tests first: the boxes to avoid, then the lines, then the corners inside.
+  for (size_t k = 0; k + 3 < avoid.size(); k += 4)
+    if (BoxesMeet(box, &avoid[k])) return false;
+  for (const SheetPolyline *p : polys)
+    if (BoxCrossesPolyline(box, *p)) return false;
   if (inside) {
     const double c[8] = {box[0], box[1], box[2], box[1], box[2], box[3], box[0], box[3]};
     for (int k = 0; k < 4; ++k)
       if (!InPolygon(*inside, c[2 * k], c[2 * k + 1])) return false;
   }
-  for (const SheetPolyline *p : polys)
-    if (BoxCrossesPolyline(box, *p)) return false;
-  for (size_t k = 0; k + 3 < avoid.size(); k += 4)
-    if (BoxesMeet(box, &avoid[k])) return false;
   return true;
 }
 

@@ -17,7 +17,8 @@
   * the PDF sheets of a strip and of the nesting: valid cross-reference table, the page the SVG's
     size at 1:1;
   * the form-found DD1511 saddle (corner and middle surfaces) cut directly on a 600 mm roll: every
-    strip fits.
+    strip fits; the patterns are the fit's last flattenings (no second pass), equal to the cut
+    surface's strips flattened anew.
 """
 import math
 import os
@@ -203,6 +204,21 @@ with scratch_dir() as tmp:
               len(errs) >= 4, "DD1511: both surfaces cut into strips")
     chk.check(widths and max(widths.values()) + 30 <= 600, "DD1511: every strip with its allowance fits 600 mm")
     chk.check(re.search(r"nesting on a roll 600.0 mm wide", out) is not None, "DD1511: nested on the roll")
+    # The patterns are the fit's own flattenings (no second pass over the strips), and they are what
+    # flattening the cut surface's strips (dd_cut.msh) anew gives: the same S and cut line lengths.
+    again = cutpattern(tmp, "again", os.path.join(tmp, "dd_cut.msh"), [])
+    strip_s = r"cutpattern: strip (\S+): \d+ nodes, \d+ links, \d+ iterations .*? S = (\S+) mm\^2"
+    fit_s, new_s = re.findall(strip_s, out), re.findall(strip_s, again)
+    reused = re.search(r"the patterns are the roll fit's flattenings of its last try \((\d+) strips, not flattened "
+                       r"again\)", out)
+    print("DD1511: %s; flattened again from dd_cut.msh: %d strips, the same S and line lengths: %s" % (
+        reused.group(0) if reused else "the patterns were flattened again", len(new_s),
+        sorted(fit_s) == sorted(new_s) and sorted(line_lengths(out)) == sorted(line_lengths(again))))
+    chk.check(reused is not None and int(reused.group(1)) == len(errs),
+              "DD1511: the patterns are the roll fit's last flattenings, not flattened a second time")
+    chk.check(len(fit_s) == len(errs) and sorted(fit_s) == sorted(new_s) and
+              sorted(line_lengths(out)) == sorted(line_lengths(again)),
+              "DD1511: the fit's patterns equal the cut strips flattened anew (S and every cut line's lengths)")
 
     # A fit without a roll is refused naming the options.
     out = cutpattern(tmp, "noroll", path, ["-cutpattern_strip_fit_roll"], expect_fail=True)
