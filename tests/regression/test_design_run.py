@@ -192,6 +192,14 @@ def cable_checks(etfe, chk, tmp):
         chk.check(False, "a combination of two structure_wind cases is refused")
     except designmod.DesignError as e:
         chk.check("film_<zone>_pressure" in str(e), "a combination of two structure_wind cases is refused: %s" % e)
+    zones = dict(DESIGN, load_cases=dict(DESIGN["load_cases"],
+                                         WX={"kind": "wind", "loads": {"film_a_pressure": 0.35, "film_b_pressure": -0.25}},
+                                         WY={"kind": "wind", "loads": {"film_a_pressure": -0.2, "film_b_pressure": -0.2}}),
+                 combinations=[{"name": "XY", "factors": {"G": 1, "WX": 1.5, "WY": 0.9}}])
+    got = designmod.Design(zones, "zones").combination_loads(designmod.Design(zones, "zones").combinations[0])
+    chk.check(abs(got["film_a_pressure"] - (1.5 * 0.35 - 0.9 * 0.2)) < 1e-15 and
+              abs(got["film_b_pressure"] - (-1.5 * 0.25 - 0.9 * 0.2)) < 1e-15,
+              "per-zone wind pressure cases add up in one combination: %s" % got)
     mesh = os.path.join(tmp, "strip.msh")
     cable_meshes.strip(mesh, 2000.0, 200.0, 10)
     model = os.path.join(tmp, "cable_model.opts")
