@@ -45,12 +45,19 @@ EXAMPLE_RESISTANCE = {
                "gamma_M are illustrative. They are not the values of CEN/TS 19102:2023: give your own."),
 }
 
-LOAD_OPTION = re.compile(r"^(structure_self_weight|structure_wind|film_\w+_(snow|pressure)|chamber_\w+_pressure)$")
+LOAD_OPTION = re.compile(r"^(structure_self_weight|structure_wind|film_\w+_(snow|pressure)|chamber_\w+_pressure"
+                         r"|cable_\w+_weight)$")
+
+# A cable's design resistance is its breaking load over this factor unless the check gives its own:
+# EN 1993-1-11 (6.2) F_Rd = F_uk / (1.5 gamma_R) with gamma_R = 1.0 (our reading; state yours).
+DEFAULT_CABLE_FACTOR = 1.5
 
 
 def load_unit(option):
-    """The unit of a load option's value: kPa, or a factor of the film's weight."""
-    return "x weight" if option == "structure_self_weight" else "kPa"
+    """The unit of a load option's value: kPa, N/m (a cable's weight), or a factor of the film's weight."""
+    if option == "structure_self_weight":
+        return "x weight"
+    return "N/m" if option.startswith("cable_") else "kPa"
 
 
 class DesignError(Exception):
@@ -159,6 +166,19 @@ class Design:
         if loads:
             raise DesignError("model %s sets %s: load options belong in the design file (base loads, load cases), "
                               "which gives them per stage" % (self.model, ", ".join("-" + k for k in loads)))
+        for comb in self.combinations:
+            # The scene has one velocity pressure (-structure_wind) per run: two wind cases would add
+            # their q and share every zone's cp. Per-zone wind pressures that add up are
+            # film_<zone>_pressure loads (kPa along the normal, = -cp q): docs/design-run.md.
+            winds = [c for c in comb["factors"] if "structure_wind" in self.cases[c].get("loads", {})]
+            if len(winds) > 1:
+                raise DesignError("combination %s: load cases %s both give structure_wind, but a run has one velocity "
+                                  "pressure; give wind cases that meet as per-zone pressures, film_<zone>_pressure "
+                                  "= -cp q (kPa), which add up" % (comb["name"], " and ".join(winds)))
+        for chk in self.checks:
+            if chk.get("kind") == "cable_force" and not isinstance(chk.get("breaking_load"), dict):
+                raise DesignError("check %s: a cable_force check needs breaking_load {cable group: N}"
+                                  % chk.get("name", "cable_force"))
         for opt, v in self.base_loads.items():
             if len(v) != self.base_stages:
                 raise DesignError("base load %s has %d values for %d base stages" % (opt, len(v), self.base_stages))

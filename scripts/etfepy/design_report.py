@@ -13,7 +13,9 @@ COMBINATION_COLUMNS = [
     ("max_utilisation", "1"),
     ("utilisation_place", ""), ("max_principal_stress", "MPa"), ("max_deflection", "mm"),
     ("max_plastic_strain", "1"), ("wrinkled_elements", "1"), ("increments", "1"), ("newton_iterations", "1"),
-    ("cutbacks", "1"), ("wall", "s"), ("reactions", "N"), ("chamber_pressures", "kPa"), ("warnings", "")]
+    ("cutbacks", "1"), ("wall", "s"), ("steps", "1"), ("reactions", "N"), ("chamber_pressures", "kPa"),
+    ("cable_forces", "N"), ("warnings", "")]
+CABLE_COLUMNS = [("cable", ""), ("max_force", "N"), ("combination", ""), ("segment", "")]
 GROUP_COLUMNS = [("quantity", ""), ("max", "unit"), ("max_combination", ""), ("min", "unit"), ("min_combination", ""),
                  ("unit", "")]
 CHECK_COLUMNS = [("check", ""), ("combination", ""), ("situation", ""), ("value", "unit"), ("limit", "unit"),
@@ -115,7 +117,7 @@ def table(cols, rows, table_id, verdict_col=None):
     return "\n".join(out)
 
 
-def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names, missing, groups=()):
+def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names, missing, groups=(), cables=()):
     overall = "PASS" if check_rows and all(r["verdict"] == "pass" for r in check_rows) and not missing else "FAIL"
     if not check_rows:
         overall = "NO CHECKS"
@@ -136,7 +138,9 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
     body.append("<h2>Combinations</h2><p>Each combination is its own nonlinear run from the base state (%s), its "
                 "loads applied together in one stage.</p>" % html.escape(design.base_note or "the base stages"))
     body.append(table(COMBINATION_COLUMNS, comb_rows, "combinations"))
-    body.append("<h2>Envelopes</h2>")
+    body.append("<h2>Envelopes</h2><p>Over every written step of each combination's own stage (after the base): "
+                "the stage end and every -output_every-th increment (column steps), not the increments between "
+                "written steps.</p>")
     if env:
         u, ug = env["utilisation"]
         body.append(plan_svg(X, tri, u, "Utilisation envelope (plan)", "", lo=0.0, hi=max(1.0, float(u.max()))))
@@ -162,6 +166,9 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
     if groups:
         body.append("<h3>Reactions per support group and chamber pressures</h3>")
         body.append(table(GROUP_COLUMNS, groups, "groups"))
+    if cables:
+        body.append("<h3>Largest cable force per cable</h3>")
+        body.append(table(CABLE_COLUMNS, cables, "cables"))
     doc = ('<!DOCTYPE html><html><head><meta charset="utf-8"><title>%s</title><style>%s</style></head><body>%s'
            '</body></html>\n' % (html.escape(design.title), STYLE, "\n".join(body)))
     with open(path, "w") as f:

@@ -1,7 +1,10 @@
 """Envelopes over the combinations' results and the design checks (docs/design-run.md).
 
-Each combination's state is the last step of its results file (the full factored load); a
-combination that did not complete has no state and makes the envelopes incomplete. Envelope
+Each combination's quantities are the element-wise (node-wise, segment-wise) extremes over every
+step its results file holds: a branch writes only the steps of the combination's own stage (after
+the base), every -output_every-th increment and the stage end, so the extremes cover the ramp as
+written, not the increments between written steps. A combination that did not complete has no
+state and makes the envelopes incomplete. Envelope
 fields are element-wise (cells) or node-wise extremes over the completed combinations, each with
 the index of the governing combination (the first in the design's order on a tie).
 """
@@ -11,6 +14,7 @@ import os
 
 import numpy as np
 
+from .design import DEFAULT_CABLE_FACTOR
 from .results import h5py, text
 
 # name: (where, how, unit, description); how: max or min over the combinations.
@@ -25,6 +29,26 @@ ENVELOPES = {
     "displacement_magnitude": ("node", "max", "mm", "|u| from the mesh"),
     "deflection": ("node", "max", "mm", "|u - u_base|: the motion from the base state"),
 }
+
+
+def combination_steps(path):
+    """[{field: array}] of every step of a results file (cable datasets under "cables/...") and its
+    status, or (None, status)."""
+    with h5py().File(path, "r") as f:
+        status = text(f.attrs.get("status", b""))
+        steps = sorted(f["steps"].keys()) if "steps" in f else []
+        if not status.startswith("complete") or not steps:
+            return None, status
+        out = []
+        for s in steps:
+            g = f["steps"][s]
+            st = {k: g[k][()] for k in g.keys() if not isinstance(g[k], h5py().Group)}
+            if "cables" in g:
+                for k in g["cables"].keys():
+                    st["cables/" + k] = g["cables"][k][()]
+            st["_time"] = float(g.attrs["time"])
+            out.append(st)
+        return out, status
 
 
 def combination_state(path):
@@ -86,6 +110,47 @@ def quantities(state, base_u, design, comb):
     return q
 
 
+def over_steps(states, base_u, design, comb):
+    """The quantities of every step, each element's (node's) extreme over the steps (max or min as its
+    envelope); the wrinkled area is the largest over the steps; cable segment forces their largest."""
+    qs = [quantities(st, base_u, design, comb) for st in states]
+    q = {}
+    for name, (_, how, _, _) in ENVELOPES.items():
+        stack = np.stack([x[name] for x in qs])
+        q[name] = stack.max(axis=0) if how == "max" else stack.min(axis=0)
+    q["area_ratio"] = qs[-1]["area_ratio"]
+    q["steps"] = len(qs)
+    q["wrinkled_area_steps"] = [(x["wrinkle_state"] >= 1, x["area_ratio"]) for x in qs]
+    if "cables/force" in states[-1]:
+        q["cable_force"] = np.stack([st["cables/force"] for st in states]).max(axis=0)
+        q["cable_index"] = states[-1]["cables/cable"].astype(int)
+    return q
+
+
+def cable_maxima(q, cable_names):
+    """{cable name: (largest segment force N, segment index within the cable)} of a combination."""
+    res = {}
+    if q is None or "cable_force" not in q:
+        return res
+    for k in np.unique(q["cable_index"]):
+        seg = np.nonzero(q["cable_index"] == k)[0]
+        i = int(np.argmax(q["cable_force"][seg]))
+        name = cable_names[k] if k < len(cable_names) else "cable %d" % k
+        res[name] = (float(q["cable_force"][seg][i]), i)
+    return res
+
+
+def cable_envelopes(names, per_comb, cable_names):
+    """Per cable: the largest segment force over the completed combinations (every written step) and
+    the combination and segment giving it. [dict(cable, max_force, combination, segment)]."""
+    best = {}
+    for k, q in enumerate(per_comb):
+        for cab, (f, seg) in cable_maxima(q, cable_names).items():
+            if cab not in best or f > best[cab]["max_force"]:
+                best[cab] = dict(cable=cab, max_force=f, combination=names[k], segment=seg)
+    return list(best.values())
+
+
 def envelopes(per_comb):
     """per_comb: [quantities or None] in the design's order. {name: (values, governing index)}."""
     done = [k for k, q in enumerate(per_comb) if q is not None]
@@ -126,7 +191,7 @@ def triangle_areas(X, tri):
     return 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1)
 
 
-def write_envelopes(path, X, tri, env, names, missing, groups=()):
+def write_envelopes(path, X, tri, env, names, missing, groups=(), cables=()):
     """Envelope HDF5 (mesh + fields + governing combination index) and its XDMF beside it."""
     with h5py().File(path, "w") as f:
         f.attrs["format"] = "etfe-envelope-1"
@@ -145,6 +210,10 @@ def write_envelopes(path, X, tri, env, names, missing, groups=()):
             d = f.create_dataset("groups/" + g["quantity"], data=np.array([g["max"], g["min"]]))
             d.attrs.update(units=g["unit"], description="largest and smallest over the combinations",
                            governing="%s\n%s" % (g["max_combination"], g["min_combination"]))
+        for c in cables:  # per cable: its largest segment force over the combinations' steps
+            d = f.create_dataset("cables/" + c["cable"] + "_force_max", data=np.array([c["max_force"]]))
+            d.attrs.update(units="N", description="largest segment force over the combinations (every written step)",
+                           governing=c["combination"], segment=int(c["segment"]))
     h5 = os.path.basename(path)
     nn, ne = X.shape[0], tri.shape[0]
     attrs = []
@@ -184,7 +253,7 @@ CHECKS = {
 }
 
 
-def run_checks(design, combs, per_comb, extras, X, tri):
+def run_checks(design, combs, per_comb, extras, X, tri, cable_names=()):
     """One row per check and combination it applies to: dict(check, combination, situation, value,
     limit, unit, verdict, place). A combination that did not complete fails every check it has."""
     rows = []
@@ -211,11 +280,27 @@ def run_checks(design, combs, per_comb, extras, X, tri):
                 place = place_of_node(X, i) if qty in ("deflection",) else place_of_cell(X, tri, i)
                 row.update(value=value, limit=limit, unit=unit, verdict="pass" if ok else "FAIL", place=place)
             elif kind == "wrinkled_area":
-                wr = q["wrinkle_state"] >= 1
-                value = float(np.sum(areas[wr] * q["area_ratio"][wr])) * 1e-6
+                # the largest over the written steps of the combination's stage
+                value, wr = max(((float(np.sum(areas[w] * ar[w])) * 1e-6, w) for w, ar in q["wrinkled_area_steps"]),
+                                key=lambda t: t[0])
                 limit = float(chk["limit"])
                 row.update(value=value, limit=limit, unit="m^2", verdict="pass" if value <= limit else "FAIL",
                            place="%d of %d elements wrinkled or slack" % (int(np.sum(wr)), len(wr)))
+            elif kind == "cable_force":
+                factor = float(chk.get("factor", DEFAULT_CABLE_FACTOR))
+                got = cable_maxima(q, cable_names)
+                for cab, breaking in chk["breaking_load"].items():
+                    r = dict(row)
+                    limit = float(breaking) / factor
+                    if cab not in got:
+                        r.update(value=float("nan"), limit=limit, unit="N", verdict="FAIL",
+                                 place="cable %s: no such cable in the results (cables: %s)" % (cab, ", ".join(got)))
+                    else:
+                        value, seg = got[cab]
+                        r.update(value=value, limit=limit, unit="N", verdict="pass" if value <= limit else "FAIL",
+                                 place="cable %s segment %d (breaking load %g N / %g)" % (cab, seg, breaking, factor))
+                    rows.append(r)
+                continue
             elif kind == "chamber_pressure":
                 col = chk["chamber"] + "_p_kPa"
                 value = extras[k].get(col, float("nan"))
@@ -225,7 +310,8 @@ def run_checks(design, combs, per_comb, extras, X, tri):
                            place="chamber " + chk["chamber"])
             else:
                 raise ValueError("check %s: unknown kind %s (utilisation, plastic_strain, principal_strain, "
-                                 "deflection, min_prestress, wrinkled_area, chamber_pressure)" % (name, kind))
+                                 "deflection, min_prestress, wrinkled_area, chamber_pressure, cable_force)"
+                                 % (name, kind))
             rows.append(row)
     return rows
 

@@ -15,6 +15,12 @@ once and checkpointed; three combinations branch from it, two at a time:
   * a branch whose base stages differ is refused, and a plain -restart with changed loads still is;
   * the tables are CSV, and the HTML report opens in headless Chromium (when installed: scripts/setup
     installs it) with no console error, and its verdict table is the CSV's.
+On a film strip with an edge cable under its weight (every increment written): the envelopes are
+the extremes over every written step of each combination's stage (a combination that lowers the
+weight has its largest stresses and cable force at its first step, not its last); the largest
+cable force per cable and its combination (envelope_cables.csv, envelope.h5, report) and the cable
+check (force against breaking load / 1.5, the default factor) per combination; a combination of
+two cases that both give structure_wind is refused.
 """
 import csv
 import glob
@@ -28,6 +34,9 @@ import sys
 import numpy as np
 
 from etfe_testlib import REPO, main, run, scratch_dir
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import cable_meshes  # noqa: E402
 
 sys.path.insert(0, os.path.join(REPO, "scripts"))
 import h5compare  # noqa: E402
@@ -134,8 +143,132 @@ def browser(chk, tmp, report, checks_csv):
               % len(csv_rows))
 
 
+def all_steps(path):
+    with h5py.File(path, "r") as f:
+        out = []
+        for s in sorted(f["steps"].keys()):
+            g = f["steps"][s]
+            st = {k: g[k][()] for k in g.keys() if not isinstance(g[k], h5py.Group)}
+            st["cable_force"] = g["cables/force"][()]
+            out.append(st)
+        return out
+
+
+CABLE_MODEL = """-scene structure
+-mesh_file {mesh}
+-material_type elastic
+-material_young 1e-3
+-material_poisson 0.3
+-membrane_thickness 0.2
+-bc_far_fix xyz
+-bc_anchor_fix xyz
+-bc_end_fix xyz
+-cable_cable_EA 2e6
+-cable_cable_prestress 500
+-output_every 1
+"""
+# breaking load 1080 N: limit 720 N at the default factor 1.5 (the ULS force, 766 N, is above, the others
+# below: SLS 667 N, UNLOAD 523 N)
+CABLE_DESIGN = {
+    "title": "test: strip with an edge cable",
+    "base": {"stages": 1, "loads": {"cable_cable_weight": [5]}, "note": "cable weight 5 N/m"},
+    "increments_per_stage": 4,
+    "load_cases": {"G": {"kind": "permanent", "in_base": True, "loads": {"cable_cable_weight": 5}},
+                   "Q": {"kind": "imposed", "loads": {"cable_cable_weight": 10}}},
+    "combinations": [{"name": "ULS-Q", "situation": "ULS", "factors": {"G": "gamma_G_sup", "Q": "gamma_Q"}},
+                     {"name": "SLS-Q", "situation": "SLS", "factors": {"G": 1, "Q": 1}},
+                     {"name": "UNLOAD", "situation": "SLS", "factors": {"G": 0.5}}],
+    "checks": [{"name": "cable force", "kind": "cable_force", "situations": ["ULS", "SLS"],
+                "breaking_load": {"cable": 1080}},
+               {"name": "utilisation", "kind": "utilisation", "situations": ["SLS"]}],
+}
+
+
+def cable_checks(etfe, chk, tmp):
+    two_winds = dict(DESIGN, load_cases=dict(DESIGN["load_cases"], WY=dict(DESIGN["load_cases"]["W"])),
+                     combinations=[{"name": "XY", "factors": {"G": 1, "W": 1, "WY": 1}}])
+    try:
+        designmod.Design(two_winds, "two winds")
+        chk.check(False, "a combination of two structure_wind cases is refused")
+    except designmod.DesignError as e:
+        chk.check("film_<zone>_pressure" in str(e), "a combination of two structure_wind cases is refused: %s" % e)
+    zones = dict(DESIGN, load_cases=dict(DESIGN["load_cases"],
+                                         WX={"kind": "wind", "loads": {"film_a_pressure": 0.35, "film_b_pressure": -0.25}},
+                                         WY={"kind": "wind", "loads": {"film_a_pressure": -0.2, "film_b_pressure": -0.2}}),
+                 combinations=[{"name": "XY", "factors": {"G": 1, "WX": 1.5, "WY": 0.9}}])
+    got = designmod.Design(zones, "zones").combination_loads(designmod.Design(zones, "zones").combinations[0])
+    chk.check(abs(got["film_a_pressure"] - (1.5 * 0.35 - 0.9 * 0.2)) < 1e-15 and
+              abs(got["film_b_pressure"] - (-1.5 * 0.25 - 0.9 * 0.2)) < 1e-15,
+              "per-zone wind pressure cases add up in one combination: %s" % got)
+    mesh = os.path.join(tmp, "strip.msh")
+    cable_meshes.strip(mesh, 2000.0, 200.0, 10)
+    model = os.path.join(tmp, "cable_model.opts")
+    with open(model, "w") as f:
+        f.write(CABLE_MODEL.format(mesh=mesh))
+    dfile = os.path.join(tmp, "cable_design.json")
+    with open(dfile, "w") as f:
+        json.dump(dict(CABLE_DESIGN, model=model), f)
+    out = os.path.join(tmp, "cable_run")
+    p = subprocess.run([sys.executable, os.path.join(REPO, "scripts", "design-run"), dfile, "--out", out, "-jobs", "2",
+                        "--etfe", etfe], capture_output=True, text=True, timeout=600)
+    print(p.stdout + p.stderr)
+    chk.check(p.returncode == 1, "cable design-run exits 1 (the ULS cable check fails), got %d" % p.returncode)
+    names = [c["name"] for c in CABLE_DESIGN["combinations"]]
+    steps = {n: all_steps(os.path.join(out, n + ".h5")) for n in names}
+    chk.check(all(len(v) == 4 for v in steps.values()), "each branch wrote its 4 increments (%s)"
+              % {n: len(v) for n, v in steps.items()})
+
+    # Field envelopes over every written step, not the last only.
+    every = np.max([st["principal_stress"][:, 0] for n in names for st in steps[n]], axis=0)
+    last = np.max([steps[n][-1]["principal_stress"][:, 0] for n in names], axis=0)
+    low = np.min([st["principal_stress"][:, 0] for n in names for st in steps[n]], axis=0)
+    with h5py.File(os.path.join(out, "envelope.h5"), "r") as f:
+        e = f["envelope/max_principal_stress"][()]
+        chk.check(np.array_equal(e, every), "envelope of the largest principal stress = element-wise max over every "
+                                            "written step (%d of %d elements above the last steps' max)"
+                  % (int(np.sum(every > last)), len(e)))
+        chk.check(np.array_equal(f["envelope/lowest_major_stress"][()], low),
+                  "envelope of the smallest major stress = element-wise min over every written step")
+        fmax = {n: max(float(st["cable_force"].max()) for st in steps[n]) for n in names}
+        gov = max(names, key=lambda n: fmax[n])
+        d = f["cables/cable_force_max"]
+        chk.check(float(d[0]) == fmax[gov] and d.attrs["governing"] == gov,
+                  "envelope.h5: largest cable force %.6g N from %s = the largest segment force over every step and "
+                  "combination" % (float(d[0]), d.attrs["governing"]))
+    first, lastf = float(steps["UNLOAD"][0]["cable_force"].max()), float(steps["UNLOAD"][-1]["cable_force"].max())
+    chk.check(first > lastf, "UNLOAD (weight 5 -> 2.5 N/m): its largest cable force is at its first step, %.6g N > "
+                             "%.6g N at its last" % (first, lastf))
+    rows = list(csv.DictReader(open(os.path.join(out, "checks.csv"))))
+    u = [float(r["value"]) for r in rows if r["check"] == "utilisation" and r["combination"] == "UNLOAD"]
+    fd = 21.0 * 1.0 / 1.2
+    u_every = max(float(st["cauchy_mises"].max()) for st in steps["UNLOAD"]) / fd
+    u_last = float(steps["UNLOAD"][-1]["cauchy_mises"].max()) / fd
+    chk.check(len(u) == 1 and abs(u[0] - u_every) <= 1e-7 * u_every and u_every > u_last * (1 + 1e-6),
+              "UNLOAD's utilisation check %s = its largest over every written step %.8g (its last step's: %.8g)"
+              % (u[0] if u else "?", u_every, u_last))
+    env = list(csv.DictReader(open(os.path.join(out, "envelope_cables.csv"))))
+    chk.check(len(env) == 1 and env[0]["cable"] == "cable" and env[0]["combination"] == gov and
+              float(env[0]["max_force [N]"]) == float("%.8g" % fmax[gov]),
+              "envelope_cables.csv: cable, %s N, %s" % (env[0]["max_force [N]"] if env else "?", gov))
+    rows = [r for r in rows if r["check"] == "cable force"]
+    want = {n: "pass" if fmax[n] <= 720.0 else "FAIL" for n in names}
+    got = {r["combination"]: r["verdict"] for r in rows}
+    chk.check(got == want and set(want.values()) == {"pass", "FAIL"} and
+              all(float(r["value"]) == float("%.8g" % fmax[r["combination"]]) and float(r["limit"]) == 720.0
+                  for r in rows),
+              "cable check per combination: largest force over its steps against 1080 N / 1.5 = 720 N: %s (forces %s)"
+              % (got, {n: round(v, 1) for n, v in fmax.items()}))
+    combs = list(csv.DictReader(open(os.path.join(out, "combinations.csv"))))
+    chk.check(all(c["cable_forces [N]"].startswith("cable ") and c["steps [1]"] == "4" for c in combs),
+              "combinations.csv: the largest force per cable and the steps the envelope covers")
+    t = Tables()
+    t.feed(open(os.path.join(out, "report.html")).read())
+    chk.check(len(t.tables.get("cables", [])) == 2, "report.html: the table of the largest cable force per cable")
+
+
 def test(etfe, chk):
     with scratch_dir("etfe-design-run") as tmp:
+        cable_checks(etfe, chk, tmp)
         checks(etfe, chk, tmp)
 
 
