@@ -27,7 +27,6 @@
 #pragma once
 #include <string>
 
-#include "etfe/mesh/mesh_data.h"
 
 namespace etfe {
 
@@ -68,8 +67,9 @@ struct PlausibilityCheck {
   std::string message;  // empty when Fine; names the option (or file), the unit and the intent
 };
 
-// A mesh read from `file` (coordinates in mm): its bounding-box diagonal against the extent range.
-PlausibilityCheck CheckMeshExtent(const MeshData &mesh, const std::string &file);
+// A mesh read from `file` (num_nodes coordinates x y z in mm): its bounding-box diagonal against
+// the extent range. Plain arrays: the kernels stay below the mesh layer.
+PlausibilityCheck CheckMeshExtent(const double *coords, int num_nodes, const std::string &file);
 // A film thickness (mm) given by `option` (-membrane_thickness, -film_<group>_thickness).
 PlausibilityCheck CheckThickness(double thickness, const char *option = "-membrane_thickness");
 // -material_young (MPa).

@@ -40,13 +40,13 @@ PlausibilityCheck Verdict(Plausibility level, const std::string &message) {
 
 } // namespace
 
-PlausibilityCheck CheckMeshExtent(const MeshData &mesh, const std::string &file) {
-  if (mesh.NumNodes() == 0) return {};
+PlausibilityCheck CheckMeshExtent(const double *coords, int num_nodes, const std::string &file) {
+  if (num_nodes == 0) return {};
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (int i = 0; i < mesh.NumNodes(); ++i)
+  for (int i = 0; i < num_nodes; ++i)
     for (int c = 0; c < 3; ++c) {
-      lo[c] = std::min(lo[c], mesh.coords[3 * i + c]);
-      hi[c] = std::max(hi[c], mesh.coords[3 * i + c]);
+      lo[c] = std::min(lo[c], coords[3 * i + c]);
+      hi[c] = std::max(hi[c], coords[3 * i + c]);
     }
   const double d = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                              (hi[2] - lo[2]) * (hi[2] - lo[2]));

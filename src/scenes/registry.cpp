@@ -208,7 +208,7 @@ PetscErrorCode SceneReadMesh(MPI_Comm comm, const char path[], MeshData *mesh) {
   }
   PetscCall(Rank0Outcome(comm, ok, err, PETSC_ERR_FILE_READ));
   for (const std::string &note : mesh->notes) PetscCall(PetscPrintf(comm, "mesh %s: %s\n", path, note.c_str()));
-  if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(*mesh, path)));
+  if (rank == 0) PetscCall(ReportPlausibility(PETSC_COMM_SELF, CheckMeshExtent(mesh->coords.data(), mesh->NumNodes(), path)));
   mesh->source = path;
   PetscFunctionReturn(0);
 }
