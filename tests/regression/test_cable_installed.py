@@ -14,7 +14,7 @@ the form-finding targets:
   (within 3 %), no element wrinkled;
 * stress compensation without -cutpattern_prestress is refused by name (no form-finding stress).
 On the code before the pattern reference honoured compensation, -cutpattern_compensation was
-refused as an unused option.
+left unused (a warning) and the patterns cut uncompensated: 0.74-0.79 MPa, cables up to 21 % short.
 """
 import os
 import re
