@@ -74,6 +74,10 @@ public:
                                         double * /*external2*/) {
     return 0;
   }
+  // The term's internal (elastic) forces alone at the local displacement u, into the local array
+  // f, without the loads it applies: FormInternalForce (the increment work, the equilibrium check
+  // of stabilized increments) counts them with the film's. A term that is a load adds nothing.
+  virtual PetscErrorCode AddInternalForces(Problem &, const PetscScalar * /*u*/, PetscScalar * /*f*/) { return 0; }
   // Residual, global part: after the ghost sum, into the global residual F at the state U.
   virtual PetscErrorCode AddGlobalForces(Problem &, Vec /*U*/, Vec /*F*/) { return 0; }
 

@@ -252,6 +252,8 @@ bool CompensatedTargets(const MeshData &strip, const std::vector<int> &elements,
   return true;
 }
 
+} // namespace
+
 const char *CompensationName(Compensation c) {
   return c == Compensation::Uniform ? "uniform" : c == Compensation::Stress ? "stress" : "none";
 }
@@ -287,6 +289,8 @@ bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const Cut
   }
   return true;
 }
+
+namespace {
 
 // The pattern's files <base>.dxf, <base>.svg, <base>.pdf and <base>.msh (the plane layout as a mesh).
 bool WriteStripFiles(const std::string &base, const std::string &name, const MeshData &strip, const FlattenResult &r,

@@ -214,8 +214,8 @@ PetscErrorCode FormResidual(SNES snes, Vec U, Vec Fout, void *ctx) {
   PetscFunctionReturn(0);
 }
 
-// The element loop of FormResidual alone (committed history): no loads, contact or constraint
-// rows, and no side effects on the reactions or the force scale.
+// The element loop of FormResidual (committed history) and the terms' internal forces (cables):
+// no loads, contact or constraint rows, and no side effects on the reactions or the force scale.
 PetscErrorCode FormInternalForce(Problem *P, Vec U, Vec Fout) {
   Vec Ul, Fl;
   const PetscScalar *u;
@@ -225,6 +225,7 @@ PetscErrorCode FormInternalForce(Problem *P, Vec U, Vec Fout) {
   PetscFunctionBeginUser;
   PetscCall(BeginLocalForces(P, U, &Ul, &u, &Fl, &f));
   AddMembraneForces(P, u, f, &status, &bad);
+  for (auto &term : P->terms) PetscCall(term->AddInternalForces(*P, u, f));
   PetscCall(EndLocalForces(P, &Ul, &u, &Fl, &f, Fout));
   PetscFunctionReturn(0);
 }

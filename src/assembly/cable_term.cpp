@@ -47,6 +47,7 @@ class CableTerm : public PhysicsTerm {
   PetscErrorCode SetUp(Problem &P) override;
   PetscErrorCode Prepare(Problem &P, const PetscScalar *u) override;
   PetscErrorCode AddLocalForces(Problem &P, const PetscScalar *u, PetscScalar *f, int *status, double *external2) override;
+  PetscErrorCode AddInternalForces(Problem &P, const PetscScalar *u, PetscScalar *f) override;
   PetscErrorCode AddTangent(Problem &P, Vec U, const PetscScalar *u, Mat A) override;
   PetscErrorCode Columns(const Problem &P, std::vector<TermColumn> *columns) const override;
   PetscErrorCode Fields(const Problem &P, std::vector<TermData> *fields) const override;
@@ -198,6 +199,17 @@ PetscErrorCode CableTerm::AddLocalForces(Problem &, const PetscScalar *, PetscSc
       *external2 += wload_[3 * k + i] * wload_[3 * k + i];
     }
   }
+  PetscFunctionReturn(0);
+}
+
+// The segment forces at u without the weight (a load): evaluated afresh, as FormInternalForce may
+// ask at a state (the committed one) the last residual was not evaluated at.
+PetscErrorCode CableTerm::AddInternalForces(Problem &P, const PetscScalar *u, PetscScalar *f) {
+  PetscFunctionBeginUser;
+  PetscCall(Prepare(P, u));
+  for (size_t k = 0; k < local_.size(); ++k)
+    if (local_[k] >= 0)
+      for (int i = 0; i < 3; ++i) f[3 * local_[k] + i] += fint_[3 * k + i] + wload_[3 * k + i];
   PetscFunctionReturn(0);
 }
 

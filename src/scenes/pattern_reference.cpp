@@ -42,10 +42,13 @@ bool FlattenStrips(const MeshData &m, const PatternStrips &p, std::vector<double
       *err = p.option + ": " + m.source + " has no element set \"" + name + "\"; " + p.missing_hint;
       return false;
     }
-    const MeshData strip = ExtractStrip(m, it->second, name);
-    FlattenResult r;
+    MeshData strip;
+    FlattenResult r, design;
     std::string why;
-    if (!FlattenStrip(strip, FlattenOptions(), &r, &why)) {
+    const bool compensated = p.cut && p.cut->compensation != Compensation::None;
+    const bool flat = p.cut ? FlattenNamedStrip(m, name, *p.cut, &strip, &r, &design, &why)
+                            : FlattenStrip(strip = ExtractStrip(m, it->second, name), FlattenOptions(), &r, &why);
+    if (!flat) {
       *err = p.option + ": flattening strip " + name + " of " + m.source + " failed: " + why;
       return false;
     }
@@ -65,6 +68,14 @@ bool FlattenStrips(const MeshData &m, const PatternStrips &p, std::vector<double
                   p.scene.c_str(), name.c_str(), it->second.size(), r.outline_length3d, r.outline_length2d,
                   r.outline_held ? ", the outline held in its plane: cut to the frame" : "", r.max_rel_error);
     *lines += line;
+    if (compensated) {
+      std::snprintf(line, sizeof line,
+                    "%s: strip %s cut with compensation %s: outline 2D %.3f mm (uncompensated %.3f mm, %+.4f %%)\n",
+                    p.scene.c_str(), name.c_str(), CompensationName(p.cut->compensation), r.outline_length2d,
+                    design.outline_length2d,
+                    100.0 * (r.outline_length2d - design.outline_length2d) / design.outline_length2d);
+      *lines += line;
+    }
   }
   for (int e = 0; e < m.NumElements(); ++e)
     if (covered[e] != 1) {

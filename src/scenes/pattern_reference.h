@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "etfe/cutpattern.h"
 #include "etfe/mesh/mesh_data.h"
 
 namespace etfe {
@@ -14,6 +15,9 @@ struct PatternStrips {
   std::string option;               // what asked for it, for messages ("-saddle_reference pattern")
   std::string scene;                // the report lines' prefix ("saddle")
   std::string missing_hint;         // what to do when a strip is missing from the mesh
+  // With compensation (-cutpattern_compensation uniform, or stress with -cutpattern_prestress):
+  // the patterns are cut as -cutpattern cuts them, so the laid-on film reaches the prestress.
+  const CutPatternOptions *cut = nullptr;
 };
 
 // Per element of m (9 each) its triangle in the flat pattern of its strip, for

@@ -104,6 +104,15 @@ PetscErrorCode BuildLoadHistory(MPI_Comm comm, const StructureInputs &in, int st
     PatternStrips strips{in.pattern_strips, "-structure_reference pattern", "structure",
                          "list the mesh's surface groups cut as strips in -structure_pattern_strips"};
     if (strips.strips.empty()) strips.strips = in.element_groups;
+    // The patterns as -cutpattern cuts them: with -cutpattern_compensation they are cut smaller,
+    // so the laid-on film reaches its prestress (a form-found design's installed state).
+    CutPatternOptions cut;
+    PetscCall(CutPatternOptionsFromCommandLine(comm, &cut));
+    PetscCheck(cut.compensation != Compensation::Stress || cut.prestress_given, comm, PETSC_ERR_USER_INPUT,
+               "-structure_reference pattern with -cutpattern_compensation stress: give the design prestress "
+               "-cutpattern_prestress S_MD,S_TD (MPa), or use -cutpattern_compensation uniform; a static run has no "
+               "form-finding stress to compensate for");
+    strips.cut = &cut;
     PetscCall(PatternReference(comm, scene->mesh, strips, &scene->element_reference));
     // Laid on during the first stage, while the supports draw the film (pattern_reference.cpp);
     // or the reference from the start, where the mesh only stretches the patterns (a lens).

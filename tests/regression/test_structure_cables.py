@@ -77,6 +77,16 @@ def test(etfe, chk):
         c2 = cables(out2)["cable"]
         worst = max(abs(c2[k] - c1[k]) / abs(c1[k]) for k in ("min", "max", "length"))
         chk.less(worst, 1e-9, "straight cable: 2 ranks against 1, largest relative difference of force and length")
+        # The increments' work counts the cable's force (FormInternalForce): summed over the run it
+        # is the cable's strain energy EA L0 E^2 / 2 (the film's adds ~1e-6 of it; the trapezoid
+        # over 4 increments of a stiffening bar ~4e-4).
+        hist = os.path.join(tmp, "pull_history.csv")
+        run(etfe, pull + ["-structure_history", hist])
+        work = sum(float(r["work"]) for r in T.read_history(hist))
+        strain = (c1["length"] ** 2 - 1000.0 ** 2) / (2 * 1000.0 ** 2)
+        energy = 1e5 * 1000.0 * strain ** 2 / 2
+        chk.less(abs(work / energy - 1), 1e-3, "straight cable: the increments' work %.3f N mm against the cable's "
+                                               "strain energy %.3f N mm, relative difference" % (work, energy))
 
         # --- Tension only: the end pushed 5 mm towards the anchor: slack, no force.
         _, out = run(etfe, FILM + ["-mesh_file", strip, "-bc_far_fix", "xyz", "-bc_anchor_fix", "xyz", "-bc_end_ux", -5,
