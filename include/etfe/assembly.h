@@ -26,6 +26,9 @@ TermSolverNeeds ProblemSolverNeeds(const Problem &problem);
 // Whether a term's columns, fields or report read its last evaluation (PhysicsTerm::ReportsLastEvaluation):
 // the residual is then evaluated at the state reported first (ProblemUpdateReactions).
 bool TermsReportLastEvaluation(const Problem &problem);
+// The checkpoint datasets of every term there is, whether a problem has it or not (the registry,
+// physics_terms.cpp: each term's file gives its own): for reading a checkpoint without a problem.
+const std::vector<TermDatasetInfo> &TermCheckpointDatasets();
 
 // Viscous stabilization (stabilization.cpp), a physics term every problem has (any load history
 // may need it): Begin makes the residual carry relative * E h0 * (U - anchor) on free DOFs and

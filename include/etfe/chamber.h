@@ -40,6 +40,8 @@ struct ChamberSet : PhysicsTerm {
   PetscErrorCode AddLocalForces(Problem &, const PetscScalar *u, PetscScalar *f, int *status, double *external2) override;
   PetscErrorCode AddTangent(Problem &, Vec U, const PetscScalar *u, Mat A) override;
   PetscErrorCode Commit(Problem &, double t) override;
+  // The block State writes (TermCheckpointDatasets).
+  static const TermDatasetInfo kCheckpoint;
   PetscErrorCode State(const Problem &, std::vector<TermData> *blocks) const override;
   PetscErrorCode Restore(Problem &, const std::vector<TermData> &blocks) override;
   PetscErrorCode Fields(const Problem &, std::vector<TermData> *fields) const override;

@@ -94,6 +94,8 @@ struct ContactSet : PhysicsTerm {
   PetscErrorCode AddLocalForces(Problem &, const PetscScalar *u, PetscScalar *f, int *status, double *external2) override;
   PetscErrorCode AddTangent(Problem &, Vec U, const PetscScalar *u, Mat A) override;
   PetscErrorCode Commit(Problem &, double t) override;
+  // The block State writes (TermCheckpointDatasets).
+  static const TermDatasetInfo kCheckpoint;
   PetscErrorCode State(const Problem &, std::vector<TermData> *blocks) const override;
   PetscErrorCode Restore(Problem &, const std::vector<TermData> &blocks) override;
   PetscInt RepeatLimit() const override { return lagged_repeat; }
@@ -104,6 +106,12 @@ struct ContactSet : PhysicsTerm {
   void Fingerprint(Fnv64 &) const override;
   bool PairRows(PetscInt *num_global, PetscInt *first, std::vector<PetscInt> *ids) const override;
   TermSolverNeeds SolverNeeds() const override;
+  // The penalties' line of the set-up report (with -contact_penalty_length), the probes' CSV,
+  // the stiff penalties' hint, and the supports that may hold rigid motions.
+  PetscErrorCode SetupLines(const Problem &, std::vector<std::string> *lines) const override;
+  PetscErrorCode IncrementOutput(Problem &, const std::string &stem, PetscInt step, double t) override;
+  std::string LineSearchHint(const Problem &) const override;
+  const char *RigidMotionHolder() const override { return "the rigid contact supports"; }
 };
 
 // The -contact_* options, read and range-checked once (collective). default_kn: the penalty when

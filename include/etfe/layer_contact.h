@@ -51,6 +51,8 @@ struct LayerContactSet : PhysicsTerm {
   PetscErrorCode AddTangent(Problem &, Vec U, const PetscScalar *u, Mat A) override;
   PetscErrorCode Commit(Problem &, double t) override;
   PetscErrorCode Restarted(Problem &) override;
+  // The block State writes (TermCheckpointDatasets).
+  static const TermDatasetInfo kCheckpoint;
   PetscErrorCode State(const Problem &, std::vector<TermData> *blocks) const override;
   PetscErrorCode Restore(Problem &, const std::vector<TermData> &blocks) override;
   PetscErrorCode Destroy(Problem &) override;

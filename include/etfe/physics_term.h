@@ -35,6 +35,18 @@ struct TermData {
   const char *description = "";
 };
 
+// A dataset a term may write into the checkpoint (what its State gives, without the values): the
+// checkpoint's integrity check, which has no problem, reads the file by this list
+// (TermCheckpointDatasets, assembly.h). Rows by layout as in TermData (Nodes, Cells or Pairs, or
+// replicated); a Layout::Pairs dataset is
+// in every checkpoint that has pairs (only a term numbers them), any other only with its term.
+struct TermDatasetInfo {
+  const char *name;
+  Layout layout = Layout::Nodes;
+  bool replicated = false;
+  int components = 1;
+};
+
 // What a term asks of the linear solver.
 struct TermSolverNeeds {
   // The term's tangent is not in the assembled matrix alone (a rank-one or low-rank part, a
@@ -102,6 +114,20 @@ public:
   virtual PetscErrorCode Columns(const Problem &, std::vector<TermColumn> * /*columns*/) const { return 0; }
   virtual PetscErrorCode Fields(const Problem &, std::vector<TermData> * /*fields*/) const { return 0; }
   virtual PetscErrorCode Report(const Problem &, std::vector<std::string> * /*lines*/) const { return 0; }
+
+  // The run's set-up report (after the solver's lines): the term's lines, without their indent
+  // or newline, as rank 0 prints them (formatted with PetscSNPrintf, as PetscPrintf would).
+  virtual PetscErrorCode SetupLines(const Problem &, std::vector<std::string> * /*lines*/) const { return 0; }
+  // A converged increment, committed: the term's own files beside the results (stem: theirs).
+  virtual PetscErrorCode IncrementOutput(Problem &, const std::string & /*stem*/, PetscInt /*step*/, double /*t*/) {
+    return 0;
+  }
+  // An increment's Newton solve found no step along its direction and no element problem: what
+  // the term knows may cause it and the way out (its penalties far stiffer than the film); "": nothing.
+  virtual std::string LineSearchHint(const Problem &) const { return ""; }
+  // The DOF constraints leave rigid motions free: what of the term may hold them ("the rigid
+  // contact supports"; the check then only says so); nullptr: nothing.
+  virtual const char *RigidMotionHolder() const { return nullptr; }
 
   virtual TermSolverNeeds SolverNeeds() const { return {}; }
   // Its Columns, Fields and Report read what its last evaluation left (the cables' segment

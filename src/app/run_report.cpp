@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "etfe/contact.h"
 #include "etfe/pressure_term.h"
 #include "etfe/material.h"
 
@@ -109,14 +108,11 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
                           "(max), %.0f kB (min)\n",
                           all[0], -all[1]));
   }
-  const ContactSet *contact = FindTerm<ContactSet>(*P);
-  if (contact && contact->penalty_length > 0)
-    PetscCall(PetscPrintf(P->comm,
-                          "  contact: %" PetscInt_FMT
-                          " pairs, penalties per unit length (kn %g, kt %g N/mm at a tributary "
-                          "length of %g mm; pair factors %.3g-%.3g)\n",
-                          contact->num_global, contact->params.kn, contact->params.kt, contact->penalty_length,
-                          contact->k_scale_min, contact->k_scale_max));
+  {
+    std::vector<std::string> lines;
+    for (const auto &term : P->terms) PetscCall(term->SetupLines(*P, &lines));
+    for (const std::string &line : lines) PetscCall(PetscPrintf(P->comm, "  %s\n", line.c_str()));
+  }
   if (!P->scene.initial_guess_note.empty())
     PetscCall(PetscPrintf(P->comm, "  initial guess: %s\n", P->scene.initial_guess_note.c_str()));
   PetscCall(PrintPeakMemory(P->comm, "after set-up", true));

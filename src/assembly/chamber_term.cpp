@@ -31,10 +31,12 @@ PetscErrorCode ChamberSet::Commit(Problem &P, double t) {
 }
 
 // Which chambers are sealed and the gas they hold: the same on every rank.
+const TermDatasetInfo ChamberSet::kCheckpoint = {"chamber_state", Layout::Nodes, true, 1};
+
 PetscErrorCode ChamberSet::State(const Problem &P, std::vector<TermData> *blocks) const {
   TermData d;
-  d.name = "chamber_state";
-  d.replicated = true;
+  d.name = kCheckpoint.name;
+  d.replicated = kCheckpoint.replicated;
   ChamberStateGet(&P, &d.values);
   blocks->push_back(std::move(d));
   return 0;
@@ -42,7 +44,7 @@ PetscErrorCode ChamberSet::State(const Problem &P, std::vector<TermData> *blocks
 
 PetscErrorCode ChamberSet::Restore(Problem &P, const std::vector<TermData> &blocks) {
   for (const TermData &d : blocks)
-    if (d.name == "chamber_state") ChamberStateSet(&P, d.values);
+    if (d.name == kCheckpoint.name) ChamberStateSet(&P, d.values);
   return 0;
 }
 

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "etfe/free_rigid_motions.h"
-#include "etfe/contact.h"
 
 namespace etfe {
 
@@ -252,12 +251,10 @@ PetscErrorCode CheckSupportsHoldRigidMotions(Problem *P, Vec U, bool refuse) {
   std::string motions;
   for (const RigidMotion &mo : free)
     motions += (motions.empty() ? "" : ", ") + mo.Describe();
-  if (FindTerm<ContactSet>(*P)) { // a rigid support may hold them (a plane, a cylinder with friction)
-    PetscCall(PetscPrintf(
-        P->comm,
-        "etfe: the DOF constraints leave %s free; the rigid contact supports are to hold "
-        "%s\n",
-        motions.c_str(), free.size() > 1 ? "them" : "it"));
+  for (const auto &term : P->terms) { // a rigid support may hold them (a plane, a cylinder with friction)
+    if (!term->RigidMotionHolder()) continue;
+    PetscCall(PetscPrintf(P->comm, "etfe: the DOF constraints leave %s free; %s are to hold %s\n", motions.c_str(),
+                          term->RigidMotionHolder(), free.size() > 1 ? "them" : "it"));
     PetscFunctionReturn(0);
   }
   std::string held, others, way;

@@ -25,10 +25,12 @@ PetscErrorCode LayerContactSet::Restarted(Problem &P) {
 }
 
 // The triangle each node keeps (pairing has hysteresis).
+const TermDatasetInfo LayerContactSet::kCheckpoint = {"layer_pairs", Layout::Nodes, false, 1};
+
 PetscErrorCode LayerContactSet::State(const Problem &P, std::vector<TermData> *blocks) const {
   TermData d;
-  d.name = "layer_pairs";
-  d.layout = Layout::Nodes;
+  d.name = kCheckpoint.name;
+  d.layout = kCheckpoint.layout;
   LayerContactStateGet(&P, &d.values);
   blocks->push_back(std::move(d));
   return 0;
@@ -36,7 +38,7 @@ PetscErrorCode LayerContactSet::State(const Problem &P, std::vector<TermData> *b
 
 PetscErrorCode LayerContactSet::Restore(Problem &P, const std::vector<TermData> &blocks) {
   for (const TermData &d : blocks)
-    if (d.name == "layer_pairs") LayerContactStateSet(&P, d.values);
+    if (d.name == kCheckpoint.name) LayerContactStateSet(&P, d.values);
   return 0;
 }
 

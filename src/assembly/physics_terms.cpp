@@ -43,6 +43,13 @@ TermSolverNeeds ProblemSolverNeeds(const Problem &P) {
   return all;
 }
 
+// In the order the terms write them (MakePhysicsTerms).
+const std::vector<TermDatasetInfo> &TermCheckpointDatasets() {
+  static const std::vector<TermDatasetInfo> all = {ChamberSet::kCheckpoint, ContactSet::kCheckpoint,
+                                                   LayerContactSet::kCheckpoint};
+  return all;
+}
+
 bool TermsReportLastEvaluation(const Problem &P) {
   for (const auto &term : P.terms)
     if (term->ReportsLastEvaluation()) return true;

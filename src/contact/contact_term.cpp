@@ -50,11 +50,13 @@ PetscErrorCode ContactSet::Commit(Problem &P, double) {
 }
 
 // Per pair: gap or displacement (3), force (3), status.
+const TermDatasetInfo ContactSet::kCheckpoint = {"contact_state", Layout::Pairs, false, 7};
+
 PetscErrorCode ContactSet::State(const Problem &, std::vector<TermData> *blocks) const {
   TermData d;
-  d.name = "contact_state";
-  d.layout = Layout::Pairs;
-  d.components = 7;
+  d.name = kCheckpoint.name;
+  d.layout = kCheckpoint.layout;
+  d.components = kCheckpoint.components;
   d.values.resize(7 * pairs.size());
   for (size_t k = 0; k < pairs.size(); ++k) {
     const ContactState &c = pairs[k].committed;
@@ -68,7 +70,7 @@ PetscErrorCode ContactSet::State(const Problem &, std::vector<TermData> *blocks)
 
 PetscErrorCode ContactSet::Restore(Problem &, const std::vector<TermData> &blocks) {
   for (const TermData &d : blocks) {
-    if (d.name != "contact_state") continue;
+    if (d.name != kCheckpoint.name) continue;
     for (size_t k = 0; k < pairs.size(); ++k) {
       ContactState &c = pairs[k].committed;
       for (int i = 0; i < 3; ++i)
@@ -140,6 +142,30 @@ TermSolverNeeds ContactSet::SolverNeeds() const {
   TermSolverNeeds n;
   n.penalty = true;
   return n;
+}
+
+PetscErrorCode ContactSet::SetupLines(const Problem &, std::vector<std::string> *lines) const {
+  char buf[256];
+  PetscFunctionBeginUser;
+  if (penalty_length <= 0) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(buf, sizeof buf,
+                          "contact: %" PetscInt_FMT
+                          " pairs, penalties per unit length (kn %g, kt %g N/mm at a tributary "
+                          "length of %g mm; pair factors %.3g-%.3g)",
+                          num_global, params.kn, params.kt, penalty_length, k_scale_min, k_scale_max));
+  lines->push_back(buf);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode ContactSet::IncrementOutput(Problem &P, const std::string &stem, PetscInt step, double t) {
+  return ContactWriteProbes(&P, stem, step, t);
+}
+
+// Penalties this much stiffer than the film's axial stiffness make the line search's residual
+// round-off noise near the pairs.
+std::string ContactSet::LineSearchHint(const Problem &P) const {
+  if (params.kn > 1e5 * P.AxialStiffness()) return "the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt";
+  return "";
 }
 
 } // namespace etfe

@@ -14,6 +14,7 @@
 
 #include "checkpoint_branch.h"
 #include "checkpoint_compare.h"
+#include "etfe/assembly.h"
 #include "etfe/h5io.h"
 #include "etfe/log_events.h"
 #include "etfe/rank0.h"
@@ -79,7 +80,8 @@ Shape ProblemShape(const Problem *P) {
           (long long)P->scene.NumStages()};
 }
 
-// The datasets of a checkpoint and their columns; rows: nodes, elements or contact pairs.
+// The datasets every checkpoint of this shape has and their columns; rows: nodes or elements.
+// The terms' datasets: TermCheckpointDatasets.
 struct Dataset {
   const char *name;
   int shape_index;  // into Shape: 0 nodes, 1 elements, 2 pairs
@@ -89,8 +91,25 @@ struct Dataset {
 std::vector<Dataset> Datasets(const long long shape[5]) {
   std::vector<Dataset> d = {{"u_committed", 0, 3}, {"u_previous", 0, 3}};
   if (shape[3] > 0) d.push_back({"history", 1, shape[3]});
-  if (shape[2] > 0) d.push_back({"contact_state", 2, 7});
   return d;
+}
+
+// Rank 0 alone, errors silenced: the dataset `name` of f if it is nrows x cols doubles.
+bool ReadRowsChecked(hid_t f, const char *name, hsize_t nrows, hsize_t cols, std::vector<double> *v) {
+  hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
+  if (d < 0) return false;
+  hid_t sp = H5Dget_space(d);
+  hsize_t dims[2] = {0, 1};
+  const int nd = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
+  bool good = (nd == 1 || nd == 2) && H5Sget_simple_extent_dims(sp, dims, nullptr) >= 0 && dims[0] == nrows &&
+              dims[1] == cols;
+  if (good) {
+    v->resize(nrows * cols);
+    good = v->empty() || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v->data()) >= 0;
+  }
+  if (sp >= 0) H5Sclose(sp);
+  H5Dclose(d);
+  return good;
 }
 
 // Rank 0 alone reads the whole file as stored and compares it with its checksum, before anything
@@ -118,20 +137,7 @@ std::string VerifyIntegrity(const std::string &path) {
       return good;
     };
     auto rows = [&](const char *name, hsize_t nrows, hsize_t cols, std::vector<double> *v) {
-      hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
-      if (d < 0) return false;
-      hid_t sp = H5Dget_space(d);
-      hsize_t dims[2] = {0, 1};
-      const int nd = sp >= 0 ? H5Sget_simple_extent_ndims(sp) : -1;
-      bool good = (nd == 1 || nd == 2) && H5Sget_simple_extent_dims(sp, dims, nullptr) >= 0 && dims[0] == nrows &&
-                  dims[1] == cols;
-      if (good) {
-        v->resize(nrows * cols);
-        good = v->empty() || H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v->data()) >= 0;
-      }
-      if (sp >= 0) H5Sclose(sp);
-      H5Dclose(d);
-      return good;
+      return ReadRowsChecked(f, name, nrows, cols, v);
     };
     std::string format, scene, options, run_id;
     uint64_t mesh = 0, physics = 0;
@@ -158,12 +164,22 @@ std::string VerifyIntegrity(const std::string &path) {
         good = good && rows(d.name, (hsize_t)shape[d.shape_index], (hsize_t)d.cols, &v);
         if (good) DataChecksum(PETSC_COMM_SELF, d.name, 0, shape[d.shape_index], (int)d.cols, v.data(), &sum);
       }
-      if (good && H5Lexists(f, "layer_pairs", H5P_DEFAULT) > 0) {  // with -layer_contact
-        good = rows("layer_pairs", (hsize_t)shape[0], 1, &v);
-        if (good) DataChecksum(PETSC_COMM_SELF, "layer_pairs", 0, shape[0], 1, v.data(), &sum);
+      // The terms' blocks (WriteFile writes what the problem's terms give): a term's is
+      // there when the run had the term, and the pairs' whenever the checkpoint has pairs.
+      std::vector<const char *> replicated = {"scene_state"};
+      for (const TermDatasetInfo &t : TermCheckpointDatasets()) {
+        if (t.replicated) {
+          replicated.push_back(t.name);
+          continue;
+        }
+        const int index = t.layout == Layout::Pairs ? 2 : t.layout == Layout::Cells ? 1 : 0;
+        const bool always = t.layout == Layout::Pairs && shape[2] > 0;
+        if (!good || (!always && H5Lexists(f, t.name, H5P_DEFAULT) <= 0)) continue;
+        good = rows(t.name, (hsize_t)shape[index], (hsize_t)t.components, &v);
+        if (good) DataChecksum(PETSC_COMM_SELF, t.name, 0, shape[index], t.components, v.data(), &sum);
       }
       if (good) good = LoadPathVerify(f, &sum);  // -restart_branch's fingerprints, when there
-      for (const char *state : {"scene_state", "chamber_state"}) {
+      for (const char *state : replicated) {
         if (!good || H5Lexists(f, state, H5P_DEFAULT) <= 0) continue;
         hid_t d = H5Dopen2(f, state, H5P_DEFAULT);
         hid_t sp = d >= 0 ? H5Dget_space(d) : -1;

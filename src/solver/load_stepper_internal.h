@@ -96,7 +96,7 @@ struct IncrementFailure {
   double worst;
   PetscInt bad_element;  // the last element problem (SolveDiagnostics)
   int bad_status;
-  bool stiff_penalty;  // contact penalties far stiffer than the film
+  std::string hint;    // "; " and the terms' line-search hints (PhysicsTerm::LineSearchHint), or ""
   bool load_max_it;    // the attempt's iteration limit was -load_max_it, not -snes_max_it
   std::string linear;  // the linear solver ("gmres + gamg"; "preonly + lu" for a direct one)
   KSPConvergedReason ksp_reason = KSP_CONVERGED_ITERATING;  // its last solve
@@ -108,9 +108,7 @@ struct IncrementFailure {
     if (reason == SNES_DIVERGED_LINE_SEARCH && bad_status == KERNEL_OK)
       std::snprintf(why, sizeof why,
                     "%s (no step along the Newton direction reduced the residual; largest residual %.3e at node %lld%s)",
-                    name, worst, (long long)worst_node,
-                    stiff_penalty ? "; the contact penalties are very stiff: try a smaller -contact_kn/-contact_kt"
-                                  : "");
+                    name, worst, (long long)worst_node, hint.c_str());
     else if (reason == SNES_DIVERGED_FUNCTION_DOMAIN || reason == SNES_DIVERGED_LINE_SEARCH)
       std::snprintf(why, sizeof why, "%s (last element problem: element %lld, %s; largest residual %.3e at node %lld)",
                     name, (long long)bad_element, KernelStatusName(bad_status), worst, (long long)worst_node);

@@ -121,8 +121,10 @@ PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, Incre
   PetscCall(WorstNode(P, s.F, &f->worst_node, &f->worst));
   f->bad_element = P->diagnostics.bad_element;
   f->bad_status = P->diagnostics.bad_status;
-  const ContactSet *contact = FindTerm<ContactSet>(*P);
-  f->stiff_penalty = contact && contact->params.kn > 1e5 * P->AxialStiffness();
+  for (const auto &term : P->terms) {
+    const std::string hint = term->LineSearchHint(*P);
+    if (!hint.empty()) f->hint += "; " + hint;
+  }
   f->load_max_it = inc.max_it < s.snes_max_it;
   {
     KSP ksp;
@@ -158,7 +160,8 @@ PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt co
     s->lifted_since_print = 0;
   }
   if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, s->step, s->t, o.monitor));
-  if (FindTerm<ContactSet>(*P) && s->out) PetscCall(ContactWriteProbes(P, OutputStem(s->out), s->step, s->t));
+  if (s->out)
+    for (auto &term : P->terms) PetscCall(term->IncrementOutput(*P, OutputStem(s->out), s->step, s->t));
   PetscFunctionReturn(0);
 }
 
