@@ -1,5 +1,5 @@
 // The cables of a scene (SceneSpec::cables) as a physics term (physics_term.h; the formulation is
-// SPEC §15 and etfe/kernels/cable.h, the modelling guide docs/cables.md). Assembly layer.
+// docs/theory.md §14 and etfe/kernels/cable.h, the modelling guide docs/cables.md). Assembly layer.
 #pragma once
 #include "etfe/problem.h"
 

@@ -113,7 +113,7 @@ PetscErrorCode CableTerm::SetUp(Problem &P) {
   fint_.assign(3 * entries, 0.0);
   wload_.assign(3 * entries, 0.0);
   // Stress-free lengths from the reference geometry: as meshed, scaled to the given length, or
-  // shortened for the prestress (SPEC §15: L0 = L / (1 + T / EA)).
+  // shortened for the prestress (docs/theory.md §14: L0 = L / (1 + T / EA)).
   for (Cable &c : cables_) {
     const CableSpec &s = *c.spec;
     double total = 0.0;
@@ -143,7 +143,7 @@ void CableTerm::Evaluate(const Problem &P) {
     double *x = &x_[3 * c.first], *f = &fint_[3 * c.first], *w = &wload_[3 * c.first];
     c.chain = CableState();
     if (!form_finding_ && s.sliding) {
-      // One force from the total length (SPEC §15, engineering strain over the whole cable).
+      // One force from the total length (docs/theory.md §14, engineering strain over the whole cable).
       for (int k = 0; k + 1 < c.count; ++k) {
         double scratch[6];
         c.chain.length += CableSlidingSegment(&x[3 * k], 0.0, 0.0, scratch, nullptr);

@@ -1,4 +1,4 @@
-// Cable kernels (SPEC §15; formulation and layouts in etfe/kernels/cable.h).
+// Cable kernels (docs/theory.md §14; formulation and layouts in etfe/kernels/cable.h).
 #include "etfe/kernels/cable.h"
 
 #include <cmath>

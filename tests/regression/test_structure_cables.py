@@ -1,4 +1,4 @@
-"""Cables in the general scene (-cable_<group>_*, docs/cables.md; SPEC §15).
+"""Cables in the general scene (-cable_<group>_*, docs/cables.md; docs/theory.md §14).
 
 * a straight cable pulled by a force: its force and length against EA E l / L0 (Green-Lagrange),
   the same numbers on 2 ranks;

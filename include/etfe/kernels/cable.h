@@ -1,4 +1,4 @@
-// Cables (SPEC §15): a two-node total-Lagrangian cable segment, tension-only; the constant-force
+// Cables (docs/theory.md §14): a two-node total-Lagrangian cable segment, tension-only; the constant-force
 // segment form finding uses; a sliding cable over a node chain (one axial force along it). PETSc-free.
 //
 // Layouts: x holds the current positions, 3 per node, node after node (a segment: x1 then x2;
@@ -43,7 +43,7 @@ CableState CableSliding(int nodes, const double *x, double L0, double EA, double
 double CableSlidingSegment(const double x[6], double N, double ka, double f[6], double K[36]);
 
 // Stress-free length of a segment of reference length L prestressed by a force T at the
-// reference geometry (engineering strain, SPEC §15): L0 = L / (1 + T / EA). The cut length.
+// reference geometry (engineering strain, docs/theory.md §14): L0 = L / (1 + T / EA). The cut length.
 double CableLengthForForce(double L, double T, double EA);
 
 } // namespace etfe
