@@ -53,12 +53,14 @@ PetscErrorCode CutPatternOptionsFromCommandLine(MPI_Comm comm, CutPatternOptions
 MeshData ExtractStrip(const MeshData &m, const std::vector<int> &elements, const std::string &name);
 // The name of a compensation kind as the option spells it ("none", "uniform", "stress").
 const char *CompensationName(Compensation c);
-// Flattens the element set `name` of shape into *r (*strip: the strip as a mesh of its own); with
-// compensation, the design pattern first (its axes define MD/TD) into *design, then the pattern
-// of the compensated link lengths. Stress compensation needs o.prestress_given or
+// Flattens the element set `name` of shape into *r (*strip: the strip as a mesh of its own), or
+// takes its flattening from *flattened when that has it (a roll fit's last try; may be null);
+// with compensation, the design pattern first (its axes define MD/TD) into *design, then the
+// pattern of the compensated link lengths. Stress compensation needs o.prestress_given or
 // o.element_prestress. Serial (rank 0 of a scene). False with a message.
-bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const CutPatternOptions &o, MeshData *strip,
-                       FlattenResult *r, FlattenResult *design, std::string *err);
+bool FlattenNamedStrip(const MeshData &shape, const std::string &name, const CutPatternOptions &o,
+                       const std::map<std::string, FlattenResult> *flattened, MeshData *strip, FlattenResult *r,
+                       FlattenResult *design, std::string *err);
 // shape: the 3D surface (valid on rank 0). Writes <dir>/<stem>_<strip>.{dxf,svg,msh},
 // <dir>/<stem>_lines.csv, <dir>/<stem>_errors.csv (pattern_errors.h) and, with a roll width,
 // <dir>/<stem>_nesting.{dxf,svg}; prints one line per named line and edge, warns of errors above

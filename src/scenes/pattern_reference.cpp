@@ -46,7 +46,7 @@ bool FlattenStrips(const MeshData &m, const PatternStrips &p, std::vector<double
     FlattenResult r, design;
     std::string why;
     const bool compensated = p.cut && p.cut->compensation != Compensation::None;
-    const bool flat = p.cut ? FlattenNamedStrip(m, name, *p.cut, &strip, &r, &design, &why)
+    const bool flat = p.cut ? FlattenNamedStrip(m, name, *p.cut, nullptr, &strip, &r, &design, &why)
                             : FlattenStrip(strip = ExtractStrip(m, it->second, name), FlattenOptions(), &r, &why);
     if (!flat) {
       *err = p.option + ": flattening strip " + name + " of " + m.source + " failed: " + why;
