@@ -15,7 +15,7 @@ present in only one file, a shape mismatch or a results file whose root attribut
 (stresses against the stresses, strains against the strains): a field that is round-off in one
 case, e.g. min_principal_stress of a uniaxial patch (~1e-12 MPa beside stresses of ~20 MPa), is
 then not held to a tolerance relative to its own near-zero size. A dataset's family is its
-attribute "family" (written from the field table, include/etfe/output_fields.h); files written
+attribute "family" (written from the field table, include/etfe/io/output_fields.h); files written
 before datasets described themselves fall back to FAMILIES below. Fields of the family
 principal_direction (defined up to sign) are not compared unless named with --only.
 

@@ -1,4 +1,4 @@
-"""The HDF5 results file of a run (layout: include/etfe/output.h) and the scene inputs behind it.
+"""The HDF5 results file of a run (layout: include/etfe/io/output.h) and the scene inputs behind it.
 
     with Results.open("results/dd1511/dd1511.h5") as r:
         r.scene, r.status, r.X (reference coordinates), r.tri, r.steps, r.times, r.stages

@@ -1,4 +1,4 @@
-"""The status of a results file as a reader should believe it (include/etfe/writer_identity.h:
+"""The status of a results file as a reader should believe it (include/etfe/io/writer_identity.h:
 the same rule as `etfe -results_status FILE`).
 
     from etfepy import status

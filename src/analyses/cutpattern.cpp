@@ -1,6 +1,6 @@
 // Cutting-pattern driver: strips from element sets, flattening, files and table (see cutpattern.h).
-#include "etfe/rank0.h"
-#include "etfe/cutpattern.h"
+#include "etfe/base/rank0.h"
+#include "etfe/analyses/cutpattern.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,14 +8,14 @@
 #include <map>
 #include <memory>
 
-#include "etfe/input_plausibility.h"
+#include "etfe/assembly/input_plausibility.h"
 #include "etfe/kernels/compensation.h"
 #include "etfe/kernels/plasticity.h"
 #include "etfe/kernels/status.h"
-#include "etfe/material.h"
+#include "etfe/material/material.h"
 #include "etfe/mesh/gmsh_reader.h"
-#include "etfe/pattern_errors.h"
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/pattern_errors.h"
+#include "etfe/analyses/pattern_sheet.h"
 
 namespace etfe {
 

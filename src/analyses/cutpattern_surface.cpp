@@ -16,14 +16,14 @@
 #include <string>
 #include <vector>
 
-#include "etfe/cutpattern.h"
-#include "etfe/flatten_strip.h"
-#include "etfe/input_plausibility.h"
+#include "etfe/analyses/cutpattern.h"
+#include "etfe/analyses/flatten_strip.h"
+#include "etfe/assembly/input_plausibility.h"
 #include "etfe/mesh/cad_reader.h"
 #include "etfe/mesh/gmsh_reader.h"
 #include "etfe/mesh/mesh_options.h"
-#include "etfe/output.h"
-#include "etfe/rank0.h"
+#include "etfe/io/output.h"
+#include "etfe/base/rank0.h"
 
 namespace etfe {
 

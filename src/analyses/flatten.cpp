@@ -36,7 +36,7 @@
 #include <utility>
 #include <vector>
 
-#include "etfe/flatten_strip.h"
+#include "etfe/analyses/flatten_strip.h"
 #include "etfe/kernels/flatten_link.h"
 #include "etfe/kernels/status.h"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "etfe/flatten_strip.h"
+#include "etfe/analyses/flatten_strip.h"
 #include "etfe/mesh/mesh_data.h"
 
 namespace etfe {

@@ -2,10 +2,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "etfe/assembly.h"
-#include "etfe/cable_term.h"
-#include "etfe/cutpattern.h"
-#include "etfe/formfind.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/assembly/cable_term.h"
+#include "etfe/analyses/cutpattern.h"
+#include "etfe/analyses/formfind.h"
 #include "etfe/kernels/status.h"
 #include "etfe/mesh/gmsh_reader.h"
 

@@ -1,9 +1,9 @@
-// Strips of width W cut by seams (see etfe/geodesic_cut.h), per physical surface: the middle, the
+// Strips of width W cut by seams (see etfe/analyses/geodesic_cut.h), per physical surface: the middle, the
 // transverse geodesic, the seams (geodesics or plane sections) traced and inserted one after
 // another (each traced on the mesh as the seams before it left it: split triangles lie in their
 // parents' planes; nodes moved onto a seam change the surface near it by at most the move times
 // the angle between their triangles), then the strips by flood fill, named in order across.
-#include "etfe/geodesic_cut.h"
+#include "etfe/analyses/geodesic_cut.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,7 +13,7 @@
 #include <map>
 #include <set>
 
-#include "etfe/cutpattern.h"
+#include "etfe/analyses/cutpattern.h"
 #include "etfe/kernels/geodesic.h"
 
 namespace etfe {

@@ -12,7 +12,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/pattern_sheet.h"
 #include "pattern_text.h"
 
 namespace etfe {

@@ -1,11 +1,11 @@
-// Fabrication errors of a cutting pattern (see etfe/pattern_errors.h).
-#include "etfe/pattern_errors.h"
+// Fabrication errors of a cutting pattern (see etfe/analyses/pattern_errors.h).
+#include "etfe/analyses/pattern_errors.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/pattern_sheet.h"
 #include "pattern_text.h"
 
 namespace etfe {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "etfe/flatten_strip.h"
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/flatten_strip.h"
+#include "etfe/analyses/pattern_sheet.h"
 #include "pattern_text.h"
 
 namespace etfe {

@@ -1,4 +1,4 @@
-// Nesting of the strips on a roll (see etfe/pattern_sheet.h): each strip at its least width,
+// Nesting of the strips on a roll (see etfe/analyses/pattern_sheet.h): each strip at its least width,
 // first-fit decreasing shelves along the roll. Simple and honest: strips never interlock (each
 // keeps its box), so the waste is what boxes leave; a real nesting program does better on
 // curved strips.
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/pattern_sheet.h"
 
 namespace etfe {
 namespace {

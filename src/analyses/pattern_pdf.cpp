@@ -1,4 +1,4 @@
-// PDF of a cutting-pattern sheet (see etfe/pattern_sheet.h): one page, vector lines and
+// PDF of a cutting-pattern sheet (see etfe/analyses/pattern_sheet.h): one page, vector lines and
 // Helvetica texts, 1:1 in mm (content scaled by 72/25.4 pt per mm), the same layers' colours and
 // the same scale bar as the SVG. A page longer than PDF's 14 400 units (5.08 m at 1:1) declares
 // /UserUnit k (PDF 1.6) with the content drawn 1/k: a reader that honours it (Acrobat, pdf.js)
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/pattern_sheet.h"
 
 namespace etfe {
 

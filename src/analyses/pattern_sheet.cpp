@@ -1,6 +1,6 @@
-// The drawing of one strip (see etfe/pattern_sheet.h): outlines, the MD arrow and a label block
+// The drawing of one strip (see etfe/analyses/pattern_sheet.h): outlines, the MD arrow and a label block
 // placed where it crosses no outline, with the dimensions a fabricator checks on the table.
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/pattern_sheet.h"
 
 #include <algorithm>
 #include <cctype>

@@ -4,7 +4,7 @@
 #include <cctype>
 #include <cmath>
 
-#include "etfe/pattern_sheet.h"
+#include "etfe/analyses/pattern_sheet.h"
 #include "pattern_text.h"
 
 namespace etfe {

@@ -1,6 +1,6 @@
 // The drawing planner (see plan.h): TAO searches the final drawing values; each evaluation is a
 // whole stretch run, scored per element by the fabrication criteria (kernels/plan_criteria.h).
-#include "etfe/plan.h"
+#include "etfe/analyses/plan.h"
 
 #include <petsctao.h>
 
@@ -13,9 +13,9 @@
 #include <numeric>
 #include <sstream>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 #include "etfe/kernels/status.h"
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

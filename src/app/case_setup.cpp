@@ -4,10 +4,10 @@
 #include <cstring>
 #include <memory>
 
-#include "etfe/checkpoint.h"
-#include "etfe/input_plausibility.h"
-#include "etfe/material.h"
-#include "etfe/linear_path.h"
+#include "etfe/io/checkpoint.h"
+#include "etfe/assembly/input_plausibility.h"
+#include "etfe/material/material.h"
+#include "etfe/assembly/linear_path.h"
 #include "memory_check.h"
 #include "solver_defaults.h"
 

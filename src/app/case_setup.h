@@ -4,10 +4,10 @@
 #pragma once
 #include <petscsnes.h>
 
-#include "etfe/formfind.h"
-#include "etfe/load_stepper.h"
-#include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/analyses/formfind.h"
+#include "etfe/solver/load_stepper.h"
+#include "etfe/assembly/problem.h"
+#include "etfe/description/scene.h"
 
 namespace etfe {
 

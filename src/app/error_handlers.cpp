@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "etfe/output.h"
+#include "etfe/io/output.h"
 
 namespace etfe {
 

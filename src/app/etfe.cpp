@@ -17,14 +17,14 @@ static const char help[] =
 
 #include "case_setup.h"
 #include "error_handlers.h"
-#include "etfe/checkpoint.h"
-#include "etfe/cutpattern.h"
-#include "etfe/interrupt.h"
-#include "etfe/linesearch.h"
-#include "etfe/material.h"
-#include "etfe/output.h"
-#include "etfe/scene_registry.h"
-#include "etfe/writer_identity.h"
+#include "etfe/io/checkpoint.h"
+#include "etfe/analyses/cutpattern.h"
+#include "etfe/solver/interrupt.h"
+#include "etfe/solver/linesearch.h"
+#include "etfe/material/material.h"
+#include "etfe/io/output.h"
+#include "etfe/scenes/scene_registry.h"
+#include "etfe/io/writer_identity.h"
 #include "heap_policy.h"
 #include "help_listing.h"
 #include "options_check.h"
@@ -337,7 +337,7 @@ PetscErrorCode Run(int *exit_status) {
   PetscCall(PrintHeader(c.P, c.snes));
 
   // 6. Run the schedule (or find the form), writing results as it goes.
-  // A signal from here on stops the load history at a safe point (etfe/interrupt.h); one that
+  // A signal from here on stops the load history at a safe point (etfe/solver/interrupt.h); one that
   // comes after its last increment is too late to matter: the run completes.
   if (!c.formfind && oo.enabled) PetscCall(InterruptCatch(true));
   PetscCall(OpenResults(c, oo, cko, &out));

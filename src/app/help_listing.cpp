@@ -5,15 +5,15 @@
 
 #include <memory>
 
-#include "etfe/checkpoint.h"
-#include "etfe/contact.h"
-#include "etfe/formfind.h"
-#include "etfe/linesearch.h"
-#include "etfe/load_stepper.h"
-#include "etfe/material.h"
-#include "etfe/output.h"
-#include "etfe/problem.h"
-#include "etfe/linear_path.h"
+#include "etfe/io/checkpoint.h"
+#include "etfe/contact/contact.h"
+#include "etfe/analyses/formfind.h"
+#include "etfe/solver/linesearch.h"
+#include "etfe/solver/load_stepper.h"
+#include "etfe/material/material.h"
+#include "etfe/io/output.h"
+#include "etfe/assembly/problem.h"
+#include "etfe/assembly/linear_path.h"
 
 namespace etfe {
 

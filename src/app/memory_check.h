@@ -6,7 +6,7 @@
 #pragma once
 #include <petscsys.h>
 
-#include "etfe/linear_path.h"
+#include "etfe/assembly/linear_path.h"
 
 namespace etfe {
 

@@ -4,10 +4,10 @@
 #include <filesystem>
 
 #include "case_setup.h"
-#include "etfe/checkpoint.h"
-#include "etfe/output.h"
-#include "etfe/plan.h"
-#include "etfe/scene_registry.h"
+#include "etfe/io/checkpoint.h"
+#include "etfe/io/output.h"
+#include "etfe/analyses/plan.h"
+#include "etfe/scenes/scene_registry.h"
 #include "options_check.h"
 #include "run_report.h"
 

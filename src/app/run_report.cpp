@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "etfe/pressure_term.h"
-#include "etfe/material.h"
+#include "etfe/assembly/pressure_term.h"
+#include "etfe/material/material.h"
 
 namespace etfe {
 

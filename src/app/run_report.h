@@ -3,8 +3,8 @@
 #pragma once
 #include <petscsnes.h>
 
-#include "etfe/load_stepper.h"
-#include "etfe/problem.h"
+#include "etfe/solver/load_stepper.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

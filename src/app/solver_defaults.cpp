@@ -3,11 +3,11 @@
 
 #include <cstring>
 
-#include "etfe/assembly.h"
-#include "etfe/linesearch.h"
-#include "etfe/pc_refresh.h"
-#include "etfe/pc_shift.h"
-#include "etfe/tangent_shift.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/solver/linesearch.h"
+#include "etfe/solver/pc_refresh.h"
+#include "etfe/solver/pc_shift.h"
+#include "etfe/solver/tangent_shift.h"
 
 namespace etfe {
 

@@ -3,7 +3,7 @@
 #pragma once
 #include <petscsnes.h>
 
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

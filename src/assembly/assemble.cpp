@@ -9,12 +9,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 #include "etfe/kernels/pressure.h"
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/stress_measures.h"
 #include "etfe/kernels/wrinkling.h"
-#include "etfe/log_events.h"
+#include "etfe/base/log_events.h"
 
 namespace etfe {
 

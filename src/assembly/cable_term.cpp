@@ -15,7 +15,7 @@
 // Form finding (P->scene.form_finding): a cable carries its prescribed force T whatever its length
 // (kernels/cable.h: CableSegmentConstantForce); its stress-free (cut) length is then found from T
 // and EA (CableLengthForForce) and reported.
-#include "etfe/cable_term.h"
+#include "etfe/assembly/cable_term.h"
 
 #include <algorithm>
 #include <cmath>
@@ -23,7 +23,7 @@
 #include <unordered_map>
 
 #include "etfe/kernels/cable.h"
-#include "etfe/physics_term.h"
+#include "etfe/assembly/physics_term.h"
 
 namespace etfe {
 

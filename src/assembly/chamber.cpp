@@ -1,18 +1,18 @@
 // Gas chambers (see chamber.h and kernels/chamber.h).
-#include "etfe/chamber.h"
+#include "etfe/assembly/chamber.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 #include "etfe/kernels/chamber.h"
 #include "etfe/kernels/geodesic.h"
 #include "etfe/kernels/pressure.h"
-#include "etfe/layer_contact.h"
-#include "etfe/pressure_term.h"
-#include "etfe/problem.h"
+#include "etfe/assembly/layer_contact.h"
+#include "etfe/assembly/pressure_term.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "etfe/chamber.h"
+#include "etfe/assembly/chamber.h"
 #include "etfe/kernels/status.h"
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

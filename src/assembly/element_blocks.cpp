@@ -2,7 +2,7 @@
 // of the element's 9 blocks on every call; the structure is fixed after the first assembly
 // (the matrix is exactly preallocated and MAT_NEW_NONZERO_ALLOCATION_ERR forbids new nonzeros),
 // so the search is done once here.
-#include "etfe/element_blocks.h"
+#include "etfe/assembly/element_blocks.h"
 
 #include <algorithm>
 #include <utility>

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "etfe/free_rigid_motions.h"
+#include "etfe/assembly/free_rigid_motions.h"
 
 namespace etfe {
 

@@ -1,8 +1,8 @@
-// The plausibility checks on a run's inputs (etfe/input_plausibility.h).
-#include "etfe/input_plausibility.h"
+// The plausibility checks on a run's inputs (etfe/assembly/input_plausibility.h).
+#include "etfe/assembly/input_plausibility.h"
 
 #include "etfe/kernels/plasticity.h"
-#include "etfe/material.h"
+#include "etfe/material/material.h"
 
 namespace etfe {
 

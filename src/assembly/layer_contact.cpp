@@ -1,14 +1,14 @@
 // Frictionless contact between film layers (see layer_contact.h and kernels/layer_contact.h).
-#include "etfe/layer_contact.h"
+#include "etfe/assembly/layer_contact.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 #include "etfe/kernels/layer_contact.h"
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

@@ -1,6 +1,6 @@
 // Contact between film layers as a physics term (layer_contact.h).
-#include "etfe/layer_contact.h"
-#include "etfe/problem.h"
+#include "etfe/assembly/layer_contact.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

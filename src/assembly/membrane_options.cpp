@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <string>
 
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

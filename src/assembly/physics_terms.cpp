@@ -9,12 +9,12 @@
 // nodes' forces are added after all the others').
 #include "physics_terms.h"
 
-#include "etfe/assembly.h"
-#include "etfe/cable_term.h"
-#include "etfe/chamber.h"
-#include "etfe/contact.h"
-#include "etfe/layer_contact.h"
-#include "etfe/pressure_term.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/assembly/cable_term.h"
+#include "etfe/assembly/chamber.h"
+#include "etfe/contact/contact.h"
+#include "etfe/assembly/layer_contact.h"
+#include "etfe/assembly/pressure_term.h"
 
 namespace etfe {
 

@@ -2,7 +2,7 @@
 #pragma once
 #include <vector>
 
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

@@ -3,7 +3,7 @@
 // Green-Lagrange strain holds for small plastic strains only).
 #include <mpi.h>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 
 namespace etfe {
 

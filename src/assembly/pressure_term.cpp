@@ -1,9 +1,9 @@
 // Follower pressures and nodal forces as physics terms (pressure_term.h).
-#include "etfe/pressure_term.h"
+#include "etfe/assembly/pressure_term.h"
 
-#include "etfe/chamber.h"
+#include "etfe/assembly/chamber.h"
 #include "etfe/kernels/pressure.h"
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

@@ -11,8 +11,8 @@
 #include <cmath>
 #include <string>
 
-#include "etfe/assembly.h"
-#include "etfe/gather.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/base/gather.h"
 #include "physics_terms.h"
 #include "scene_share.h"
 

@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "etfe/rank0.h"
+#include "etfe/base/rank0.h"
 
 namespace etfe {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "etfe/mesh/local_mesh.h"
-#include "etfe/scene.h"
+#include "etfe/description/scene.h"
 
 namespace etfe {
 

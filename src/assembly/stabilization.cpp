@@ -10,7 +10,7 @@
 #include <cmath>
 #include <vector>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 
 namespace etfe {
 

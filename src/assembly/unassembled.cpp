@@ -10,7 +10,7 @@
 // matrix is regular at its constrained DOFs and the sum is the assembled matrix's identity row.
 #include <algorithm>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 
 namespace etfe {
 

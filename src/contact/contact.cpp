@@ -10,12 +10,12 @@
 #include <memory>
 #include <string>
 
-#include "etfe/assembly.h"
-#include "etfe/contact.h"
-#include "etfe/gather.h"
-#include "etfe/csv_history.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/contact/contact.h"
+#include "etfe/base/gather.h"
+#include "etfe/base/csv_history.h"
 #include "etfe/kernels/contact_frame.h"
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

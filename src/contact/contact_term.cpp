@@ -1,11 +1,11 @@
 // Rigid contact as a physics term (contact.h): what the problem's loops ask of the pairs.
 #include <algorithm>
 
-#include "etfe/contact.h"
-#include "etfe/fnv64.h"
+#include "etfe/contact/contact.h"
+#include "etfe/base/fnv64.h"
 #include "etfe/kernels/status.h"
-#include "etfe/log_events.h"
-#include "etfe/problem.h"
+#include "etfe/base/log_events.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

@@ -1,5 +1,5 @@
 // Checkpoint/restart (see checkpoint.h).
-#include "etfe/checkpoint.h"
+#include "etfe/io/checkpoint.h"
 
 #include <fcntl.h>
 #include <hdf5.h>
@@ -14,10 +14,10 @@
 
 #include "checkpoint_branch.h"
 #include "checkpoint_compare.h"
-#include "etfe/assembly.h"
-#include "etfe/h5io.h"
-#include "etfe/log_events.h"
-#include "etfe/rank0.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/io/h5io.h"
+#include "etfe/base/log_events.h"
+#include "etfe/base/rank0.h"
 
 namespace etfe {
 

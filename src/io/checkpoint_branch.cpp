@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "checkpoint_compare.h"
-#include "etfe/h5io.h"
+#include "etfe/io/h5io.h"
 
 namespace etfe {
 

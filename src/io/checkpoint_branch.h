@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "etfe/fnv64.h"
-#include "etfe/problem.h"
+#include "etfe/base/fnv64.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

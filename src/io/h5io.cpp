@@ -1,11 +1,11 @@
 // Parallel HDF5 helpers (see h5io.h).
-#include "etfe/h5io.h"
+#include "etfe/io/h5io.h"
 
 #include <cerrno>
 #include <cstring>
 #include <vector>
 
-#include "etfe/problem.h"
+#include "etfe/assembly/problem.h"
 
 namespace etfe {
 

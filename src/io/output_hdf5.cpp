@@ -1,4 +1,4 @@
-// The HDF5 results file (its fields: include/etfe/output_fields.h; layout: docs/results.md) and
+// The HDF5 results file (its fields: include/etfe/io/output_fields.h; layout: docs/results.md) and
 // its life: creation, steps, status, continuation after a restart. Fields live in PETSc order on
 // their owning ranks; a VecScatter per layout brings them to the scene's ("natural") order in
 // contiguous row blocks, which every rank writes as a hyperslab of one collective dataset.
@@ -17,13 +17,13 @@
 #include <memory>
 #include <utility>
 
-#include "etfe/assembly.h"
-#include "etfe/contact.h"
-#include "etfe/h5io.h"
-#include "etfe/log_events.h"
-#include "etfe/output.h"
-#include "etfe/output_fields.h"
-#include "etfe/writer_identity.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/contact/contact.h"
+#include "etfe/io/h5io.h"
+#include "etfe/base/log_events.h"
+#include "etfe/io/output.h"
+#include "etfe/io/output_fields.h"
+#include "etfe/io/writer_identity.h"
 #include "xdmf.h"
 
 namespace etfe {
@@ -127,7 +127,7 @@ PetscErrorCode WriteTermFields(OutputFile *out, const Problem *P, hid_t g) {
       PetscCheck(row >= 0 && kOutputFields[row].when == FieldWhen::Term && !std::strcmp(kOutputFields[row].units, d.units),
                  P->comm, PETSC_ERR_PLIB,
                  "the field %s [%s] of the physics term %s is not a row of the field table with those units "
-                 "(include/etfe/output_fields.h, FieldWhen::Term): add it there and to docs/results.md",
+                 "(include/etfe/io/output_fields.h, FieldWhen::Term): add it there and to docs/results.md",
                  name.c_str(), d.units, term->Name());
       const OutputField &f = kOutputFields[row];
       if (d.replicated)

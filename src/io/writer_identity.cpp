@@ -1,5 +1,5 @@
 // The writer of a results file and the status a reader should believe (see writer_identity.h).
-#include "etfe/writer_identity.h"
+#include "etfe/io/writer_identity.h"
 
 #include <fcntl.h>
 #include <hdf5.h>

@@ -1,6 +1,6 @@
 // The XDMF index of a results file: the light XML that ParaView (or VisIt) opens as a time series,
 // pointing into the HDF5 file beside it. What it shows, and under which names, follows the field
-// table (include/etfe/output_fields.h).
+// table (include/etfe/io/output_fields.h).
 #pragma once
 #include <petscsys.h>
 
@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "etfe/output_fields.h"
+#include "etfe/io/output_fields.h"
 
 namespace etfe {
 

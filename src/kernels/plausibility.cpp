@@ -1,5 +1,5 @@
-// Plausibility of inputs (etfe/plausibility.h): thresholds there, messages here.
-#include "etfe/plausibility.h"
+// Plausibility of inputs (etfe/kernels/plausibility.h): thresholds there, messages here.
+#include "etfe/kernels/plausibility.h"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 #include "etfe/kernels/elastic.h"
 #include "etfe/kernels/plasticity.h"
 #include "etfe/kernels/status.h"
-#include "etfe/material.h"
+#include "etfe/material/material.h"
 #include "material_internal.h"
 
 namespace etfe {

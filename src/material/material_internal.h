@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "etfe/kernels/plasticity.h"
-#include "etfe/material.h"
+#include "etfe/material/material.h"
 
 namespace etfe {
 

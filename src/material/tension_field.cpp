@@ -19,7 +19,7 @@
 #include "etfe/kernels/status.h"
 #include "etfe/kernels/wrinkling.h"
 #include "etfe/kernels/wrinkling_plastic.h"
-#include "etfe/material.h"
+#include "etfe/material/material.h"
 
 namespace etfe {
 

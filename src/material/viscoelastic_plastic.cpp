@@ -12,7 +12,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "etfe/input_plausibility.h"
+#include "etfe/assembly/input_plausibility.h"
 #include "etfe/kernels/viscoelastic_plastic.h"
 #include "material_internal.h"
 

@@ -14,7 +14,7 @@
 #include "etfe/kernels/status.h"
 #include "etfe/mesh/local_mesh.h"
 #include "etfe/mesh/partition.h"
-#include "etfe/rank0.h"
+#include "etfe/base/rank0.h"
 
 namespace etfe {
 

@@ -12,7 +12,7 @@
 // rigid, so the rotation is the control and the torque the response.
 #include <petscsys.h>
 
-#include "etfe/scene_registry.h"
+#include "etfe/scenes/scene_registry.h"
 #include "etfe/verification/annulus_closed_form.h"
 #include "structure_inputs.h"
 

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <string>
 
-#include "etfe/scene_registry.h"
+#include "etfe/scenes/scene_registry.h"
 #include "structure_inputs.h"
 
 namespace etfe {

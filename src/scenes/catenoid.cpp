@@ -7,7 +7,7 @@
 // only: options/structure/verify_catenoid.opts; this scene keeps its own option names.
 #include <petscsys.h>
 
-#include "etfe/scene_registry.h"
+#include "etfe/scenes/scene_registry.h"
 #include "structure_inputs.h"
 
 namespace etfe {

@@ -9,8 +9,8 @@
 // guess, not the converged answer.
 #include <petscsys.h>
 
-#include "etfe/input_plausibility.h"
-#include "etfe/scene_registry.h"
+#include "etfe/assembly/input_plausibility.h"
+#include "etfe/scenes/scene_registry.h"
 #include "structure_inputs.h"
 
 namespace etfe {

@@ -15,8 +15,8 @@
 
 #include "etfe/mesh/generators.h"
 #include "etfe/mesh/mesh_options.h"
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 #include "real_array_option.h"
 #include "structure_inputs.h"
 

@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "etfe/cutpattern.h"
-#include "etfe/flatten_strip.h"
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/analyses/cutpattern.h"
+#include "etfe/analyses/flatten_strip.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 #include "pattern_reference.h"
 
 namespace etfe {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "etfe/cutpattern.h"
+#include "etfe/analyses/cutpattern.h"
 #include "etfe/mesh/mesh_data.h"
 
 namespace etfe {

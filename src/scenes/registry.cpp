@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "etfe/input_plausibility.h"
+#include "etfe/assembly/input_plausibility.h"
 #include "etfe/mesh/cad_reader.h"
 #include "etfe/mesh/gmsh_reader.h"
 #include "etfe/mesh/mesh_options.h"
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 
 namespace etfe {
 

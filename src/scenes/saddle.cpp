@@ -17,11 +17,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 #include "etfe/mesh/generators.h"
 #include "etfe/mesh/mesh_options.h"
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 #include "saddle_geometry.h"
 #include "structure_inputs.h"
 

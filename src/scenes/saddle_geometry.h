@@ -7,7 +7,7 @@
 
 #include <petscsys.h>
 
-#include "etfe/scene_registry.h"
+#include "etfe/scenes/scene_registry.h"
 
 namespace etfe {
 

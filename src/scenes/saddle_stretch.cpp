@@ -12,9 +12,9 @@
 #include <cstdio>
 #include <string>
 
-#include "etfe/assembly.h"
-#include "etfe/contact.h"
-#include "etfe/csv_history.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/contact/contact.h"
+#include "etfe/base/csv_history.h"
 #include "etfe/kernels/plasticity.h"
 #include "pattern_reference.h"
 #include "real_array_option.h"

@@ -10,8 +10,8 @@
 
 #include "etfe/kernels/nearest.h"
 #include "etfe/mesh/mesh_options.h"
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 #include "pattern_reference.h"
 #include "structure_inputs.h"
 

@@ -9,8 +9,8 @@
 #include <map>
 #include <set>
 
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 #include "real_array_option.h"
 #include "structure_inputs.h"
 

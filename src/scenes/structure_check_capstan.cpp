@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "etfe/assembly.h"
-#include "etfe/contact.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/contact/contact.h"
 #include "structure_inputs.h"
 
 namespace etfe {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "etfe/assembly.h"
-#include "etfe/csv_history.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/base/csv_history.h"
 #include "etfe/verification/annulus_closed_form.h"
 #include "etfe/verification/hencky_closed_form.h"
 #include "etfe/verification/patch_closed_form.h"

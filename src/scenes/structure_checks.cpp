@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 #include "structure_inputs.h"
 
 namespace etfe {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "etfe/problem.h"
-#include "etfe/scene.h"
+#include "etfe/assembly/problem.h"
+#include "etfe/description/scene.h"
 
 namespace etfe {
 

@@ -11,7 +11,7 @@
 
 #include "etfe/mesh/generators.h"
 #include "etfe/mesh/mesh_options.h"
-#include "etfe/scene_registry.h"
+#include "etfe/scenes/scene_registry.h"
 #include "real_array_option.h"
 #include "structure_inputs.h"
 

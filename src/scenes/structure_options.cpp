@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "etfe/input_plausibility.h"
+#include "etfe/assembly/input_plausibility.h"
 #include "real_array_option.h"
 #include "structure_inputs.h"
 

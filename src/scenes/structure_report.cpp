@@ -11,11 +11,11 @@
 #include <cmath>
 #include <string>
 
-#include "etfe/assembly.h"
-#include "etfe/chamber.h"
-#include "etfe/contact.h"
-#include "etfe/csv_history.h"
-#include "etfe/layer_contact.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/assembly/chamber.h"
+#include "etfe/contact/contact.h"
+#include "etfe/base/csv_history.h"
+#include "etfe/assembly/layer_contact.h"
 #include "structure_inputs.h"
 
 namespace etfe {

@@ -6,8 +6,8 @@
 #include <map>
 #include <string>
 
-#include "etfe/rank0.h"
-#include "etfe/scene_registry.h"
+#include "etfe/base/rank0.h"
+#include "etfe/scenes/scene_registry.h"
 #include "structure_inputs.h"
 
 namespace etfe {

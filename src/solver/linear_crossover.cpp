@@ -1,5 +1,5 @@
-// The measured crossover between the direct and the scalable path (etfe/linear_crossover.h).
-#include "etfe/linear_crossover.h"
+// The measured crossover between the direct and the scalable path (etfe/solver/linear_crossover.h).
+#include "etfe/solver/linear_crossover.h"
 
 #include <algorithm>
 #include <cstring>

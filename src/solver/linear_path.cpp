@@ -1,5 +1,5 @@
-// The linear solver path, decided once (etfe/linear_path.h).
-#include "etfe/linear_path.h"
+// The linear solver path, decided once (etfe/assembly/linear_path.h).
+#include "etfe/assembly/linear_path.h"
 
 #include <petscksp.h>
 
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "etfe/linear_crossover.h"
+#include "etfe/solver/linear_crossover.h"
 
 namespace etfe {
 

@@ -16,9 +16,9 @@
 
 #include <cmath>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 #include "etfe/kernels/status.h"
-#include "etfe/linesearch.h"
+#include "etfe/solver/linesearch.h"
 
 namespace etfe {
 

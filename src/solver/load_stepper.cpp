@@ -24,16 +24,16 @@
 #include <cstring>
 #include <string>
 
-#include "etfe/assembly.h"
-#include "etfe/chamber.h"
-#include "etfe/contact.h"
-#include "etfe/free_rigid_motions.h"
-#include "etfe/interrupt.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/assembly/chamber.h"
+#include "etfe/contact/contact.h"
+#include "etfe/assembly/free_rigid_motions.h"
+#include "etfe/solver/interrupt.h"
 #include "etfe/kernels/status.h"
-#include "etfe/load_stepper.h"
-#include "etfe/log_events.h"
-#include "etfe/pc_refresh.h"
-#include "etfe/tangent_shift.h"
+#include "etfe/solver/load_stepper.h"
+#include "etfe/base/log_events.h"
+#include "etfe/solver/pc_refresh.h"
+#include "etfe/solver/tangent_shift.h"
 #include "load_stepper_internal.h"
 
 namespace etfe {

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "etfe/assembly.h"
-#include "etfe/interrupt.h"
-#include "etfe/load_stepper.h"
-#include "etfe/tangent_shift.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/solver/interrupt.h"
+#include "etfe/solver/load_stepper.h"
+#include "etfe/solver/tangent_shift.h"
 
 namespace etfe {
 

@@ -6,9 +6,9 @@
 #include <cstdio>
 #include <string>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 #include "etfe/kernels/status.h"
-#include "etfe/load_stepper.h"
+#include "etfe/solver/load_stepper.h"
 
 namespace etfe {
 namespace load_stepping {

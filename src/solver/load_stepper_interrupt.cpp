@@ -1,4 +1,4 @@
-// Signals and the load stepper's safe points (see etfe/interrupt.h). The handler notes the signal
+// Signals and the load stepper's safe points (see etfe/solver/interrupt.h). The handler notes the signal
 // in a sig_atomic_t and nothing else; the ranks agree on it where they meet anyway: after each
 // converged increment (SafePoint, one MPI_Allreduce of two ints that also carries rank 0's
 // wall-clock checkpoint rule) and, once a signal is noted, in Newton's convergence test
@@ -7,7 +7,7 @@
 #include <csignal>
 #include <ctime>
 
-#include "etfe/interrupt.h"
+#include "etfe/solver/interrupt.h"
 #include "load_stepper_internal.h"
 
 namespace etfe {

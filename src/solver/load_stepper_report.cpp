@@ -6,8 +6,8 @@
 #include <cstring>
 #include <string>
 
-#include "etfe/assembly.h"
-#include "etfe/contact.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/contact/contact.h"
 #include "load_stepper_internal.h"
 
 namespace etfe {

@@ -1,9 +1,9 @@
 // The preconditioner refreshed when the Krylov solve struggles (pc_refresh.h).
-#include "etfe/pc_refresh.h"
+#include "etfe/solver/pc_refresh.h"
 
 #include <petsc/private/snesimpl.h>
 
-#include "etfe/owned_context.h"
+#include "etfe/base/owned_context.h"
 
 namespace etfe {
 

@@ -1,12 +1,12 @@
 // The regularized preconditioning matrix P = J + k M (pc_shift.h).
-#include "etfe/pc_shift.h"
+#include "etfe/solver/pc_shift.h"
 
 #include <algorithm>
 
-#include "etfe/assembly.h"
-#include "etfe/log_events.h"
-#include "etfe/owned_context.h"
-#include "etfe/tangent_shift.h"
+#include "etfe/assembly/assembly.h"
+#include "etfe/base/log_events.h"
+#include "etfe/base/owned_context.h"
+#include "etfe/solver/tangent_shift.h"
 
 namespace etfe {
 

@@ -1,10 +1,10 @@
 // The tangent shift's policy, the Jacobian callback that applies it and the work it would
 // dissipate (see tangent_shift.h).
-#include "etfe/tangent_shift.h"
+#include "etfe/solver/tangent_shift.h"
 
 #include <algorithm>
 
-#include "etfe/assembly.h"
+#include "etfe/assembly/assembly.h"
 
 namespace etfe {
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Inputs off by a unit or a scale are stated before the run (include/etfe/plausibility.h): a mesh
+"""Inputs off by a unit or a scale are stated before the run (include/etfe/kernels/plausibility.h): a mesh
 in m, a thickness in m, Young's modulus or yield stresses in Pa, a compensation given in percent,
 a pressure in Pa. A warning names the option and the likely intent and the run goes on; where no
 film can have the value, the run stops with the message. Also: a CAD surface (meshes/cad_vault.step) as -mesh_file,

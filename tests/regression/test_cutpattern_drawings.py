@@ -7,7 +7,7 @@ DXF files are read back with ezdxf (python3-ezdxf, in scripts/setup):
     15 mm outside), WELD (the net pattern edge), an MD arrow, labels on TEXT;
   * the labels give the strip's name, its length and width (the WELD outline's box), each edge's
     arc length and the two diagonals, equal to the outline measured here to 0.1 mm;
-  * no text box (one text height per character, as etfe/pattern_sheet.h) crosses an outline or
+  * no text box (one text height per character, as etfe/analyses/pattern_sheet.h) crosses an outline or
     leaves the sheet ($EXTMIN/$EXTMAX);
   * nesting: every strip within the roll's width, no two overlapping, the roll length and the
     waste printed and equal to what the nesting DXF's outlines give; a roll narrower than a

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The results file describes itself, and everything that names its fields follows one table
-(include/etfe/output_fields.h, written into each file as the root attribute field_table).
+(include/etfe/io/output_fields.h, written into each file as the root attribute field_table).
 For a plastic patch, a capstan (contact) and an annulus (wrinkling), each a few increments:
   * every dataset of the file is a row of the field table, with that row's attributes
     (vector_field_type, units, family, description), columns, number type and row count;

@@ -2,7 +2,7 @@
 // one-rank BAIJ matrix as MatSetValuesBlocked with ADD_VALUES, takes no part before the first
 // assembly (the rows have no structure yet) nor for other matrix types, and falls back when an
 // element block is missing from the structure.
-#include "etfe/element_blocks.h"
+#include "etfe/assembly/element_blocks.h"
 
 #include "check.h"
 

@@ -25,7 +25,7 @@
 
 #include "check.h"
 #include "fd_tangent.h"
-#include "etfe/flatten_strip.h"
+#include "etfe/analyses/flatten_strip.h"
 #include "etfe/kernels/flatten_link.h"
 #include "etfe/kernels/status.h"
 #include "etfe/mesh/generators.h"

@@ -1,8 +1,8 @@
-// The crossover rule the automatic linear-path choice reads (etfe/linear_crossover.h): taken
+// The crossover rule the automatic linear-path choice reads (etfe/solver/linear_crossover.h): taken
 // only where the measurements show the Krylov path faster at every larger size measured on the
 // same rank count, never extrapolated; and the rows measured here give none on one rank.
 #include "check.h"
-#include "etfe/linear_crossover.h"
+#include "etfe/solver/linear_crossover.h"
 
 using etfe::Crossover;
 using etfe::CrossoverOf;

@@ -1,4 +1,4 @@
-// The one linear-path decision (etfe/linear_path.h): from the options, the size and the rank
+// The one linear-path decision (etfe/assembly/linear_path.h): from the options, the size and the rank
 // count, the kind of path, the LU package and the memory estimate the other parts read; the
 // options database gets the scalable path's settings and MUMPS's workspace margin, nothing else.
 #include <petscsys.h>
@@ -6,7 +6,7 @@
 #include <cstring>
 
 #include "check.h"
-#include "etfe/linear_path.h"
+#include "etfe/assembly/linear_path.h"
 
 using etfe::LinearPath;
 

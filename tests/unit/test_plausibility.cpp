@@ -1,10 +1,10 @@
-// Plausibility of inputs (etfe/plausibility.h): each check is fine inside its range, warns
+// Plausibility of inputs (etfe/kernels/plausibility.h): each check is fine inside its range, warns
 // outside it and refuses where no film can be; the message names the option (or file), the unit
 // and, for a value off by a unit, the value meant.
 #include <string>
 
 #include "check.h"
-#include "etfe/plausibility.h"
+#include "etfe/kernels/plausibility.h"
 #include <vector>
 
 using etfe::CheckCompensation;
