@@ -313,6 +313,8 @@ bool CutToFitRoll(MeshData *mesh, const CutPatternSurfaceOptions &o, std::map<st
 
 PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPatternSurfaceOptions *o) {
   MeshOptions mesh;
+  char start[256] = "";
+  PetscBool start_set = PETSC_FALSE;
   PetscBool width_set = PETSC_FALSE, direction_set = PETSC_FALSE, snap_set = PETSC_FALSE, layout_set = PETSC_FALSE;
   PetscFunctionBeginUser;
   mesh.keys = kMeshFile;
@@ -345,6 +347,13 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
                               "sections by planes through the middle along its normal, rim arcs at most W)",
                               "", layouts, 3, layouts[layout], &layout, &layout_set));
   o->geodesic.layout = (int)layout;
+  PetscCall(PetscOptionsString("-cutpattern_strip_start",
+                               "With -cutpattern_strip_width and the geodesic layout: a 1-D physical group of the "
+                               "mesh whose middle node and direction there start the first seam (a geodesic), the "
+                               "others W apart across it (default: the surface's middle along "
+                               "-cutpattern_strip_direction)",
+                               "", start, start, sizeof start, &start_set));
+  if (start_set) o->geodesic.start_line = start;
   PetscCall(PetscOptionsBool("-cutpattern_strip_fit_roll",
                              "Choose the strip width so that every flattened strip plus the seam allowance on both "
                              "sides fits -cutpattern_roll_width (iterated from -cutpattern_strip_width, or from the "
@@ -357,6 +366,10 @@ PetscErrorCode CutPatternSurfaceOptionsFromCommandLine(MPI_Comm comm, CutPattern
              "%s only shapes geodesic strips: give -cutpattern_strip_width W too, or leave it out to flatten the "
              "physical surfaces as the strips",
              direction_set ? "-cutpattern_strip_direction" : snap_set ? "-cutpattern_strip_snap" : "-cutpattern_strip_layout");
+  PetscCheck(!start_set || (width_set && o->geodesic.layout == 0 && !o->fit_roll), comm, PETSC_ERR_ARG_INCOMP,
+             "-cutpattern_strip_start %s starts geodesic seams: give -cutpattern_strip_width W with "
+             "-cutpattern_strip_layout geodesic (the default), without -cutpattern_strip_fit_roll",
+             o->geodesic.start_line.c_str());
   PetscCheck(o->geodesic.snap >= 0 && o->geodesic.snap < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-cutpattern_strip_snap %g: give a fraction of an edge's length in [0, 0.5)", (double)o->geodesic.snap);
   PetscCheck(!width_set || (o->geodesic.width > 0 && std::isfinite(o->geodesic.width)), comm,

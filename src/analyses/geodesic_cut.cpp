@@ -376,6 +376,48 @@ double SmallestQuality(const std::vector<double> &coords, const std::vector<int>
   return q;
 }
 
+// The start line's middle node (of its segments in file order, the end nearest half its length
+// of the segment holding that half) and the segment's unit direction; false naming the group when
+// it is no 1-D group of the mesh or has a node on no triangle (off the surface).
+bool StartLineMiddle(const MeshData &m, const std::string &name, int *node, double dir[3], std::string *err) {
+  const std::string opt = "-cutpattern_strip_start " + name;
+  const auto it = m.line_sets.find(name);
+  if (it == m.line_sets.end()) {
+    const bool other = m.node_sets.count(name) || m.element_sets.count(name);
+    *err = opt + ": " + m.source + (other ? " has a group of that name but it is not 1-D (line elements)"
+                                          : " has no physical group of that name") +
+           "; give a 1-D physical group (a curve drawn on the surface)";
+    return false;
+  }
+  const std::vector<int> &ls = it->second;
+  double total = 0;
+  for (size_t k = 0; k + 1 < ls.size(); k += 2) {
+    if (ls[k] < 0 || ls[k + 1] < 0) {
+      *err = opt + ": a node of its line elements is on no triangle of " + m.source +
+             ": the line does not lie on the surface; draw it through the surface's nodes";
+      return false;
+    }
+    const double *a = &m.coords[3 * (size_t)ls[k]], *b = &m.coords[3 * (size_t)ls[k + 1]];
+    total += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+  }
+  if (ls.size() < 2 || !(total > 0)) {
+    *err = opt + ": the group has no line element of positive length in " + m.source + "; give a curve";
+    return false;
+  }
+  double sum = 0;
+  for (size_t k = 0; k + 1 < ls.size(); k += 2) {
+    const double *a = &m.coords[3 * (size_t)ls[k]], *b = &m.coords[3 * (size_t)ls[k + 1]];
+    const double l = std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    if (sum + l >= 0.5 * total || k + 3 >= ls.size()) {
+      *node = 0.5 * total - sum <= sum + l - 0.5 * total ? ls[k] : ls[k + 1];
+      for (int i = 0; i < 3; ++i) dir[i] = (b[i] - a[i]) / l;
+      return true;
+    }
+    sum += l;
+  }
+  return true;
+}
+
 // Radial seams (layout 2): the surface's sections by planes through the middle node along its
 // normal there, n/2 planes at equal angles giving n gores (n even, at least 4, the fewest whose
 // rim arcs, the boundary's length / n, are at most W), named in order round the middle.
@@ -479,7 +521,8 @@ bool RadialStrips(const MeshData &sub, const std::string &base, const Transverse
 // Cuts one surface (sub: its triangles as a mesh of their own; fixed: its nodes that must not
 // move) into strips <base>_NN: *s the cut surface, *strips the triangles of s per strip.
 bool CutOneSurface(const MeshData &sub, const std::string &base, const std::vector<char> &fixed,
-                   const GeodesicCutOptions &o, const std::string &opt, TriSurface *s,
+                   const GeodesicCutOptions &o, const std::string &opt, int start_v, const double start_dir[3],
+                   TriSurface *s,
                    std::vector<std::pair<std::string, std::vector<int>>> *strips, std::vector<std::string> *notes,
                    std::string *err) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -501,18 +544,31 @@ bool CutOneSurface(const MeshData &sub, const std::string &base, const std::vect
   io.keep_quality = o.keep_quality;
   io.quality_floor = o.keep_quality * SmallestQuality(sub.coords, sub.triangles);
   // The middle: the interior node nearest the centroid, and the transverse direction there.
+  // Or the start line's middle node and its direction there (-cutpattern_strip_start).
   Transverse t;
-  t.vmid = InteriorNodeNearest(*s, centroid);
+  t.vmid = start_v >= 0 ? start_v : InteriorNodeNearest(*s, centroid);
   if (t.vmid < 0) {
     *err = opt + ": " + sub.source + " has no interior node to start the cutting lines from; refine the mesh";
     return false;
   }
   for (int i = 0; i < 3; ++i) t.mid[i] = s->coords[3 * t.vmid + i];
-  t.axis[o.direction] = 1;
   const std::string at_mid = Fmt("(%.1f, %.1f, %.1f) mm", t.mid[0], t.mid[1], t.mid[2]);
+  const std::string start_opt = "-cutpattern_strip_start " + o.start_line;
+  if (start_v >= 0 && SurfaceVertexOnBoundary(*s, start_v)) {
+    *err = start_opt + ": its middle node " + at_mid + " lies on the boundary of " + sub.source +
+           ": a seam starts inside the surface; give a line whose middle is inside it";
+    return false;
+  }
+  if (start_v >= 0) {
+    for (int i = 0; i < 3; ++i) t.axis[i] = start_dir[i];
+  } else {
+    t.axis[o.direction] = 1;
+  }
   if (!TransverseDirection(*s, t.vmid, t.axis, t.dir)) {
-    *err = std::string("-cutpattern_strip_direction ") + kAxis[o.direction] + " is (nearly) normal to " + sub.source +
-           " at its middle " + at_mid + ": choose an axis along the surface";
+    *err = (start_v >= 0 ? start_opt + ": the line's direction" : std::string("-cutpattern_strip_direction ") +
+                                                                     kAxis[o.direction]) +
+           " is (nearly) normal to " + sub.source + " at " + (start_v >= 0 ? "its middle node " : "its middle ") +
+           at_mid + ": choose " + (start_v >= 0 ? "a line along the surface" : "an axis along the surface");
     return false;
   }
   // The transverse geodesic (on the uncut mesh) and the offsets of the lines on it.
@@ -570,8 +626,11 @@ bool CutOneSurface(const MeshData &sub, const std::string &base, const std::vect
   const double q0 = SmallestQuality(sub.coords, sub.triangles), q1 = SmallestQuality(s->coords, s->tris);
   notes->insert(notes->begin() + (long)std::min(first_note, notes->size()),
                 std::string(o.layout == 1 ? "planar" : "geodesic") + " strips of " + base + ": width " +
-                    Fmt("%g", o.width) + " mm, lines along " + kAxis[o.direction] +
-                    "; the transverse geodesic through the middle node " + at_mid + " is " +
+                    Fmt("%g", o.width) + " mm, lines along " +
+                    (start_v >= 0 ? "the start line " + o.start_line + Fmt(" (%.4f, %.4f, %.4f)", t.axis[0], t.axis[1], t.axis[2])
+                                  : std::string(kAxis[o.direction])) +
+                    "; the transverse geodesic through the " + (start_v >= 0 ? "start line's " : "") + "middle node " +
+                    at_mid + " is " +
                     Fmt("%.3f mm across (%.3f + %.3f)", across, t.back.length, t.fwd.length) + "; " +
                     std::to_string(offsets.size()) + " lines, " + std::to_string(count) + " strips; " +
                     std::to_string(s->NumNodes() - sub.NumNodes()) + " nodes added, " +
@@ -626,6 +685,10 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
   for (const auto &kv : mesh->node_sets)
     if (!mesh->element_sets.count(kv.first))
       for (int n : kv.second) fixed[n] = 1;
+  int start_node = -1;
+  double start_dir[3] = {0, 0, 0};
+  if (!o.start_line.empty() && !StartLineMiddle(*mesh, o.start_line, &start_node, start_dir, err)) return false;
+  bool started = false;
   MeshData out;
   out.source = mesh->source + " cut at " + Fmt("%g", o.width) + " mm";
   out.notes = mesh->notes;
@@ -649,7 +712,10 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
     for (size_t i = 0; i < global.size(); ++i) sub_fixed[i] = fixed[global[i]];
     TriSurface s;
     std::vector<std::pair<std::string, std::vector<int>>> strips;
-    if (!CutOneSurface(sub, g.first, sub_fixed, o, opt, &s, &strips, notes, err)) return false;
+    int start_v = -1;  // the start line's middle node, when it is one of this surface's
+    for (size_t i = 0; i < global.size() && start_node >= 0 && !started; ++i)
+      if (global[i] == start_node) start_v = (int)i, started = true;
+    if (!CutOneSurface(sub, g.first, sub_fixed, o, opt, start_v, start_dir, &s, &strips, notes, err)) return false;
     for (int p = (int)global.size(); p < s.NumNodes(); ++p) {
       global.push_back(out.NumNodes());
       for (int i = 0; i < 3; ++i) out.coords.push_back(s.coords[3 * (size_t)p + i]);
@@ -685,6 +751,11 @@ bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<
     std::sort(v.begin(), v.end());
     packed.node_sets[kv.first] = v;
     ++k;
+  }
+  if (start_node >= 0 && !started) {
+    *err = "-cutpattern_strip_start " + o.start_line + ": its middle node is on no triangle of a physical surface "
+           "that is cut; give a line on the surface to cut";
+    return false;
   }
   *mesh = packed;
   return true;

@@ -41,6 +41,12 @@ struct GeodesicCutOptions {
   // Strips of equal width on the transverse geodesic, as few as keep them at most `width` wide
   // (else: a line through the middle, then W apart, the edge strips taking what is left).
   bool equal = false;
+  // A 1-D physical group (-cutpattern_strip_start, geodesic layout): the first seam is the
+  // geodesic started at the group's middle node (the node nearest half its length) along the
+  // group's segment there, instead of the surface's middle along `direction`; the other seams
+  // start at right angles across the transverse geodesic through that node, as from the middle.
+  // Empty: the surface's middle. Only the surface holding that node is started there.
+  std::string start_line;
 };
 
 // Replaces *mesh by the cut mesh with one element set per strip: each physical surface (or the
@@ -48,7 +54,8 @@ struct GeodesicCutOptions {
 // nodes two surfaces share and nodes of named lines stay where they are. False with a message
 // naming the option for: overlapping physical surfaces, a width below the mean edge length or wider than
 // the surface, a direction normal to the surface, a line that does not reach the boundary
-// (a closed or winding surface), lines that meet or cross.
+// (a closed or winding surface), lines that meet or cross, a start line that is no 1-D group,
+// has a node on no triangle or whose middle node lies on the boundary.
 bool GeodesicCutStrips(MeshData *mesh, const GeodesicCutOptions &o, std::vector<std::string> *notes,
                        std::string *err);
 
