@@ -1,16 +1,18 @@
 #!/usr/bin/python3
 """Hand check of a cushion foil in the design run (scripts/design-run; docs/design-run.md).
 
-A hexagonal two-layer cushion (scripts/cushion-mesh --hexagon 1000: circumradius 1 m) is inflated to 0.3 kPa in the base state
-and one combination raises the supply to 0.5 kPa. At the top foil's centre the stress is
+A hexagonal two-layer cushion (scripts/cushion-mesh --hexagon 1000: circumradius 1 m) is inflated
+to 0.3 kPa in the base state and one combination raises the supply to 0.5 kPa. At the top foil's centre the stress is
 equibiaxial by the six-fold symmetry, so membrane equilibrium gives the hand check
 
     sigma = p R / (2 t),   utilisation = sigma / f_d,
 
-p the chamber's gauge pressure (the combination's history CSV), R the foil's radius of curvature at
-its centre (z = c0 + c1 r^2 + c2 r^4 fitted to the deformed top-foil nodes within 0.3 of the
-circumradius, R = -1 / (2 c1): the hexagon departs from a surface of revolution only at r^6), t the current thickness t0 / (a / A0) of the centre elements (the design run's
-Cauchy stress takes the film incompressible, stress_measures.h), f_d = f_k k_mod / gamma_M. The
+p the chamber's gauge pressure (chambers/gauge_pressure of the combination's results, equal to its
+history CSV's), R the foil's radius of curvature at its centre (z = c0 + c1 r^2 + c2 r^4 fitted to
+the deformed top-foil nodes within 0.3 of the circumradius, R = -1 / (2 c1): the hexagon departs
+from a surface of revolution only at r^6), t the current thickness t0 / (a / A0) of the centre
+elements (the design run's Cauchy stress takes the film incompressible, stress_measures.h),
+f_d = f_k k_mod / gamma_M. The
 design run's utilisation and Cauchy von Mises stress at the centre elements (envelope.h5, the
 elements around the top foil's centre node; checks.csv) must match it within the mesh error, which
 is measured on two meshes (the centre stress and the difference change less than the bounds below
