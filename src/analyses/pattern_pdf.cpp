@@ -50,13 +50,6 @@ std::string PdfString(const std::string &t) {
   return s + ")";
 }
 
-double NiceLength(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double f : {5.0, 2.0, 1.0})
-    if (f * p <= x) return f * p;
-  return p;
-}
-
 } // namespace
 
 bool WriteSheetPdf(const std::string &path, const Sheet &sh, std::string *err) {

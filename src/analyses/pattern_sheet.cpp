@@ -348,4 +348,11 @@ Sheet PatternSheet(const FlattenResult &r, const std::string &name, const Patter
   return s;
 }
 
+double NiceLength(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double f : {5.0, 2.0, 1.0})
+    if (f * p <= x) return f * p;
+  return p;
+}
+
 } // namespace etfe

@@ -44,14 +44,6 @@ const char *Rgb(int aci) {
   }
 }
 
-// The largest 1, 2 or 5 times a power of ten not above x.
-double NiceLength(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double f : {5.0, 2.0, 1.0})
-    if (f * p <= x) return f * p;
-  return p;
-}
-
 } // namespace
 
 bool WriteSheetSvg(const std::string &path, const Sheet &sh, std::string *err) {

@@ -18,22 +18,6 @@ namespace etfe {
 
 namespace {
 
-PetscErrorCode BroadcastLineGroups(MPI_Comm comm, const MeshData &mesh, std::vector<std::string> *names) {
-  std::string joined;
-  PetscFunctionBeginUser;
-  for (const auto &kv : mesh.line_sets) joined += kv.first + '\n';
-  unsigned long long len = joined.size();
-  PetscCallMPI(MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
-  joined.resize(len);
-  PetscCallMPI(MPI_Bcast(joined.data(), (int)len, MPI_CHAR, 0, comm));
-  names->clear();
-  for (size_t a = 0, b; a < joined.size(); a = b + 1) {
-    b = joined.find('\n', a);
-    names->push_back(joined.substr(a, b - a));
-  }
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_finding, CableInput *c, bool *any) {
   const std::string prefix = "cable_" + group + "_";
   PetscBool ea_set = PETSC_FALSE, len_set = PETSC_FALSE, pre_set = PETSC_FALSE, sl_set = PETSC_FALSE, w_set = PETSC_FALSE;
@@ -186,7 +170,8 @@ std::string FreeEdge(const SceneSpec &scene) {
 PetscErrorCode StructureCablesRead(MPI_Comm comm, const MeshData &mesh, bool form_finding, StructureInputs *in) {
   std::vector<std::string> groups;
   PetscFunctionBeginUser;
-  PetscCall(BroadcastLineGroups(comm, mesh, &groups));
+  for (const auto &kv : mesh.line_sets) groups.push_back(kv.first);  // rank 0's mesh
+  PetscCall(BroadcastNames(comm, &groups));
   for (const std::string &g : groups) {
     CableInput c;
     bool any = false;

@@ -152,6 +152,9 @@ struct StructureInputs {
 // Rank 0: the area vector times 2 of element e, (x2 - x1) x (x3 - x1).
 void StructureTriangleNormal(const MeshData &m, int e, double n[3]);
 
+// Rank 0's names (group names) on every rank (collective).
+PetscErrorCode BroadcastNames(MPI_Comm comm, std::vector<std::string> *names);
+
 PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool form_finding, StructureInputs *in);
 
 // The analysis' stage count (every per-stage array fits it) and the schedule of one array.

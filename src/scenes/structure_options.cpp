@@ -22,22 +22,6 @@ namespace etfe {
 
 namespace {
 
-// Rank 0's group names on every rank.
-PetscErrorCode BroadcastNames(MPI_Comm comm, std::vector<std::string> *names) {
-  std::string joined;
-  PetscFunctionBeginUser;
-  for (const std::string &n : *names) joined += n + '\n';
-  unsigned long long len = joined.size();
-  PetscCallMPI(MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
-  joined.resize(len);
-  PetscCallMPI(MPI_Bcast(joined.data(), (int)len, MPI_CHAR, 0, comm));
-  names->clear();
-  for (size_t a = 0, b; a < joined.size(); a = b + 1) {
-    b = joined.find('\n', a);
-    names->push_back(joined.substr(a, b - a));
-  }
-  PetscFunctionReturn(0);
-}
 
 // A comma-separated list of names.
 PetscErrorCode OptionsNameList(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
@@ -521,6 +505,22 @@ PetscErrorCode StructureOptionsRead(MPI_Comm comm, const MeshData &mesh, bool fo
   }
   PetscCall(StructureCablesRead(comm, mesh, form_finding, in));  // cables (structure_cables.cpp)
   PetscCall(CheckKeyedOptions(comm, *in));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode BroadcastNames(MPI_Comm comm, std::vector<std::string> *names) {
+  std::string joined;
+  PetscFunctionBeginUser;
+  for (const std::string &n : *names) joined += n + '\n';
+  unsigned long long len = joined.size();
+  PetscCallMPI(MPI_Bcast(&len, 1, MPI_UNSIGNED_LONG_LONG, 0, comm));
+  joined.resize(len);
+  PetscCallMPI(MPI_Bcast(joined.data(), (int)len, MPI_CHAR, 0, comm));
+  names->clear();
+  for (size_t a = 0, b; a < joined.size(); a = b + 1) {
+    b = joined.find('\n', a);
+    names->push_back(joined.substr(a, b - a));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -66,6 +66,9 @@ bool BoxCrossesPolyline(const double box[4], const SheetPolyline &p);
 
 // DXF (R12, AC1009, with $INSUNITS = 4 mm and $MEASUREMENT = 1 metric) and SVG (mm, y up, a scale
 // bar) of a sheet.
+// The largest 1, 2 or 5 times a power of ten not above x (a scale bar's length).
+double NiceLength(double x);
+
 bool WriteSheetDxf(const std::string &path, const Sheet &s, std::string *err);
 bool WriteSheetSvg(const std::string &path, const Sheet &s, std::string *err);
 // PDF of a sheet (pattern_pdf.cpp): one page, 1:1 in mm up to 5.08 m (beyond, /UserUnit), the
