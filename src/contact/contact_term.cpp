@@ -1,5 +1,6 @@
 // Rigid contact as a physics term (contact.h): what the problem's loops ask of the pairs.
 #include <algorithm>
+#include <cstdio>
 
 #include "etfe/contact/contact.h"
 #include "etfe/base/fnv64.h"
@@ -155,6 +156,20 @@ PetscErrorCode ContactSet::SetupLines(const Problem &, std::vector<std::string> 
                           num_global, params.kn, params.kt, penalty_length, k_scale_min, k_scale_max));
   lines->push_back(buf);
   PetscFunctionReturn(0);
+}
+
+// The pair states after the last commit; pairs that lift off between two printed lines are
+// counted, not each printed.
+std::string ContactSet::Progress(bool printed) {
+  lifted_since_print += counts[3];
+  if (!printed) return "";
+  char buf[128], lifted[64] = "";
+  if (lifted_since_print)
+    std::snprintf(lifted, sizeof lifted, " (%lld lift-offs since the last line)", (long long)lifted_since_print);
+  std::snprintf(buf, sizeof buf, "  contact open %lld stick %lld slip %lld%s", (long long)counts[0],
+                (long long)counts[1], (long long)counts[2], lifted);
+  lifted_since_print = 0;
+  return buf;
 }
 
 PetscErrorCode ContactSet::IncrementOutput(Problem &P, const std::string &stem, PetscInt step, double t) {

@@ -26,7 +26,6 @@
 
 #include "etfe/assembly/assembly.h"
 #include "etfe/assembly/chamber.h"
-#include "etfe/contact/contact.h"
 #include "etfe/assembly/free_rigid_motions.h"
 #include "etfe/solver/interrupt.h"
 #include "etfe/kernels/status.h"
@@ -465,9 +464,8 @@ PetscErrorCode AccountIncrementWork(LoadStepper *s) {
 
 // Commits a converged attempt: material history (committed here only), the work, U and the load
 // time as the new committed state, and the physics terms' states (contact, chambers, layer
-// pairs). contact_counts: the pairs open, stick, slip and lifted off in this increment
-// (ContactCommit; zeros without contact).
-PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]) {
+// pairs).
+PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc) {
   Problem *P = s->P;
   PetscFunctionBeginUser;
   PetscCall(CommitHistory(P, P->U));
@@ -478,8 +476,6 @@ PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc, PetscInt co
   s->dt_last = inc.t_new - inc.t;
   s->t = inc.t_new;
   for (auto &term : P->terms) PetscCall(term->Commit(*P, s->t));
-  const ContactSet *contact = FindTerm<ContactSet>(*P);
-  for (int i = 0; i < 4; ++i) contact_counts[i] = contact ? contact->counts[i] : 0;
   ++s->converged_states;
   ++s->step;
   AccountStabilizedIncrement(s, inc);
@@ -602,10 +598,9 @@ PetscErrorCode LoadStepperRun(Problem *P, SNES snes, OutputFile *out, const Load
       continue;
     }
     PetscCall(RepeatLaggedIncrement(&s, &inc));
-    PetscInt contact_counts[4];
-    PetscCall(CommitIncrement(&s, inc, contact_counts));
+    PetscCall(CommitIncrement(&s, inc));
     GrowIncrement(&s, inc);
-    PetscCall(ReportIncrement(&s, inc, contact_counts));
+    PetscCall(ReportIncrement(&s, inc));
     PetscCall(WriteIncrementResults(&s, &stop));
     if (stop) res->stopped = PETSC_TRUE;
     PetscCall(SafePoint(&s, &checkpoint, &stop));

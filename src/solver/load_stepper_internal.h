@@ -53,7 +53,7 @@ struct LoadStepper {
   } worst_stabilized;
   bool strain_warned = false;  // -load_plastic_strain_limit passed (warned once)
   // Progress lines: cut-backs shown so far, pair lift-offs since the last line.
-  PetscInt cutbacks_printed = 0, lifted_since_print = 0;
+  PetscInt cutbacks_printed = 0;
   PetscLogDouble t0 = 0.0;
   // The increment of the last checkpoint written and when (wall clock, -checkpoint_every_s).
   PetscInt checkpoint_step = -1;
@@ -155,8 +155,8 @@ PetscErrorCode StabilizationSummary(LoadStepper *s);
 PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, IncrementFailure *f);
 // A converged increment seen from outside: the progress line (every -load_monitor increments, the
 // first, a stage's end, the last, after a cut-back and when stabilized), the scene's monitor,
-// contact probes. contact_counts[3] (lift-offs) is accumulated between printed lines.
-PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]);
+// the terms' files (contact probes); the terms' progress text (PhysicsTerm::Progress).
+PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc);
 // A failed attempt seen from outside: the cut-back line, and the run's failure once the
 // cut-backs are spent.
 PetscErrorCode ReportFailedIncrement(LoadStepper *s, const Increment &inc, const IncrementFailure &failure,

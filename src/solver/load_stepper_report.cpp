@@ -7,7 +7,6 @@
 #include <string>
 
 #include "etfe/assembly/assembly.h"
-#include "etfe/contact/contact.h"
 #include "load_stepper_internal.h"
 
 namespace etfe {
@@ -66,21 +65,13 @@ std::string Clock(double seconds) {
 
 // One line per increment: where the load history is (step k/N, %, the stage's meaning), how the
 // increment went (Newton iterations, residual, contact states inline) and the time to the end.
-PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const PetscInt counts[4], double now) {
+PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, std::string terms, double now) {
   Problem *P = s.P;
   const SolveDiagnostics &d = P->diagnostics;
   const double t = s.t;
   PetscFunctionBeginUser;
   const int stage = std::min((int)std::floor(t - 1e-9), s.nstages - 1) + 1;
   const double done = t / s.t_end, elapsed_s = now - s.t0;
-  std::string contact;
-  if (FindTerm<ContactSet>(*P)) {
-    char buf[128], lifted[64] = "";
-    if (counts[3]) std::snprintf(lifted, sizeof lifted, " (%lld lift-offs since the last line)", (long long)counts[3]);
-    std::snprintf(buf, sizeof buf, "  contact open %lld stick %lld slip %lld%s", (long long)counts[0],
-                  (long long)counts[1], (long long)counts[2], lifted);
-    contact = buf;
-  }
   // With a clock (-load_stage_duration, -load_hold_*): the physical time after the increment.
   char seconds[48] = "";
   if (P->clock.Active()) std::snprintf(seconds, sizeof seconds, "  time %.6g s", P->clock.Seconds(t));
@@ -98,13 +89,13 @@ PetscErrorCode PrintProgress(const LoadStepper &s, const Increment &inc, const P
     std::snprintf(buf, sizeof buf, "  work %.3e N mm shift %.1e (%.1e of it)", d.increment_work,
                   d.increment_shift_work,
                   d.increment_work != 0 ? d.increment_shift_work / std::fabs(d.increment_work) : 0.0);
-    contact += buf;
+    terms += buf;
   }
   PetscCall(PetscPrintf(P->comm,
                         "step %5" PetscInt_FMT "/%" PetscInt_FMT " %5.1f%%  t %.5f  stage %d/%d %s%s  newton %2" PetscInt_FMT
                         "  |R| %.2e%s%s  %.2f s  elapsed %s  ETA %s\n",
                         s.step, s.per_stage * s.nstages, 100.0 * done, t, stage, s.nstages,
-                        StageDescription(P->scene, t).c_str(), seconds, inc.its, (double)inc.fnorm, contact.c_str(), cut,
+                        StageDescription(P->scene, t).c_str(), seconds, inc.its, (double)inc.fnorm, terms.c_str(), cut,
                         now - inc.start, Clock(elapsed_s).c_str(),
                         done > 0 ? Clock(elapsed_s * (1.0 - done) / done).c_str() : "-"));
   PetscFunctionReturn(0);
@@ -144,20 +135,20 @@ PetscErrorCode DiagnoseFailure(const LoadStepper &s, const Increment &inc, Incre
 
 // A converged increment seen from outside: the progress line (every -load_monitor increments,
 // the first, a stage's end, the last and after a cut-back), the scene's monitor, contact probes.
-PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc, PetscInt contact_counts[4]) {
+PetscErrorCode ReportIncrement(LoadStepper *s, const Increment &inc) {
   Problem *P = s->P;
   const LoadStepperOptions &o = s->o;
   PetscLogDouble now;
   PetscFunctionBeginUser;
-  // Pairs that lift off between two printed lines are counted, not each printed.
-  s->lifted_since_print += contact_counts[3];
-  contact_counts[3] = s->lifted_since_print;
   PetscCall(PetscTime(&now));
-  if (o.monitor > 0 && (s->step % o.monitor == 0 || s->step == 1 || s->AtStageEnd() || s->Finished() ||
-                        s->res->cutbacks != s->cutbacks_printed || inc.stabilized)) {
+  const bool print = o.monitor > 0 && (s->step % o.monitor == 0 || s->step == 1 || s->AtStageEnd() || s->Finished() ||
+                                       s->res->cutbacks != s->cutbacks_printed || inc.stabilized);
+  // Every term hears of every commit (it may sum what happens between printed lines).
+  std::string terms;
+  for (auto &term : P->terms) terms += term->Progress(print);
+  if (print) {
     s->cutbacks_printed = s->res->cutbacks;
-    PetscCall(PrintProgress(*s, inc, contact_counts, now));
-    s->lifted_since_print = 0;
+    PetscCall(PrintProgress(*s, inc, terms, now));
   }
   if (P->observer.step_monitor) PetscCall(P->observer.step_monitor(P, P->observer.ctx, s->step, s->t, o.monitor));
   if (s->out)

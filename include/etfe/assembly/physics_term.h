@@ -118,6 +118,10 @@ public:
   // The run's set-up report (after the solver's lines): the term's lines, without their indent
   // or newline, as rank 0 prints them (formatted with PetscSNPrintf, as PetscPrintf would).
   virtual PetscErrorCode SetupLines(const Problem &, std::vector<std::string> * /*lines*/) const { return 0; }
+  // A converged increment, committed: the term's part of the progress line (from its two leading
+  // spaces; "": none). Called after every commit; printed: the line is printed now, so a term may
+  // sum what happened since the last printed line (contact's lift-offs) and start again.
+  virtual std::string Progress(bool /*printed*/) { return ""; }
   // A converged increment, committed: the term's own files beside the results (stem: theirs).
   virtual PetscErrorCode IncrementOutput(Problem &, const std::string & /*stem*/, PetscInt /*step*/, double /*t*/) {
     return 0;

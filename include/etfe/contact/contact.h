@@ -84,8 +84,10 @@ struct ContactSet : PhysicsTerm {
   // Lagged law: an increment whose commit would change a pair's status is solved again with the
   // new statuses, at most this many times (0: the thesis's algorithm, statuses from time t only).
   PetscInt lagged_repeat = 0;
-  // The last commit's counts over all ranks: open, stick, slip, and pairs that lifted off.
+  // The last commit's counts over all ranks: open, stick, slip, and pairs that lifted off; the
+  // lift-offs since the last printed progress line.
   PetscInt counts[4] = {0, 0, 0, 0};
+  PetscInt lifted_since_print = 0;
 
   // As a physics term (contact_term.cpp): pair forces in the local array, their stiffness, the
   // commit, the lagged law's repeats, the checkpoint's contact_state, the penalties' round-off
@@ -107,9 +109,10 @@ struct ContactSet : PhysicsTerm {
   bool PairRows(PetscInt *num_global, PetscInt *first, std::vector<PetscInt> *ids) const override;
   TermSolverNeeds SolverNeeds() const override;
   // The penalties' line of the set-up report (with -contact_penalty_length), the probes' CSV,
-  // the stiff penalties' hint, and the supports that may hold rigid motions.
+  // the pair counts of the progress line, the stiff penalties' hint, and the supports that may hold rigid motions.
   PetscErrorCode SetupLines(const Problem &, std::vector<std::string> *lines) const override;
   PetscErrorCode IncrementOutput(Problem &, const std::string &stem, PetscInt step, double t) override;
+  std::string Progress(bool printed) override;
   std::string LineSearchHint(const Problem &) const override;
   const char *RigidMotionHolder() const override { return "the rigid contact supports"; }
 };
