@@ -25,7 +25,6 @@
 #include <string>
 
 #include "etfe/assembly/assembly.h"
-#include "etfe/assembly/chamber.h"
 #include "etfe/assembly/free_rigid_motions.h"
 #include "etfe/solver/interrupt.h"
 #include "etfe/kernels/status.h"
@@ -222,10 +221,8 @@ PetscErrorCode RestartFromCheckpoint(LoadStepper *s) {
   // is that of the uninterrupted run.
   PetscCall(ProblemSetLoadTime(s->P, s->t, s->P->U));
   for (auto &term : s->P->terms) PetscCall(term->Restarted(*s->P));  // as after the checkpoint's increment
-  // A branch's chambers follow its own scene from the next stage on (sealed or supplied): decided
-  // again at the base's stage end as the commit of the increment that ended there does.
   if (s->ck.branch)
-    if (ChamberSet *chambers = FindTerm<ChamberSet>(*s->P)) PetscCall(chambers->Commit(*s->P, s->t));
+    for (auto &term : s->P->terms) PetscCall(term->Branched(*s->P, s->t));
   PetscCall(PetscPrintf(s->P->comm, "%s: from %s at increment %" PetscInt_FMT ", load time %g\n",
                         s->ck.branch ? "restart (branch)" : "restart", s->ck.restart, s->step, s->t));
   PetscFunctionReturn(0);

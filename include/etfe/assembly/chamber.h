@@ -40,6 +40,9 @@ struct ChamberSet : PhysicsTerm {
   PetscErrorCode AddLocalForces(Problem &, const PetscScalar *u, PetscScalar *f, int *status, double *external2) override;
   PetscErrorCode AddTangent(Problem &, Vec U, const PetscScalar *u, Mat A) override;
   PetscErrorCode Commit(Problem &, double t) override;
+  // A branch's chambers follow its own scene from the next stage on (sealed or supplied), decided
+  // as the commit of the increment that ended the base's stage does.
+  PetscErrorCode Branched(Problem &P, double t) override { return Commit(P, t); }
   // The block State writes (TermCheckpointDatasets).
   static const TermDatasetInfo kCheckpoint;
   PetscErrorCode State(const Problem &, std::vector<TermData> *blocks) const override;

@@ -150,6 +150,10 @@ public:
   // A restart has set the committed state (U and the load time of the checkpoint): what the term
   // derives from the state after a commit, derived again (layer contact's pairs).
   virtual PetscErrorCode Restarted(Problem &) { return 0; }
+  // After every term's Restarted, when the restart is a branch (its own loads from the
+  // checkpoint's stage end on, time t): what the term decides at a stage end from the scene,
+  // decided again from the branch's scene (which chambers are sealed).
+  virtual PetscErrorCode Branched(Problem &, double /*t*/) { return 0; }
 
   // A term whose commit revises a state the solve held fixed (the lagged friction law's
   // statuses) may have a converged increment solved again, at most RepeatLimit() times (0:
