@@ -53,10 +53,8 @@ std::string PdfString(const std::string &t) {
 } // namespace
 
 bool WriteSheetPdf(const std::string &path, const Sheet &sh, std::string *err) {
-  const double w = sh.hi[0] - sh.lo[0], hgt = sh.hi[1] - sh.lo[1], size = std::max(w, hgt);
-  const double margin = std::max(10.0, 0.03 * size), h = sh.text_height;
-  const double sw = std::max(0.25, 0.001 * size);  // line width, mm
-  const double W = w + 2 * margin, H = hgt + 2 * margin + 4 * h;  // page, mm
+  const SheetPage sp(sh);
+  const double w = sp.w, margin = sp.margin, h = sp.h, sw = sp.line, W = sp.W, H = sp.H;
   const double pt = 72.0 / 25.4;
   const double unit = std::max(1.0, std::ceil(std::max(W, H) * pt / 14400.0));
   // Content in mm: the drawing's (x, y) at (margin + x - lo x, 4 h + margin + y - lo y), the
@@ -68,7 +66,7 @@ bool WriteSheetPdf(const std::string &path, const Sheet &sh, std::string *err) {
   for (const auto &ly : sh.layers) {
     double rgb[3];
     Rgb(ly.second, rgb);
-    const double width = ly.first == "OUTLINE" || ly.first == "WELD" ? sw : 2 * sw;
+    const double width = sp.LineWidth(ly.first);
     Put(&c, "%.3f %.3f %.3f RG %.3f w %s\n", rgb[0], rgb[1], rgb[2], width, ly.first == "WELD" ? "[8 3] 0 d" : "[] 0 d");
     for (const SheetPolyline &p : sh.lines) {
       if (p.layer != ly.first || p.pts.size() < 4) continue;

@@ -348,6 +348,14 @@ Sheet PatternSheet(const FlattenResult &r, const std::string &name, const Patter
   return s;
 }
 
+SheetPage::SheetPage(const Sheet &s) {
+  w = s.hi[0] - s.lo[0], hgt = s.hi[1] - s.lo[1];
+  const double size = std::max(w, hgt);
+  margin = std::max(10.0, 0.03 * size), h = s.text_height;
+  line = std::max(0.25, 0.001 * size);
+  W = w + 2 * margin, H = hgt + 2 * margin + 4 * h;
+}
+
 double NiceLength(double x) {
   const double p = std::pow(10.0, std::floor(std::log10(x)));
   for (double f : {5.0, 2.0, 1.0})

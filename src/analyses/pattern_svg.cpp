@@ -47,10 +47,8 @@ const char *Rgb(int aci) {
 } // namespace
 
 bool WriteSheetSvg(const std::string &path, const Sheet &sh, std::string *err) {
-  const double w = sh.hi[0] - sh.lo[0], hgt = sh.hi[1] - sh.lo[1], size = std::max(w, hgt);
-  const double margin = std::max(10.0, 0.03 * size), h = sh.text_height;
-  const double sw = std::max(0.25, 0.001 * size);  // stroke width, mm
-  const double W = w + 2 * margin, H = hgt + 2 * margin + 4 * h;
+  const SheetPage page(sh);
+  const double w = page.w, hgt = page.hgt, margin = page.margin, h = page.h, sw = page.line, W = page.W, H = page.H;
   auto X = [&](double x) { return margin + x - sh.lo[0]; };
   auto Y = [&](double y) { return margin + sh.hi[1] - y; };
   std::string s;
@@ -67,7 +65,7 @@ bool WriteSheetSvg(const std::string &path, const Sheet &sh, std::string *err) {
     for (const SheetPolyline &p : sh.lines) any = any || p.layer == ly.first;
     for (const SheetText &t : sh.texts) any = any || t.layer == ly.first;
     if (!any) continue;
-    const double width = ly.first == "OUTLINE" || ly.first == "WELD" ? sw : 2 * sw;
+    const double width = page.LineWidth(ly.first);
     Append(&s, "<g id=\"%s\" fill=\"none\" stroke=\"%s\" stroke-width=\"%.3f\" stroke-linejoin=\"round\"%s>\n",
            XmlEscape(Lower(ly.first)).c_str(), Rgb(ly.second), width,
            ly.first == "WELD" ? " stroke-dasharray=\"8 3\"" : "");

@@ -69,6 +69,15 @@ bool BoxCrossesPolyline(const double box[4], const SheetPolyline &p);
 // The largest 1, 2 or 5 times a power of ten not above x (a scale bar's length).
 double NiceLength(double x);
 
+// The page of a sheet's SVG and PDF (mm): the drawing (w x hgt) inside a margin, with four text
+// heights h below it for the scale bar; W x H the whole page; lines `line` wide on the outline and
+// the welds, twice that elsewhere (LineWidth).
+struct SheetPage {
+  double w, hgt, margin, h, line, W, H;
+  explicit SheetPage(const Sheet &s);
+  double LineWidth(const std::string &layer) const { return layer == "OUTLINE" || layer == "WELD" ? line : 2 * line; }
+};
+
 bool WriteSheetDxf(const std::string &path, const Sheet &s, std::string *err);
 bool WriteSheetSvg(const std::string &path, const Sheet &s, std::string *err);
 // PDF of a sheet (pattern_pdf.cpp): one page, 1:1 in mm up to 5.08 m (beyond, /UserUnit), the
