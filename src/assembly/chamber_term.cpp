@@ -34,17 +34,14 @@ PetscErrorCode ChamberSet::Commit(Problem &P, double t) {
 const TermDatasetInfo ChamberSet::kCheckpoint = {"chamber_state", Layout::Nodes, true, 1};
 
 PetscErrorCode ChamberSet::State(const Problem &P, std::vector<TermData> *blocks) const {
-  TermData d;
-  d.name = kCheckpoint.name;
-  d.replicated = kCheckpoint.replicated;
-  ChamberStateGet(&P, &d.values);
-  blocks->push_back(std::move(d));
+  std::vector<double> values;
+  ChamberStateGet(&P, &values);
+  blocks->push_back(kCheckpoint.Block(std::move(values)));
   return 0;
 }
 
 PetscErrorCode ChamberSet::Restore(Problem &P, const std::vector<TermData> &blocks) {
-  for (const TermData &d : blocks)
-    if (d.name == kCheckpoint.name) ChamberStateSet(&P, d.values);
+  if (const std::vector<double> *values = kCheckpoint.Find(blocks)) ChamberStateSet(&P, *values);
   return 0;
 }
 

@@ -28,17 +28,14 @@ PetscErrorCode LayerContactSet::Restarted(Problem &P) {
 const TermDatasetInfo LayerContactSet::kCheckpoint = {"layer_pairs", Layout::Nodes, false, 1};
 
 PetscErrorCode LayerContactSet::State(const Problem &P, std::vector<TermData> *blocks) const {
-  TermData d;
-  d.name = kCheckpoint.name;
-  d.layout = kCheckpoint.layout;
-  LayerContactStateGet(&P, &d.values);
-  blocks->push_back(std::move(d));
+  std::vector<double> values;
+  LayerContactStateGet(&P, &values);
+  blocks->push_back(kCheckpoint.Block(std::move(values)));
   return 0;
 }
 
 PetscErrorCode LayerContactSet::Restore(Problem &P, const std::vector<TermData> &blocks) {
-  for (const TermData &d : blocks)
-    if (d.name == kCheckpoint.name) LayerContactStateSet(&P, d.values);
+  if (const std::vector<double> *values = kCheckpoint.Find(blocks)) LayerContactStateSet(&P, *values);
   return 0;
 }
 

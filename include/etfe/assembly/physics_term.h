@@ -45,6 +45,20 @@ struct TermDatasetInfo {
   Layout layout = Layout::Nodes;
   bool replicated = false;
   int components = 1;
+
+  // A block of this dataset holding values (what a term's State gives).
+  TermData Block(std::vector<double> values) const {
+    TermData d;
+    d.name = name, d.layout = layout, d.replicated = replicated, d.components = components;
+    d.values = std::move(values);
+    return d;
+  }
+  // This dataset's values among the blocks a checkpoint gave back (nullptr: not there).
+  const std::vector<double> *Find(const std::vector<TermData> &blocks) const {
+    for (const TermData &d : blocks)
+      if (d.name == name) return &d.values;
+    return nullptr;
+  }
 };
 
 // What a term asks of the linear solver.
