@@ -12,6 +12,14 @@
 // Newton stays regular because every cable node is a film node (the set-up refuses others), and
 // the film's own stiffness holds a node whose cables are slack.
 //
+// Clamps (CableSpec::clamps, kernels/cable_clamp.h): a sliding cable with clamps is evaluated by
+// CableClamped over its whole chain, one force per sub-chain between clamps; the stress-free length
+// each clamp has passed on (its transfer) is the term's history: the return map starts from the
+// committed transfers, Commit adds the converged increment's slip, and the checkpoint holds them.
+// Its tangent (dense over the chain, not symmetric where a clamp slips) goes into the matrix.
+// A sliding cable's interior node held in x, y and z is a pulley (a saddle when it is a clamp):
+// the report gives its reaction.
+//
 // Form finding (P->scene.form_finding): a cable carries its prescribed force T whatever its length
 // (kernels/cable.h: CableSegmentConstantForce); its stress-free (cut) length is then found from T
 // and EA (CableLengthForForce) and reported.
@@ -22,7 +30,10 @@
 #include <set>
 #include <unordered_map>
 
+#include "etfe/base/fnv64.h"
 #include "etfe/kernels/cable.h"
+#include "etfe/kernels/cable_clamp.h"
+#include "etfe/kernels/status.h"
 #include "etfe/assembly/physics_term.h"
 
 namespace etfe {
@@ -38,6 +49,19 @@ struct Cable {
   std::vector<CableState> segment;  // per segment (a sliding cable: its one state in chain)
   CableState chain;                 // whole cable: length, (sliding) force
   double weight = 0.0;              // N/mm
+  // Clamps (a sliding cable): chain indices, per sub-chain the initial stress-free length, per
+  // clamp the committed transfer [mm] (+: towards the chain's last end) and the last committed
+  // increment's status and slip; the last evaluation's return map.
+  std::vector<int> clamp, clamp_node;
+  std::vector<double> L0_sub, transfer, last_delta;
+  std::vector<int> last_status;
+  CableClampState clamp_state;
+  std::vector<int> pulleys;  // sliding: chain indices of interior nodes held in x, y and z
+  // The committed stress-free length per sub-chain.
+  void CommittedLengths(double *L0c) const {
+    const int nc = (int)clamp.size();
+    for (int j = 0; j <= nc; ++j) L0c[j] = L0_sub[j] - (j < nc ? transfer[j] : 0.0) + (j > 0 ? transfer[j - 1] : 0.0);
+  }
 };
 
 class CableTerm : public PhysicsTerm {
@@ -52,6 +76,10 @@ class CableTerm : public PhysicsTerm {
   PetscErrorCode Columns(const Problem &P, std::vector<TermColumn> *columns) const override;
   PetscErrorCode Fields(const Problem &P, std::vector<TermData> *fields) const override;
   PetscErrorCode Report(const Problem &P, std::vector<std::string> *lines) const override;
+  PetscErrorCode Commit(Problem &P, double t) override;
+  PetscErrorCode State(const Problem &P, std::vector<TermData> *blocks) const override;
+  PetscErrorCode Restore(Problem &P, const std::vector<TermData> &blocks) override;
+  void Fingerprint(Fnv64 &h) const override;
   // The largest move in U of a cable node across its cable (along the cable a node may drift: the
   // constant force on both sides does not hold it there, and that drift does not change the shape).
   PetscErrorCode LargestMove(Problem &P, Vec U, PetscReal *move);
@@ -69,6 +97,8 @@ class CableTerm : public PhysicsTerm {
   std::vector<double> fint_;     // per entry: 3, cable internal force minus its weight (residual part)
   std::vector<double> wload_;    // per entry: 3, the weight's nodal load
   bool form_finding_ = false;
+  bool clamped_ = false;         // some cable has clamps (the checkpoint block, the fingerprint)
+  bool clamp_failed_ = false;    // the last evaluation: a clamp return map did not converge
 };
 
 PetscErrorCode CableTerm::SetUp(Problem &P) {
@@ -127,7 +157,28 @@ PetscErrorCode CableTerm::SetUp(Problem &P) {
     for (double &L : c.L0) L = s.length > 0 ? L * s.length / total : CableLengthForForce(L, s.prestress, s.EA);
     for (double L : c.L0) c.L0_total += L;
     c.segment.assign(c.count - 1, CableState());
+    if (!s.sliding || form_finding_) continue;
+    // Pulleys and clamps (scene checks: clamps are interior nodes of a sliding cable).
+    for (int k = 1; k + 1 < c.count; ++k)
+      if (con[3 * (c.first + k)] && con[3 * (c.first + k) + 1] && con[3 * (c.first + k) + 2]) c.pulleys.push_back(k);
+    if (s.clamps.empty()) continue;
+    PetscCheck((int)s.clamps.size() <= kCableMaxClamps, P.comm, PETSC_ERR_SUP,
+               "cable %s: %d clamps and saddles; a cable takes at most %d (split it into several 1-D groups)",
+               s.name.c_str(), (int)s.clamps.size(), kCableMaxClamps);
+    for (int k = 1; k + 1 < c.count; ++k)
+      if (std::find(s.clamps.begin(), s.clamps.end(), s.nodes[k]) != s.clamps.end())
+        c.clamp.push_back(k), c.clamp_node.push_back(s.nodes[k]);
+    const int nc = (int)c.clamp.size();
+    c.L0_sub.assign(nc + 1, 0.0);
+    for (int k = 0, j = 0; k + 1 < c.count; ++k) {
+      if (j < nc && k == c.clamp[j]) ++j;
+      c.L0_sub[j] += c.L0[k];
+    }
+    c.transfer.assign(nc, 0.0), c.last_delta.assign(nc, 0.0), c.last_status.assign(nc, 0);
+    clamped_ = true;
   }
+  // A slipping clamp's tangent is not symmetric (the capstan ratio couples the two sides unequally).
+  if (clamped_) PetscCall(MatSetOption(P.J, MAT_SYMMETRIC, PETSC_FALSE));
   // A sliding cable couples all its nodes (a dense rank-one block) and a cable may join film
   // nodes no triangle shares: both are nonzeros the film's preallocation lacks.
   PetscCall(MatSetOption(P.J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
@@ -136,13 +187,30 @@ PetscErrorCode CableTerm::SetUp(Problem &P) {
 
 // Every cable at x_: segment states, the internal forces (minus the weight) per entry.
 void CableTerm::Evaluate(const Problem &P) {
+  clamp_failed_ = false;
   std::fill(fint_.begin(), fint_.end(), 0.0);
   std::fill(wload_.begin(), wload_.end(), 0.0);
   for (Cable &c : cables_) {
     const CableSpec &s = *c.spec;
     double *x = &x_[3 * c.first], *f = &fint_[3 * c.first], *w = &wload_[3 * c.first];
     c.chain = CableState();
-    if (!form_finding_ && s.sliding) {
+    if (!form_finding_ && !c.clamp.empty()) {
+      // Sub-chains between clamps, each its own force (kernels/cable_clamp.h).
+      double L0c[kCableMaxClamps + 1];
+      c.CommittedLengths(L0c);
+      CableClamped(c.count, x, (int)c.clamp.size(), c.clamp.data(), L0c, s.EA, s.mu, f, nullptr, &c.clamp_state);
+      const CableClampState &cs = c.clamp_state;
+      clamp_failed_ |= !cs.result.converged;
+      c.chain.slack = true;
+      for (int k = 0, j = 0; k + 1 < c.count; ++k) {
+        if (j < (int)c.clamp.size() && k == c.clamp[j]) ++j;
+        double scratch[6];
+        c.segment[k].length = CableSlidingSegment(&x[3 * k], 0.0, 0.0, scratch, nullptr);
+        c.segment[k].force = cs.force[j], c.segment[k].slack = !(cs.length[j] > cs.L0[j]);
+        c.chain.length += c.segment[k].length;
+        c.chain.force = std::max(c.chain.force, cs.force[j]), c.chain.slack &= c.segment[k].slack;
+      }
+    } else if (!form_finding_ && s.sliding) {
       // One force from the total length (docs/theory.md §14, engineering strain over the whole cable).
       for (int k = 0; k + 1 < c.count; ++k) {
         double scratch[6];
@@ -151,7 +219,7 @@ void CableTerm::Evaluate(const Problem &P) {
       c.chain.slack = !(c.chain.length > c.L0_total);
       c.chain.force = c.chain.slack ? 0.0 : s.EA * (c.chain.length - c.L0_total) / c.L0_total;
     }
-    for (int k = 0; k + 1 < c.count; ++k) {
+    for (int k = 0; k + 1 < c.count && (form_finding_ || c.clamp.empty()); ++k) {
       double fe[6];
       if (form_finding_) {
         c.segment[k] = CableSegmentConstantForce(&x[3 * k], s.prestress, fe, nullptr);
@@ -164,7 +232,7 @@ void CableTerm::Evaluate(const Problem &P) {
       for (int i = 0; i < 6; ++i) f[3 * k + i] += fe[i];
       if (!s.sliding || form_finding_) c.chain.length += c.segment[k].length;
     }
-    if (!s.sliding || form_finding_) {
+    if (!s.sliding || form_finding_) {  // (a clamped cable is sliding)
       c.chain.force = 0.0, c.chain.slack = true;
       for (const CableState &st : c.segment) c.chain.force = std::max(c.chain.force, st.force), c.chain.slack &= st.slack;
     }
@@ -190,8 +258,11 @@ PetscErrorCode CableTerm::Prepare(Problem &P, const PetscScalar *u) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CableTerm::AddLocalForces(Problem &, const PetscScalar *, PetscScalar *f, int *, double *external2) {
+PetscErrorCode CableTerm::AddLocalForces(Problem &, const PetscScalar *, PetscScalar *f, int *status, double *external2) {
   PetscFunctionBeginUser;
+  // A clamp's return map that did not settle: the state is refused like an element's (the line
+  // search steps back, or the increment is cut), never used.
+  if (clamp_failed_) *status = std::max(*status, (int)KERNEL_NO_CONVERGENCE);
   for (size_t k = 0; k < local_.size(); ++k) {
     if (local_[k] < 0) continue;
     for (int i = 0; i < 3; ++i) {
@@ -240,6 +311,18 @@ PetscErrorCode CableTerm::AddTangent(Problem &P, Vec, const PetscScalar *, Mat A
     const CableSpec &s = *c.spec;
     const double *x = &x_[3 * c.first];
     const bool sliding = s.sliding && !form_finding_;
+    if (sliding && !c.clamp.empty()) {
+      // The clamped chain's dense tangent (its sub-chains' couplings through the slipping clamps).
+      const int n = 3 * c.count;
+      std::vector<double> f(n), K((size_t)n * n);
+      double L0c[kCableMaxClamps + 1];
+      c.CommittedLengths(L0c);
+      CableClamped(c.count, x, (int)c.clamp.size(), c.clamp.data(), L0c, s.EA, s.mu, f.data(), K.data(), nullptr);
+      std::vector<int> cols(c.count);
+      for (int j = 0; j < c.count; ++j) cols[j] = c.first + j;
+      for (int r = 0; r < c.count; ++r) PetscCall(AddRows(P, A, c.first + r, cols, K.data(), n, 3 * r));
+      continue;
+    }
     for (int k = 0; k + 1 < c.count; ++k) {
       double fe[6], K[36];
       if (form_finding_) CableSegmentConstantForce(&x[3 * k], s.prestress, fe, K);
@@ -281,6 +364,15 @@ PetscErrorCode CableTerm::Columns(const Problem &, std::vector<TermColumn> *colu
     columns->push_back({"cable_" + c.spec->name + "_force_max", "N", nmax});
     columns->push_back({"cable_" + c.spec->name + "_length", "mm", c.chain.length});
     columns->push_back({"cable_" + c.spec->name + "_slack_segments", "1", (double)slack});
+    for (size_t i = 0; i < c.clamp.size(); ++i) {
+      const std::string pre = "cable_" + c.spec->name + "_clamp" + std::to_string(i);
+      const double hi = std::max(c.clamp_state.force[i], c.clamp_state.force[i + 1]);
+      const double lo = std::min(c.clamp_state.force[i], c.clamp_state.force[i + 1]);
+      columns->push_back({pre + "_ratio", "1", lo > 0 ? hi / lo : 0.0});
+      columns->push_back({pre + "_limit", "1", c.clamp_state.ratio[i]});
+      columns->push_back({pre + "_transfer", "mm", c.transfer[i] + c.clamp_state.delta[i]});
+      columns->push_back({pre + "_slip", "1", (double)c.last_status[i]});
+    }
   }
   PetscFunctionReturn(0);
 }
@@ -326,8 +418,85 @@ PetscErrorCode CableTerm::Report(const Problem &, std::vector<std::string> *line
                     s.nodes[end ? c.count - 1 : 0], -fint_[3 * k], -fint_[3 * k + 1], -fint_[3 * k + 2]);
       lines->push_back(buf);
     }
+    // Clamps: the sub-chains' forces either side, the capstan limit at the current angle, what
+    // the last increment did and the stress-free length passed on in all.
+    const CableClampState &cs = c.clamp_state;
+    for (size_t i = 0; i < c.clamp.size(); ++i) {
+      const double hi = std::max(cs.force[i], cs.force[i + 1]), lo = std::min(cs.force[i], cs.force[i + 1]);
+      std::snprintf(buf, sizeof buf,
+                    "cable %s clamp %d (node %d): forces = %.9e, %.9e N, ratio = %.9e, limit exp(mu theta) = %.9e "
+                    "(theta = %.9e rad), last increment = %s, transferred = %.6e mm",
+                    s.name.c_str(), (int)i, c.clamp_node[i], cs.force[i], cs.force[i + 1], lo > 0 ? hi / lo : 0.0,
+                    cs.ratio[i], cs.theta[i], c.last_status[i] ? "slip" : "stick", c.transfer[i] + cs.delta[i]);
+      lines->push_back(buf);
+    }
+    // Pulleys and saddles: the cable's resultant on the held node (the mast head's load).
+    for (int k : c.pulleys) {
+      const int e = c.first + k;
+      const double R[3] = {-fint_[3 * e], -fint_[3 * e + 1], -fint_[3 * e + 2]};
+      const bool saddle = std::find(c.clamp.begin(), c.clamp.end(), k) != c.clamp.end();
+      std::snprintf(buf, sizeof buf, "cable %s %s (node %d): reaction = (%.6e, %.6e, %.6e) N, |reaction| = %.9e N",
+                    s.name.c_str(), saddle ? "saddle" : "pulley", s.nodes[k], R[0], R[1], R[2],
+                    std::sqrt(R[0] * R[0] + R[1] * R[1] + R[2] * R[2]));
+      lines->push_back(buf);
+    }
   }
   PetscFunctionReturn(0);
+}
+
+// The converged increment's slips become committed transfer (evaluated afresh at the committed
+// displacement: the last evaluation may have been at another state).
+PetscErrorCode CableTerm::Commit(Problem &P, double) {
+  const PetscScalar *ua;
+  PetscFunctionBeginUser;
+  if (!clamped_ || form_finding_) PetscFunctionReturn(0);
+  std::fill(x_.begin(), x_.end(), 0.0);
+  PetscCall(VecGetArrayRead(P.U, &ua));
+  for (size_t k = 0; k < local_.size(); ++k)
+    if (local_[k] >= 0)
+      for (int i = 0; i < 3; ++i) x_[3 * k + i] = P.mesh.X[3 * local_[k] + i] + ua[3 * local_[k] + i];
+  PetscCall(VecRestoreArrayRead(P.U, &ua));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, x_.data(), (int)x_.size(), MPI_DOUBLE, MPI_SUM, P.comm));
+  Evaluate(P);
+  for (Cable &c : cables_)
+    for (size_t i = 0; i < c.clamp.size(); ++i) {
+      c.transfer[i] += c.clamp_state.delta[i];
+      c.last_delta[i] = c.clamp_state.delta[i], c.last_status[i] = c.clamp_state.status[i];
+    }
+  Evaluate(P);  // what the report reads: the state from the new committed transfers
+  PetscFunctionReturn(0);
+}
+
+// Per clamp, cable after cable: the committed transfer, then the last increment's slip and status.
+PetscErrorCode CableTerm::State(const Problem &, std::vector<TermData> *blocks) const {
+  PetscFunctionBeginUser;
+  if (!clamped_) PetscFunctionReturn(0);
+  TermData d;
+  d.name = kCableCheckpoint.name, d.replicated = true;
+  for (const Cable &c : cables_)
+    for (size_t i = 0; i < c.clamp.size(); ++i)
+      d.values.insert(d.values.end(), {c.transfer[i], c.last_delta[i], (double)c.last_status[i]});
+  blocks->push_back(std::move(d));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode CableTerm::Restore(Problem &, const std::vector<TermData> &blocks) {
+  PetscFunctionBeginUser;
+  for (const TermData &d : blocks) {
+    if (d.name != kCableCheckpoint.name) continue;
+    size_t k = 0;
+    for (Cable &c : cables_)
+      for (size_t i = 0; i < c.clamp.size(); ++i, k += 3)
+        c.transfer[i] = d.values[k], c.last_delta[i] = d.values[k + 1], c.last_status[i] = (int)d.values[k + 2];
+  }
+  PetscFunctionReturn(0);
+}
+
+// Clamps change the physics of a restart; a run without them adds nothing (its fingerprint stays).
+void CableTerm::Fingerprint(Fnv64 &h) const {
+  if (!clamped_) return;
+  h.Add(std::string("cable_clamps"));
+  for (const Cable &c : cables_) h.Add(c.spec->mu), h.Add(c.clamp_node);
 }
 
 PetscErrorCode CableTerm::LargestMove(Problem &P, Vec U, PetscReal *move) {
@@ -355,6 +524,8 @@ PetscErrorCode CableTerm::LargestMove(Problem &P, Vec U, PetscReal *move) {
 }
 
 } // namespace
+
+const TermDatasetInfo kCableCheckpoint = {"cable_clamps", Layout::Nodes, true, 1};
 
 PetscErrorCode CableLargestMove(Problem *P, Vec U, PetscReal *move) {
   PetscFunctionBeginUser;

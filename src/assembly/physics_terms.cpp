@@ -46,7 +46,7 @@ TermSolverNeeds ProblemSolverNeeds(const Problem &P) {
 // In the order the terms write them (MakePhysicsTerms).
 const std::vector<TermDatasetInfo> &TermCheckpointDatasets() {
   static const std::vector<TermDatasetInfo> all = {ChamberSet::kCheckpoint, ContactSet::kCheckpoint,
-                                                   LayerContactSet::kCheckpoint};
+                                                   LayerContactSet::kCheckpoint, kCableCheckpoint};
   return all;
 }
 

@@ -5,6 +5,7 @@
 #include <petscsys.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <set>
@@ -21,7 +22,9 @@ namespace {
 PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_finding, CableInput *c, bool *any) {
   const std::string prefix = "cable_" + group + "_";
   PetscBool ea_set = PETSC_FALSE, len_set = PETSC_FALSE, pre_set = PETSC_FALSE, sl_set = PETSC_FALSE, w_set = PETSC_FALSE;
-  PetscBool sliding = PETSC_FALSE;
+  PetscBool sliding = PETSC_FALSE, cl_set = PETSC_FALSE, mu_set = PETSC_FALSE;
+  char *clamps[64];
+  PetscInt nclamps = 64;
   PetscFunctionBeginUser;
   c->group = group;
   PetscOptionsBegin(comm, prefix.c_str(), ("Cable along the 1-D group " + group).c_str(), "Scene");
@@ -41,9 +44,23 @@ PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_find
   PetscCall(OptionsRealArray(PetscOptionsObject, "-weight",
                              "Self-weight [N/m of stress-free length] at the end of each stage, acting along -z", &c->weight.values,
                              &w_set));
+  PetscCall(PetscOptionsStringArray("-clamps",
+                                     "Clamps of a sliding cable: node groups (or node tags of the mesh file) of interior "
+                                     "nodes where the cable passes with capstan friction (-cable_<group>_mu)",
+                                     "", clamps, &nclamps, &cl_set));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-mu",
+                              "Friction coefficient of the cable over its clamps and saddles (the interior nodes held in "
+                              "x, y and z): T_high / T_low <= exp(mu theta)",
+                              "1", &c->mu, &mu_set));
   PetscOptionsEnd();
   c->sliding = sliding;
-  *any = ea_set || len_set || pre_set || sl_set || w_set;
+  c->mu_set = mu_set;
+  if (!cl_set) nclamps = 0;
+  for (PetscInt i = 0; i < nclamps; ++i) {
+    c->clamps.push_back(clamps[i]);
+    PetscCall(PetscFree(clamps[i]));
+  }
+  *any = ea_set || len_set || pre_set || sl_set || w_set || cl_set || mu_set;
   if (!*any) PetscFunctionReturn(0);
   PetscCheck(ea_set, comm, PETSC_ERR_ARG_WRONG,
              "cable %s: give its axial stiffness -%sEA <N> (a cable option was given for the group)", group.c_str(),
@@ -63,6 +80,15 @@ PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_find
              "cable %s: form finding needs the cable's force: -%sprestress <N> (the film's stress and each cable's "
              "force give the shape)",
              group.c_str(), prefix.c_str());
+  PetscCheck(c->sliding || !(cl_set || mu_set), comm, PETSC_ERR_ARG_INCOMP,
+             "cable %s: clamps and friction (-%sclamps, -%smu) act on a sliding cable; add -%ssliding (a fixed "
+             "cable's segments each carry their own force already)",
+             group.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
+  PetscCheck(c->mu >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%smu %s: a friction coefficient is not negative (0: frictionless clamps)", prefix.c_str(),
+             OptionNum(c->mu).c_str());
+  PetscCheck(!cl_set || nclamps > 0, comm, PETSC_ERR_ARG_WRONG,
+             "-%sclamps: give the clamps' node groups (or node tags), comma separated", prefix.c_str());
   for (double w : c->weight.values)
     PetscCheck(w >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sweight %s: a self-weight is not negative (N/m)", prefix.c_str(),
                OptionNum(w).c_str());
@@ -84,7 +110,7 @@ PetscErrorCode CheckUnknownCables(MPI_Comm comm, const std::vector<std::string> 
   for (const std::string &g : groups) list += (list.empty() ? "" : ", ") + g;
   SETERRQ(comm, PETSC_ERR_ARG_WRONG,
           "-%s: no such cable option or 1-D group. -cable_<group>_* takes a 1-D physical group (line elements) of the "
-          "mesh (%s) and EA, length, prestress, weight or sliding",
+          "mesh (%s) and EA, length, prestress, weight, sliding, clamps or mu",
           bad.c_str(), list.empty() ? "the mesh has none" : list.c_str());
 }
 
@@ -139,6 +165,57 @@ std::string Chain(const MeshData &m, const std::string &group, std::vector<int> 
   return "";
 }
 
+// Rank 0: a sliding cable's clamps (chain indices into s->clamps as scene node ids, in chain
+// order): the nodes of -cable_<group>_clamps (node groups, or node tags of the file) and, with
+// -cable_<group>_mu, the interior nodes held in x, y and z (saddles); or a message why not.
+std::string Clamps(const SceneSpec &scene, const CableInput &c, CableSpec *s) {
+  const MeshData &m = scene.mesh;
+  const std::string opt = "-cable_" + c.group + "_clamps";
+  std::map<int, int> index;  // node -> chain index
+  for (size_t k = 0; k < s->nodes.size(); ++k) index[s->nodes[k]] = (int)k;
+  std::set<int> chosen;  // chain indices
+  for (const std::string &name : c.clamps) {
+    std::vector<int> nodes;
+    const auto it = m.node_sets.find(name);
+    if (it != m.node_sets.end()) {
+      nodes = it->second;
+    } else if (!name.empty() && name.find_first_not_of("0123456789") == std::string::npos) {
+      const long long tag = std::atoll(name.c_str());
+      for (size_t n = 0; n < m.node_tags.size(); ++n)
+        if (m.node_tags[n] == tag) nodes.push_back((int)n);
+      if (nodes.empty()) return opt + " " + name + ": the mesh file has no node of tag " + name;
+    } else {
+      std::string list;
+      for (const auto &kv : m.node_sets) list += (list.empty() ? "" : ", ") + kv.first;
+      return opt + " " + name + ": no node group " + name + " in the mesh (" + list +
+             "); give node groups or node tags of the file";
+    }
+    for (int n : nodes) {
+      const auto at = index.find(n);
+      if (at == index.end())
+        return opt + " " + name + ": " + NodeName(m, n) + " is not on cable " + c.group +
+               "; a clamp is an interior node of the cable's chain";
+      if (at->second == 0 || at->second + 1 == (int)s->nodes.size())
+        return opt + " " + name + ": " + NodeName(m, n) + " is an end of cable " + c.group +
+               "; a clamp sits between two of its segments (hold an end with -bc_<group>_fix instead)";
+      chosen.insert(at->second);
+    }
+  }
+  if (c.mu_set) {  // saddles: interior nodes held in all three directions
+    std::map<int, int> held;
+    for (const DofConstraint &d : scene.constraints) held[d.node] |= 1 << d.comp;
+    for (size_t k = 1; k + 1 < s->nodes.size(); ++k) {
+      const auto h = held.find(s->nodes[k]);
+      if (h != held.end() && h->second == 7) chosen.insert((int)k);
+    }
+    if (chosen.empty())
+      return "-cable_" + c.group + "_mu: cable " + c.group + " has no clamp and no saddle (an interior node held in x, "
+             "y and z) for the friction to act at; give -cable_" + c.group + "_clamps <node group>";
+  }
+  for (int k : chosen) s->clamps.push_back(s->nodes[k]);
+  return "";
+}
+
 // Rank 0, form finding: every boundary edge of the film (an edge of one triangle) is a cable
 // segment or has both nodes held; else the message naming the first free one.
 std::string FreeEdge(const SceneSpec &scene) {
@@ -188,7 +265,9 @@ PetscErrorCode StructureAddCables(MPI_Comm comm, const StructureInputs &in, int 
   for (const CableInput &c : in.cables) {
     CableSpec s;
     s.name = c.group, s.EA = c.EA, s.length = c.length, s.prestress = c.prestress, s.sliding = c.sliding;
+    s.mu = c.mu;
     if (SceneHoldsMesh(comm) && err.empty()) err = Chain(scene->mesh, c.group, &s.nodes);
+    if (SceneHoldsMesh(comm) && err.empty() && (!c.clamps.empty() || c.mu_set)) err = Clamps(*scene, c, &s);
     if (c.weight.Given() && !scene->form_finding) {
       std::vector<double> v;
       for (double w : c.weight.values) v.push_back(w * 1e-3);  // N/m -> N/mm
@@ -214,10 +293,12 @@ PetscErrorCode StructureAddCables(MPI_Comm comm, const StructureInputs &in, int 
   if (SceneHoldsMesh(comm) && err.empty() && scene->form_finding) err = FreeEdge(*scene);
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
   for (CableSpec &s : scene->cables) {
-    int n = (int)s.nodes.size();
-    PetscCallMPI(MPI_Bcast(&n, 1, MPI_INT, 0, comm));
-    s.nodes.resize(n);
-    PetscCallMPI(MPI_Bcast(s.nodes.data(), n, MPI_INT, 0, comm));
+    for (std::vector<int> *v : {&s.nodes, &s.clamps}) {
+      int n = (int)v->size();
+      PetscCallMPI(MPI_Bcast(&n, 1, MPI_INT, 0, comm));
+      v->resize(n);
+      PetscCallMPI(MPI_Bcast(v->data(), n, MPI_INT, 0, comm));
+    }
   }
   PetscFunctionReturn(0);
 }

@@ -121,6 +121,9 @@ struct CableInput {
   double EA = 0.0, length = 0.0, prestress = 0.0;
   bool sliding = false;
   StageArray weight;  // N/m per stage
+  std::vector<std::string> clamps;  // -cable_<group>_clamps: node groups or node tags of the file
+  double mu = 0.0;                  // -cable_<group>_mu: capstan friction at the clamps and saddles
+  bool mu_set = false;
 };
 
 struct StructureInputs {

@@ -34,9 +34,11 @@ def _write(path, nodes, tris, lines, points):
         f.write("$EndElements\n")
 
 
-def strip(path, L, W, n, points=None, lines=None):
-    """points / lines: further point groups {name: [node, ...]} and 1-D groups {name: [(a, b), ...]}."""
-    nodes = [(L * i / n, 0.0, 0.0) for i in range(n + 1)] + [(L * i / n, W, 0.0) for i in range(n + 1)]
+def strip(path, L, W, n, points=None, lines=None, z=None):
+    """points / lines: further point groups {name: [node, ...]} and 1-D groups {name: [(a, b), ...]};
+    z: the height of each of the n + 1 columns (both rows; default flat)."""
+    h = z or [0.0] * (n + 1)
+    nodes = [(L * i / n, 0.0, h[i]) for i in range(n + 1)] + [(L * i / n, W, h[i]) for i in range(n + 1)]
     tris = []
     for i in range(n):
         a, b, c, d = i, i + 1, n + 2 + i, n + 1 + i

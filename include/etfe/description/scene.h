@@ -96,6 +96,10 @@ struct CableSpec {
   double length = 0.0;     // stress-free length of the whole cable [mm] (0: from prestress)
   double prestress = 0.0;  // force at the reference geometry [N]; form finding: the prescribed force
   bool sliding = false;    // one force along the whole chain (a frictionless pocket)
+  // Sliding only: interior chain nodes that split it into sub-chains of their own force, the
+  // stress-free length crossing them by capstan friction (mu); in chain order. Empty: none.
+  std::vector<int> clamps;
+  double mu = 0.0;
   bool weighted = false;
   ScheduledValue weight;   // self-weight [N/mm of stress-free length], acting along -z
 };
