@@ -171,7 +171,8 @@ PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, Stru
     PetscFunctionReturn(0);
   }
   PetscCheck(ck.name == "patch", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "-structure_check %s: use hencky, patch, annulus, strip, capstan, catenoid or saddle_stretch", ck.name.c_str());
+             "-structure_check %s: use hencky, patch, annulus, strip, capstan, catenoid or saddle_stretch",
+             ck.name.c_str());
   fn->report = PatchCheck;
   if (ck.given) PetscFunctionReturn(0);
   // The strains from the supports: the right edge drawn in x (uniaxial, the top edge free in y;
