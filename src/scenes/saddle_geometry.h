@@ -3,6 +3,7 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include <petscsys.h>
@@ -43,9 +44,32 @@ PetscErrorCode SaddleShapeNodesFind(Problem *P, const SaddleGeometry &g, SaddleS
 // current displacement (collective). start: also h1, h2 of the initial surface and the change.
 PetscErrorCode SaddleShapeReport(Problem *P, const SaddleGeometry &g, const SaddleShapeNodes &n, bool start);
 
-// Stretch fabrication (-analysis stretch): drawing of the frame at a, b, c, d, symmetry, arch
-// contact, optional pressure cycle, probes and the report. The mesh (PD initial shape or a
-// form-found DD shape) and its node sets are already in scene.
+// The stretch report's probes (structure_check_saddle.cpp), by default the thesis's: parts A
+// (the middle part's centre) and B (the corner part's), plan boxes x0, y0, x1, y1 whose elements'
+// mean strains and Mises are reported; elements I and II (nearest to plan points); the arch
+// slide points I-V (Y on the arch).
+struct SaddlePlanBox {
+  double x0, y0, x1, y1;
+  bool Contains(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
+};
+struct SaddleStretchProbes {
+  SaddleGeometry g;
+  SaddlePlanBox part_a{0, 0, 400, 400}, part_b{1300, 0, 1700, 400};
+  double elem_i_at[2] = {200, 200}, elem_ii_at[2] = {500, 700};  // probe positions (plan)
+  std::vector<double> slide_at = {0, 250, 500, 750, 950};        // Y of the slide points I..V on the arch
+  std::string history;                 // its CSV ("": beside the results)
+  // Found at set-up on the distributed mesh:
+  PetscInt elem_i = -1, elem_ii = -1;  // scene element ids
+  std::vector<PetscInt> slide_nodes;   // arch nodes I..V
+  std::vector<double> slide_y;         // their Y on the initial surface
+  std::vector<char> in_a, in_b;        // per local element
+  SaddleShapeNodes shape;              // heights h1, h2 and the middle cutting line (saddle.cpp)
+};
+
+// Stretch fabrication (-analysis stretch, saddle_stretch.cpp): the -saddle_* options as the general
+// scene's drawing of the frame at a, b, c, d, symmetry, arch contact, optional pressure cycle and
+// -structure_check saddle_stretch. The mesh (PD initial shape or a form-found DD shape) and its
+// node sets are already in scene.
 
 PetscErrorCode SaddleStretchSetup(MPI_Comm comm, const SaddleGeometry &g, SceneSpec *scene, SceneObserver *observer);
 

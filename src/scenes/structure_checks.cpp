@@ -148,8 +148,31 @@ PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, Stru
                "-structure_check saddle: the saddle's shape report is the saddle scene's (-scene saddle)");
     PetscFunctionReturn(0);
   }
+  if (ck.name == "saddle_stretch") {
+    fn->setup = SaddleStretchCheckSetup, fn->step = SaddleStretchCheckStep, fn->report = SaddleStretchCheckReport;
+    fn->replaces_report = true;
+    if (ck.given) PetscFunctionReturn(0);
+    // The thesis's quarter saddle (saddle_geometry.h): its rise is the crown of the arch support,
+    // its middle cutting line the node group sym_x; the probes are the thesis's.
+    const RigidInput *arch = nullptr;
+    for (const RigidInput &r : in->rigids)
+      if (r.name == "arch") arch = &r;
+    const bool sym_x = std::find(in->node_groups.begin(), in->node_groups.end(), "sym_x") != in->node_groups.end();
+    PetscCheck(!scene.form_finding, comm, PETSC_ERR_ARG_WRONG,
+               "-structure_check saddle_stretch reports a drawn film; form finding's shape report is the saddle "
+               "scene's (-scene saddle -analysis formfind)");
+    PetscCheck(arch && arch->type == "arch" && arch->radius > 0 && sym_x, comm, PETSC_ERR_ARG_WRONG,
+               "-structure_check saddle_stretch: the saddle's report needs its arch as the rigid support arch "
+               "(-structure_rigid arch -rigid_arch_type arch -rigid_arch_centre 1000,0,H-R -rigid_arch_radius R: its "
+               "crown is the rise H) and the middle cutting line X = 0 as node group sym_x (%s)",
+               sym_x ? "the arch is missing" : "no node group sym_x in the mesh");
+    ck.rise = arch->centre[2] + arch->radius;
+    ck.saddle = SaddleStretchProbesDefault(ck.rise, in->history);
+    PetscFunctionReturn(0);
+  }
   PetscCheck(ck.name == "patch", comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "-structure_check %s: use hencky, patch, annulus, strip, capstan or catenoid", ck.name.c_str());
+             "-structure_check %s: use hencky, patch, annulus, strip, capstan, catenoid or saddle_stretch",
+             ck.name.c_str());
   fn->report = PatchCheck;
   if (ck.given) PetscFunctionReturn(0);
   // The strains from the supports: the right edge drawn in x (uniaxial, the top edge free in y;

@@ -6,6 +6,7 @@
 #pragma once
 #include <petscsys.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,17 @@ struct BcInput {
   std::string group;
   std::string fix;              // held components, any of "xyz"
   std::vector<double> points;   // 3 per control point (empty: the values hold on every node)
+  // How a node's values come from the control points (-bc_<group>_points_interpolation):
+  // "projection": the nearest point of the polyline in 3D, its fraction along the segment;
+  // "axis": segments parallel to the x or y axis in plan, the fraction of the node's coordinate
+  // along that axis from the segment's lower end, (X - lo) / (hi - lo) (the saddle's frame, whose
+  // drawing is interpolated as Y/W and X/A along each edge, to the bit).
+  std::string interpolation = "projection";
+  // A built-in scene's names of the control points (the saddle's draw_a..draw_d): each point's
+  // schedule takes its name, a point's components with the same values share one schedule and
+  // all-zero values make none (the values are the same to the bit; the stage line and the
+  // checkpoints name the scene's schedules). Empty: <group>.<component>@<point>.
+  std::vector<std::string> point_names;
   StageArray move[3];           // per component: stages, or points x stages (point-major)
   StageArray force;             // total force on the group, 3 per stage [N]
   // In-plane displacement gradient at multiplier 1 (du_x/dX, du_x/dY, du_y/dX, du_y/dY): the
@@ -55,6 +67,7 @@ struct FilmInput {
   std::vector<double> md;     // MD direction x,y,z (empty: -structure_md)
   bool md_strip = false;      // MD along the group's long axis
   StageArray pressure;        // follower pressure along the elements' normal [kPa]
+  std::string pressure_schedule;  // its schedule's name ("": <group>.pressure); a built-in scene's own
   double wind_cp = 0.0;       // pressure coefficient on the face the normal points to
   bool wind_given = false;
   StageArray snow;            // vertical load per plan area [kPa]
@@ -100,6 +113,8 @@ struct MeshGenInput {
   std::vector<double> size = {1000.0, 500.0};  // rectangle lx, ly [mm]
 };
 
+struct SaddleStretchProbes;  // saddle_stretch.cpp
+
 // -structure_check: a closed-form check printed after the report (structure_checks.cpp).
 struct CheckInput {
   std::string name;          // "", hencky, patch, annulus, strip, capstan, catenoid or saddle
@@ -112,6 +127,8 @@ struct CheckInput {
   double theta = 0.0, t1 = 0.0, tB[3] = {0, 0, 0};  // capstan: wrap angle, end A's tension, end B's pull direction
   double ring_radius = 0.0, separation = 0.0;        // catenoid: the rings' radius and distance
   double rise = 0.0;                                  // saddle: the arch's rise H (saddle_geometry.h)
+  // saddle_stretch: the stretch fabrication's probes and history (saddle_stretch.cpp), found at set-up.
+  std::shared_ptr<SaddleStretchProbes> saddle;
   bool given = false;                       // the values above are set
 };
 
@@ -193,6 +210,11 @@ struct StructureCheckFns {
   PetscErrorCode (*step)(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step, double t,
                          PetscInt print_every) = nullptr;
   std::vector<double> state;  // its start (empty: the check keeps none)
+  // Once on the distributed problem, before the first increment (probes to find); may be null.
+  PetscErrorCode (*setup)(Problem *P, const CheckInput &check) = nullptr;
+  // The check's history CSV and report lines stand in for the structure's: a built-in scene whose
+  // lines and columns scripts and tests read (the saddle's stretch fabrication).
+  bool replaces_report = false;
 };
 using StructureCheckFn = StructureCheckFns;
 PetscErrorCode StructureObserverCreate(const StructureInputs &in, StructureCheckFn check, SceneObserver *observer);
@@ -213,6 +235,15 @@ PetscErrorCode PatchCheck(Problem *P, const CheckInput &check, std::vector<doubl
 PetscErrorCode AnnulusCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
 PetscErrorCode CatenoidCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
 PetscErrorCode SaddleCheck(Problem *P, const CheckInput &check, std::vector<double> *state);
+// The saddle's stretch fabrication (saddle_stretch.cpp): parts A and B, elements I and II, the arch
+// slides, the Mises distribution and the heights; one history row per increment.
+PetscErrorCode SaddleStretchCheckSetup(Problem *P, const CheckInput &check);
+PetscErrorCode SaddleStretchCheckStep(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step,
+                                      double t, PetscInt print_every);
+PetscErrorCode SaddleStretchCheckReport(Problem *P, const CheckInput &check, std::vector<double> *state);
+// The thesis's probes (parts A and B, elements I and II, slide points I-V) of a saddle of rise H,
+// for -structure_check saddle_stretch given as an option; history: its CSV ("": beside the results).
+std::shared_ptr<SaddleStretchProbes> SaddleStretchProbesDefault(double rise, const std::string &history);
 PetscErrorCode StripReport(Problem *P, const CheckInput &check, std::vector<double> *state);
 PetscErrorCode StripStep(Problem *P, const CheckInput &check, std::vector<double> *state, PetscInt step, double t,
                          PetscInt print_every);

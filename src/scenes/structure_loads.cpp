@@ -118,7 +118,8 @@ PetscErrorCode AddFilmLoads(MPI_Comm comm, const StructureInputs &in, int stages
       if (f.pressure.coef == 0.0) PetscCall(CheckLoadScale(comm, f.pressure));
       std::vector<double> p;
       for (double x : f.pressure.values) p.push_back(f.pressure.coef != 0.0 ? x : kPaToMPa * x);
-      const int s = StructureAddSchedule(scene, f.group + ".pressure", p, stages, "kPa", 1e3 * coef);
+      const std::string name = f.pressure_schedule.empty() ? f.group + ".pressure" : f.pressure_schedule;
+      const int s = StructureAddSchedule(scene, name, p, stages, "kPa", 1e3 * coef);
       scene->pressures.push_back({els ? *els : std::vector<int>(), {{coef, 0.0}, {s, -1}}});
     }
     // cp > 0 pushes onto the face the normal points to: a pressure against the normal.

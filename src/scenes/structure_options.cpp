@@ -66,6 +66,18 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
                              "after point, each with one value per stage) and interpolated along the polyline "
                              "through them",
                              &bc->points, nullptr));
+  {
+    const char *modes[] = {"projection", "axis"};
+    PetscInt k = 0;
+    PetscCall(PetscOptionsEList("-points_interpolation",
+                                "How a node takes the control points' values: projection (its nearest point on the "
+                                "polyline, in 3D) or axis (segments parallel to the x or y axis in plan; a node on "
+                                "the first segment it lies on, in the points' order, at its coordinate along that "
+                                "axis, (X - lo)/(hi - lo) from the segment's lower end: a frame drawn edge by edge, as "
+                                "the saddle scene draws it)",
+                                "", modes, 2, modes[0], &k, nullptr));
+    bc->interpolation = modes[k];
+  }
   for (int c = 0; c < 3; ++c)
     PetscCall(ReadStageArray(PetscOptionsObject, prefix, comp[c],
                              "Prescribed displacement [mm] at the end of each stage (cumulative)", &bc->move[c]));
@@ -107,6 +119,22 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
                "closed loop repeats only its first point, as its last)",
                prefix.c_str(), k / 3, k / 3 + 1, OptionNum(b[0]).c_str(), OptionNum(b[1]).c_str(),
                OptionNum(b[2]).c_str());
+  }
+  PetscCheck(bc->interpolation == "projection" || !bc->points.empty(), comm, PETSC_ERR_ARG_WRONG,
+             "-%spoints_interpolation %s: give the control points it interpolates between (-%spoints)",
+             prefix.c_str(), bc->interpolation.c_str(), prefix.c_str());
+  // Axis: each segment runs along x or along y in plan (its other plan coordinate the same at
+  // both ends), else the fraction along "its" axis would not say where a node is on it.
+  for (size_t k = 3; bc->interpolation == "axis" && k < bc->points.size(); k += 3) {
+    const double *a = &bc->points[k - 3], *b = &bc->points[k];
+    const double scale = std::max({1.0, std::fabs(a[0]), std::fabs(a[1]), std::fabs(b[0]), std::fabs(b[1])});
+    PetscCheck(std::fabs(b[0] - a[0]) <= 1e-9 * scale || std::fabs(b[1] - a[1]) <= 1e-9 * scale, comm,
+               PETSC_ERR_ARG_WRONG,
+               "-%spoints_interpolation axis: control points %zu (%s, %s) and %zu (%s, %s) make a segment parallel to "
+               "neither the x nor the y axis in plan; use -%spoints_interpolation projection, or add a point at the "
+               "corner",
+               prefix.c_str(), k / 3, OptionNum(a[0]).c_str(), OptionNum(a[1]).c_str(), k / 3 + 1,
+               OptionNum(b[0]).c_str(), OptionNum(b[1]).c_str(), prefix.c_str());
   }
   PetscCheck(bc->gradient.empty() || bc->gradient.size() == 4, comm, PETSC_ERR_ARG_SIZ,
              "-%sgradient: give the four components du_x/dX,du_x/dY,du_y/dX,du_y/dY (%zu values given)",
@@ -380,7 +408,7 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
   PetscCall(OptionsRealArray(PetscOptionsObject, "-structure_initial_bulge_centre",
                              "Plan centre x,y of the paraboloid initial guess [mm]", &in->bulge_centre, nullptr));
   {
-    const char *checks[] = {"none", "hencky", "patch", "annulus", "strip", "capstan", "catenoid"};
+    const char *checks[] = {"none", "hencky", "patch", "annulus", "strip", "capstan", "catenoid", "saddle_stretch"};
     PetscInt k = 0;
     PetscCall(PetscOptionsEList("-structure_check",
                                 "Closed-form check printed after the report: hencky (a clamped disc under pressure: "
@@ -390,8 +418,11 @@ PetscErrorCode ReadSceneWide(MPI_Comm comm, bool form_finding, StructureInputs *
                                 "against the tension-field closed form); strip: a lab strip's relaxation or creep, its "
                                 "strain and stress per increment to <results>_strip.csv; capstan: a strip pulled over "
                                 "a pipe to gross slip (T2 on end B, node group right, and mu_eff = ln(T2/T1)/theta); "
-                                "catenoid: form finding between two rings, the neck radius against c cosh(z/c)",
-                                "", checks, 7, checks[0], &k, nullptr));
+                                "catenoid: form finding between two rings, the neck radius against c cosh(z/c); "
+                                "saddle_stretch: the thesis's drawn saddle (arch support arch, node group sym_x), the "
+                                "saddle scene's report and history CSV instead of the structure's (parts A and B, "
+                                "elements I and II, slides I-V, Mises distribution, heights h1 and h2)",
+                                "", checks, 8, checks[0], &k, nullptr));
     if (k > 0) in->check.name = checks[k];
   }
   PetscCall(ReadStageArray(PetscOptionsObject, "", "structure_wind",

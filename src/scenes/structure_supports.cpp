@@ -34,6 +34,36 @@ double ProjectOnPolyline(const std::vector<double> &pts, const double *x, int *k
   return std::sqrt(best);
 }
 
+// -bc_<group>_points_interpolation axis: segment k runs along plan axis *axis (0 x, 1 y); the
+// node's fraction s = (X - lo) / (hi - lo) along it from its lower end, which is point k + *low
+// (0 or 1). Written as the saddle's frame always interpolated its drawing (Y/W, X/A,
+// (X - A)/(L - A)), so the same nodes get the same bits; not clamped, as there (a node a
+// round-off past an end is extrapolated by that much).
+void AxisFraction(const std::vector<double> &pts, int k, const double *x, int *axis, int *low, double *s) {
+  const double *a = &pts[3 * k], *b = &pts[3 * k + 3];
+  *axis = std::fabs(b[0] - a[0]) >= std::fabs(b[1] - a[1]) ? 0 : 1;
+  *low = a[*axis] <= b[*axis] ? 0 : 1;
+  const double lo = *low == 0 ? a[*axis] : b[*axis], hi = *low == 0 ? b[*axis] : a[*axis];
+  *s = (x[*axis] - lo) / (hi - lo);
+}
+
+// Axis interpolation's segment of a node: the first (in the points' order) whose axis range
+// holds the node's coordinate and whose line it lies on in plan, within 1e-6 of the points'
+// largest plan coordinate (the saddle's frame: the edge X = 2000 first, corner included, then
+// Y = 1000 by X); false when none does (then the nearest, as for projection).
+bool AxisSegment(const std::vector<double> &pts, const double *x, int *k) {
+  double scale = 0.0;
+  for (size_t i = 0; i < pts.size(); i += 3) scale = std::max({scale, std::fabs(pts[i]), std::fabs(pts[i + 1])});
+  const double tol = 1e-6 * scale;
+  for (int i = 0; 3 * (size_t)i + 3 < pts.size(); ++i) {
+    const double *a = &pts[3 * i], *b = &pts[3 * i + 3];
+    const int axis = std::fabs(b[0] - a[0]) >= std::fabs(b[1] - a[1]) ? 0 : 1, across = 1 - axis;
+    const double lo = std::min(a[axis], b[axis]), hi = std::max(a[axis], b[axis]);
+    if (std::fabs(x[across] - a[across]) < tol && x[axis] >= lo && x[axis] <= hi) return *k = i, true;
+  }
+  return false;
+}
+
 double PolylineLength(const std::vector<double> &pts) {
   double len = 0.0;
   for (size_t i = 3; i < pts.size(); i += 3)
@@ -151,6 +181,20 @@ PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, in
         const std::vector<double> v(a.values.begin() + p * per, a.values.begin() + (p + 1) * per);
         std::string name = bc.group + "." + comp_name[c];
         if (npts) name += "@" + std::to_string(p + 1);
+        if (!bc.point_names.empty() && npts && !scene->form_finding) {
+          // A named point: no schedule for zeros (coefficient on none: the same 0), one schedule
+          // for the components that move it alike (the saddle's corner b, drawn in x and y).
+          int id = -1;
+          bool zero = true;
+          for (double x : v) zero &= x == 0.0;
+          for (int e = 0; e < c && !zero && id < 0; ++e)
+            if (ids[e].size() > p && ids[e][p] >= 0 && StagesOf(bc.move[e], npts) == per &&
+                std::equal(v.begin(), v.end(), bc.move[e].values.begin() + p * per))
+              id = ids[e][p];
+          if (!zero && id < 0) id = StructureAddSchedule(scene, bc.point_names[p], v, stages, "mm", 1.0);
+          ids[c].push_back(id);
+          continue;
+        }
         ids[c].push_back(StructureAddSchedule(scene, name, scene->form_finding ? std::vector<double>() : v, stages,
                                               "mm", a.coef != 0.0 ? a.coef : 1.0));
       }
@@ -226,6 +270,12 @@ PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, in
           double s = 0.0;
           ProjectOnPolyline(bc.points, &scene->mesh.coords[3 * n], &k, &s);
           v = {{1.0 - s, s}, {ids[c][k], ids[c][k + 1]}};
+          if (bc.interpolation == "axis") {
+            int axis, low;
+            AxisSegment(bc.points, &scene->mesh.coords[3 * n], &k);
+            AxisFraction(bc.points, k, &scene->mesh.coords[3 * n], &axis, &low, &s);
+            v = {{1.0 - s, s}, {ids[c][k + low], ids[c][k + 1 - low]}};
+          }
         }
         AddConstraint(scene, &held, n, c, v, bc.group, stages, &err);
       }
