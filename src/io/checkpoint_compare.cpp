@@ -123,6 +123,18 @@ std::string Shown(const std::map<std::string, std::string> &m, const std::string
   return it->second.empty() ? "(set, no value)" : it->second;
 }
 
+// The rigid supports, the form-finding stress ratios and the initial guess: the tail of both the
+// scene's physics state and each stage end's load-path state (in this order in both).
+void AddSupportsAndStart(const SceneSpec &s, Fnv64 *hash) {
+  Fnv64 &h = *hash;
+  h.Add(s.contact.active), h.Add(s.contact.node_set), h.Add(s.contact.search_tol);
+  h.Add(s.contact.supports.size());
+  for (const SupportSpec &sp : s.contact.supports)
+    h.Add(sp.name), h.Add(sp.type), h.Add(sp.centre), h.Add(sp.axis), h.Add(sp.radius);
+  h.Add(s.element_stress_ratio);
+  h.Add(s.initial_guess);
+}
+
 } // namespace
 
 bool CheckpointOptionMayChange(const std::string &option, bool branch) {
@@ -164,12 +176,7 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   if (!s.chambers.empty()) h.Add(s.atmosphere);
   h.Add(s.nodal_forces.size());
   for (const NodalForce &f : s.nodal_forces) h.Add(f.node), h.Add(f.comp), value(f.value);
-  h.Add(s.contact.active), h.Add(s.contact.node_set), h.Add(s.contact.search_tol);
-  h.Add(s.contact.supports.size());
-  for (const SupportSpec &sp : s.contact.supports)
-    h.Add(sp.name), h.Add(sp.type), h.Add(sp.centre), h.Add(sp.axis), h.Add(sp.radius);
-  h.Add(s.element_stress_ratio);
-  h.Add(s.initial_guess);
+  AddSupportsAndStart(s, &h);
   return h.Value();
 }
 
@@ -208,12 +215,7 @@ std::vector<std::uint64_t> LoadPathStates(const SceneSpec &s, double thickness, 
     if (!s.chambers.empty()) h.Add(s.atmosphere);
     for (const NodalForce &f : s.nodal_forces)
       if (values(f.value, &x)) h.Add(f.node), h.Add(f.comp), h.Add(x);
-    h.Add(s.contact.active), h.Add(s.contact.node_set), h.Add(s.contact.search_tol);
-    h.Add(s.contact.supports.size());
-    for (const SupportSpec &sp : s.contact.supports)
-      h.Add(sp.name), h.Add(sp.type), h.Add(sp.centre), h.Add(sp.axis), h.Add(sp.radius);
-    h.Add(s.element_stress_ratio);
-    h.Add(s.initial_guess);
+    AddSupportsAndStart(s, &h);
     if (clock.Active()) {  // the physical time of stages 1..end (time-dependent materials)
       h.Add(clock.hold_first);
       for (int k = 0; k < end && k < (int)clock.duration.size(); ++k) h.Add(clock.duration[k]), h.Add(clock.hold[k]);
