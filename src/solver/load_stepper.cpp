@@ -183,8 +183,23 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
   }
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPSetOperators(ksp, P->J, P->J));
-  PetscCall(KSPSolve(ksp, R1, d));
-  PetscCall(KSPGetConvergedReason(ksp, &kr));
+  // A singular tangent (a flat film without prestress) fails the factorization: no solve with
+  // it (MUMPS would stop the run in its solve phase), and the factorization starts again from a
+  // new analysis in Newton's first solve (see NewtonSolve); the plain predictor is kept.
+  PC pc;
+  PCFailedReason failed;
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCGetFailedReason(pc, &failed));
+  if (failed == PC_NOERROR) {
+    PetscCall(KSPSolve(ksp, R1, d));
+    PetscCall(KSPGetConvergedReason(ksp, &kr));
+  } else {
+    PetscBool factor;
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factor, PCLU, PCCHOLESKY, ""));
+    if (factor) PetscCall(PCReset(pc));
+    kr = KSP_DIVERGED_PC_FAILED;
+  }
   PetscCall(VecCopy(Un, U));
   if (kr > 0) PetscCall(VecAXPY(U, -1.0, d));  // a failed solve leaves the plain predictor
   PetscCall(VecDestroy(&R0));
