@@ -128,6 +128,11 @@ struct SceneSpec {
   // thickness [mm] (empty: -membrane_thickness everywhere) and MD direction (3 per element;
   // empty: md_axis everywhere).
   std::vector<double> element_thickness, element_md;
+  // Surface groups with a law of their own (-film_<group>_material_*): the options prefix of each
+  // ("film_<group>_", every rank), and per element which law it takes, 0 the film's (-material_*)
+  // and k the prefix k-1's (rank 0; empty, as material_prefixes: one law for the whole film).
+  std::vector<std::string> material_prefixes;
+  std::vector<int> element_material;
   // Stress-free shape of each element where it differs from the nodes' positions (a cutting
   // pattern laid onto the surface: -saddle_reference pattern): 9 coordinates per element in
   // scene order, any placement; empty: every element is stress free where its nodes are.
