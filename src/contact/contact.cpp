@@ -179,6 +179,46 @@ static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<Petsc
   PetscFunctionReturn(0);
 }
 
+// -contact_<support>_mu: a support's own friction coefficient, over -contact_mu (collective). A
+// -contact_<name>_mu whose name is no support is refused, naming the supports.
+static PetscErrorCode ReadSupportFriction(MPI_Comm comm, const ContactOptions &o,
+                                          const std::vector<SupportSpec> &supports, ContactSet *c) {
+  std::vector<double> mu(supports.size(), c->params.mu);
+  bool any = false;
+  std::string names;
+  PetscFunctionBeginUser;
+  for (size_t s = 0; s < supports.size(); ++s) {
+    const std::string prefix = "contact_" + supports[s].name + "_";
+    PetscBool set = PETSC_FALSE;
+    names += (names.empty() ? "" : ", ") + supports[s].name;
+    PetscOptionsBegin(comm, prefix.c_str(), ("Friction on rigid support " + supports[s].name).c_str(), "Contact");
+    PetscCall(PetscOptionsReal("-mu", "Coulomb friction coefficient of this support's pairs (default -contact_mu)", "",
+                               mu[s], &mu[s], &set));
+    PetscOptionsEnd();
+    PetscCheck(mu[s] >= 0 && std::isfinite(mu[s]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%smu %g: the friction coefficient must be >= 0", prefix.c_str(), mu[s]);
+    any |= set;
+  }
+  // Left over: -contact_<x>_mu of a name that is no support (a typo, or a support not listed).
+  PetscInt n;
+  char **left, **values;
+  std::string bad;
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &left, &values));
+  for (PetscInt i = 0; i < n && bad.empty(); ++i) {
+    const size_t len = std::strlen(left[i]);
+    if (std::strncmp(left[i], "contact_", 8) == 0 && len > 11 && std::strcmp(left[i] + len - 3, "_mu") == 0) bad = left[i];
+  }
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &left, &values));
+  PetscCheck(bad.empty(), comm, PETSC_ERR_ARG_WRONG,
+             "-%s: no such rigid support; -contact_<support>_mu takes a support of this scene (%s)", bad.c_str(),
+             names.c_str());
+  // "none" throughout is frictionless on every support (as -contact_mu is then).
+  const bool none = o.law == FrictionLaw::None &&
+                    std::all_of(o.stage_laws.begin(), o.stage_laws.end(), [](FrictionLaw l) { return l == FrictionLaw::None; });
+  if (any) c->support_mu = none ? std::vector<double>(supports.size(), 0.0) : mu;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
   const ContactSpec &spec = P->scene.contact;
   ContactOptions o;
@@ -196,8 +236,9 @@ static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
     c->stage_laws = o.stage_laws;
   // AddContactTerm marks the tangent non-symmetric from the first stage's law; a later stage
   // with friction needs it too (slip tangent, eq. 4.31).
+  PetscCall(ReadSupportFriction(P->comm, o, spec.supports, c));
   for (FrictionLaw l : c->stage_laws)
-    if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->params.mu > 0)
+    if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->MaxMu() > 0)
       PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));
   c->frictionless_until = o.frictionless_until;
   c->lagged_repeat = o.lagged_repeat;
@@ -211,9 +252,13 @@ static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
   const LocalMesh &m = P->mesh;
   std::vector<char> candidate(m.NumLocal(), 1), pair_local(m.NumLocal(), 0);
   if (!spec.node_set.empty()) PetscCall(ProblemNodeSetFlags(P, spec.node_set.c_str(), &candidate));
+  std::vector<std::vector<char>> own(spec.supports.size());  // a support's own candidates (empty: all)
+  for (size_t s = 0; s < spec.supports.size(); ++s)
+    if (!spec.supports[s].node_set.empty()) PetscCall(ProblemNodeSetFlags(P, spec.supports[s].node_set.c_str(), &own[s]));
   for (PetscInt l = 0; l < m.NumLocal(); ++l) {
     if (!candidate[l]) continue;
     for (size_t s = 0; s < spec.supports.size(); ++s) {
+      if (!own[s].empty() && !own[s][l]) continue;
       ContactPair pr{};
       const double *X = &m.X[3 * l];
       const double d = SupportProject(spec.supports[s], X, pr.M, pr.R);
@@ -269,7 +314,7 @@ PetscErrorCode AddContactTerm(Problem *P) {
   if (!P->scene.contact.active) PetscFunctionReturn(0);
   auto c = std::make_unique<ContactSet>();
   PetscCall(ContactCreate(P, c.get()));
-  if (c->law != FrictionLaw::Fixed && c->params.mu > 0)
+  if (c->law != FrictionLaw::Fixed && c->MaxMu() > 0)
     PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));  // slip tangent, eq. 4.31
   P->terms.push_back(std::move(c));
   PetscFunctionReturn(0);
@@ -277,10 +322,12 @@ PetscErrorCode AddContactTerm(Problem *P) {
 
 namespace {
 
-// A pair's penalties: the set's, scaled by the pair's share of the contact line.
+// A pair's parameters: the set's penalties scaled by the pair's share of the contact line, and
+// its support's friction coefficient.
 ContactParameters PairParameters(const ContactSet &c, const ContactPair &pr) {
   ContactParameters p = c.params;
   p.kn *= pr.k_scale, p.kt *= pr.k_scale;
+  if (!c.support_mu.empty()) p.mu = c.support_mu[pr.support];
   return p;
 }
 

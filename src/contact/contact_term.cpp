@@ -125,6 +125,8 @@ void ContactSet::Fingerprint(Fnv64 &h) const {
     for (FrictionLaw l : stage_laws)
       h.Add((int)l);
   }
+  // A coefficient per support; none adds nothing, so the fingerprint of such runs is unchanged.
+  if (!support_mu.empty()) h.Add(std::string("support_mu")), h.Add(support_mu);
   // Penalties per unit length; off adds nothing, so the fingerprint of such runs is unchanged.
   if (penalty_length > 0) h.Add(std::string("penalty_length")), h.Add(penalty_length);
 }
@@ -147,6 +149,14 @@ TermSolverNeeds ContactSet::SolverNeeds() const {
 PetscErrorCode ContactSet::SetupLines(const Problem &, std::vector<std::string> *lines) const {
   char buf[256];
   PetscFunctionBeginUser;
+  if (!support_mu.empty()) {
+    std::string line = "contact: friction coefficient per support (-contact_<support>_mu):";
+    for (size_t s = 0; s < supports.size(); ++s) {
+      PetscCall(PetscSNPrintf(buf, sizeof buf, "%s %s %g", s ? "," : "", supports[s].name.c_str(), support_mu[s]));
+      line += buf;
+    }
+    lines->push_back(line);
+  }
   if (penalty_length <= 0) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(buf, sizeof buf,
                           "contact: %" PetscInt_FMT

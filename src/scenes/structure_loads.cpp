@@ -509,6 +509,9 @@ PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, Scene
     SupportSpec s;
     s.name = r.name;
     s.type = r.type;
+    // Its own candidates where it names node groups (with two supports in reach of a node, the
+    // node pairs with the one whose groups hold it).
+    if (!r.nodes.empty() && in.rigids.size() > 1) s.node_set = "structure_contact_" + r.name;
     if (r.type == "curve") {
       PetscCall(FitRigidCurve(comm, m, r, &s));
     } else {
@@ -526,11 +529,18 @@ PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, Scene
     std::vector<int> held(m.NumNodes(), 0);
     for (const DofConstraint &c : scene->constraints) held[c.node]++;
     std::vector<char> cand(m.NumNodes(), 0);
-    for (const RigidInput &r : in.rigids) {
+    for (size_t k = 0; k < in.rigids.size(); ++k) {
+      const RigidInput &r = in.rigids[k];
       std::vector<char> mine(m.NumNodes(), r.nodes.empty() ? 1 : 0);
       for (const std::string &g : r.nodes)
         for (int n : m.node_sets.at(g)) mine[n] = 1;
-      for (int n = 0; n < m.NumNodes(); ++n) cand[n] |= mine[n] && (r.fixed_nodes || held[n] < 3);
+      for (int n = 0; n < m.NumNodes(); ++n) mine[n] = mine[n] && (r.fixed_nodes || held[n] < 3), cand[n] |= mine[n];
+      const std::string &own = scene->contact.supports[scene->contact.supports.size() - in.rigids.size() + k].node_set;
+      if (!own.empty()) {
+        std::vector<int> &set = m.node_sets[own];
+        for (int n = 0; n < m.NumNodes(); ++n)
+          if (mine[n]) set.push_back(n);
+      }
     }
     std::vector<int> &set = m.node_sets["structure_contact"];
     for (int n = 0; n < m.NumNodes(); ++n)

@@ -3,6 +3,7 @@
 // Each pair lives on the rank that owns its film node; its frame is fixed at t0 (the thesis's
 // Assumption 1, -contact_normal frozen).
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include <petscsys.h>
@@ -60,6 +61,15 @@ struct ContactPairReport {
 
 struct ContactSet : PhysicsTerm {
   ContactParameters params{};
+  // -contact_<support>_mu: the friction coefficient of each support's pairs, in the order of
+  // `supports` (empty: params.mu on every support, the single-coefficient run unchanged).
+  std::vector<double> support_mu;
+  // The largest coefficient of any support (whether the slip tangent makes J non-symmetric).
+  double MaxMu() const {
+    double mu = params.mu;
+    for (double m : support_mu) mu = std::max(mu, m);
+    return mu;
+  }
   FrictionLaw law = FrictionLaw::Implicit;  // the law of the first stage
   // -contact_friction a,b,c: the law of each stage (the last one holds for the stages after it);
   // empty when one law serves the whole run. A stage with "none" is frictionless (mu = 0).

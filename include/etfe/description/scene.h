@@ -76,6 +76,9 @@ struct SupportSpec {
   double centre[3] = {0, 0, 0};
   double axis[3] = {0, 1, 0};
   double radius = 1.0;
+  // The node set of the nodes that may touch this support (empty: ContactSpec::node_set's): a
+  // node within reach of two supports pairs with one that lists it.
+  std::string node_set;
 };
 
 // Contact candidates: the scene names the supports and the film nodes that may touch them
