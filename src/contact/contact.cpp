@@ -206,15 +206,16 @@ static PetscErrorCode ReadSupportFriction(MPI_Comm comm, const ContactOptions &o
   PetscCall(PetscOptionsLeftGet(nullptr, &n, &left, &values));
   for (PetscInt i = 0; i < n && bad.empty(); ++i) {
     const size_t len = std::strlen(left[i]);
-    if (std::strncmp(left[i], "contact_", 8) == 0 && len > 11 && std::strcmp(left[i] + len - 3, "_mu") == 0) bad = left[i];
+    if (std::strncmp(left[i], "contact_", 8) == 0 && len > 11 && std::strcmp(left[i] + len - 3, "_mu") == 0)
+      bad = left[i];
   }
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &left, &values));
   PetscCheck(bad.empty(), comm, PETSC_ERR_ARG_WRONG,
              "-%s: no such rigid support; -contact_<support>_mu takes a support of this scene (%s)", bad.c_str(),
              names.c_str());
   // "none" throughout is frictionless on every support (as -contact_mu is then).
-  const bool none = o.law == FrictionLaw::None &&
-                    std::all_of(o.stage_laws.begin(), o.stage_laws.end(), [](FrictionLaw l) { return l == FrictionLaw::None; });
+  const bool none = o.law == FrictionLaw::None && std::all_of(o.stage_laws.begin(), o.stage_laws.end(),
+                                                              [](FrictionLaw l) { return l == FrictionLaw::None; });
   if (any) c->support_mu = none ? std::vector<double>(supports.size(), 0.0) : mu;
   PetscFunctionReturn(0);
 }
@@ -254,7 +255,8 @@ static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
   if (!spec.node_set.empty()) PetscCall(ProblemNodeSetFlags(P, spec.node_set.c_str(), &candidate));
   std::vector<std::vector<char>> own(spec.supports.size());  // a support's own candidates (empty: all)
   for (size_t s = 0; s < spec.supports.size(); ++s)
-    if (!spec.supports[s].node_set.empty()) PetscCall(ProblemNodeSetFlags(P, spec.supports[s].node_set.c_str(), &own[s]));
+    if (!spec.supports[s].node_set.empty())
+      PetscCall(ProblemNodeSetFlags(P, spec.supports[s].node_set.c_str(), &own[s]));
   for (PetscInt l = 0; l < m.NumLocal(); ++l) {
     if (!candidate[l]) continue;
     for (size_t s = 0; s < spec.supports.size(); ++s) {

@@ -76,7 +76,8 @@ PlausibilityCheck CheckYoung(double E, const char *prefix) {
   const std::string intent = Intent(E, kYoungMin, kYoungMax, {{1e-6, "Pa"}, {1e-3, "kPa"}, {1e3, "GPa"}});
   const bool error = E > kYoungErrorMax;
   return Verdict(error ? Plausibility::Error : Plausibility::Warning,
-                 "-" + std::string(prefix) + "material_young " + Num(E) + ": Young's modulus is in MPa and foils have " + Num(kYoungMin) + "-" +
+                 "-" + std::string(prefix) + "material_young " + Num(E) +
+                     ": Young's modulus is in MPa and foils have " + Num(kYoungMin) + "-" +
                      Num(kYoungMax) + " MPa (ETFE about 800)" +
                      (error ? "; above " + Num(kYoungErrorMax) + " MPa no solid is." : ".") + intent);
 }

@@ -12,9 +12,12 @@ the reaction at x = L against these closed forms (solved to round-off here), wit
 law equal to the film's changes no history value. Each option falls back to the film's: only the
 right half's Young's modulus given, its Poisson's ratio is the film's.
 A plastic half beside an elastic one, pulled past yield in two stages: only the plastic half yields,
-and a restart from the end of the first stage equals the uninterrupted run bit for bit.
-Refused by name: a group the mesh does not have, a negative modulus, an unknown law, two groups
-giving one element a law each, and a group's law in form finding.
+and a restart from the end of the first stage equals the uninterrupted run bit for bit. The
+viscoelastic-plastic law (relaxing in a 1 h hold) given to the group "all" equals it given to the
+film in every history value; on the left half only, a restart in the hold is bit for bit.
+Refused by name: a group the mesh does not have, a negative modulus, an unknown law, mismatched
+hardening arrays, two groups giving one element a law each, a closed-form check (-structure_check)
+and a group's law in form finding.
 """
 import os
 import re
@@ -113,6 +116,36 @@ with scratch_dir() as tmp:
     chk.check(hp == hm, "plastic | elastic halves: the restarted history CSV equals the uninterrupted one (%d rows "
                         "against %d)" % (len(hp), len(hm)))
 
+    # A law with time: the viscoelastic-plastic law given to the surface group "all" (the whole film)
+    # equals the same law given to the film, every increment's time step reaching the group's law;
+    # with it on the left half only, a restart in the hold equals the uninterrupted run bit for bit.
+    visco = ["-material_type", "viscoelastic_plastic", "-material_prony_tau", "10,1000",
+             "-material_prony_g", "0.3,0.2"]
+    timed = ["-load_stage_duration", 10, "-load_hold_after", 1, "-load_hold_duration", 3600,
+             "-load_increments", 8]
+    _, hf = stretch(series, tmp, "visco_film", visco + timed)
+    _, hg = stretch(series, tmp, "visco_group", [a.replace("-material_", "-film_all_material_", 1) if
+                                                 str(a).startswith("-material_") else a for a in visco] + timed)
+    chk.check(hf and hg == hf and float(hf[-1]["x1_RX"]) < float(hf[len(hf) // 2 - 1]["x1_RX"]),
+              "viscoelastic-plastic law of the group all = the film's law, every history value (%d rows; the "
+              "pull relaxes from %s to %s N in the hold)" % (len(hf), hf[len(hf) // 2 - 1]["x1_RX"] if hf else "?",
+                                                          hf[-1]["x1_RX"] if hf else "?"))
+    left_visco = [a.replace("-material_", "-film_left_material_", 1) if str(a).startswith("-material_") else a
+                  for a in visco]
+    _, hv = stretch(series, tmp, "visco_left", left_visco + timed)
+    ckv, partv = os.path.join(tmp, "visco_ck.h5"), os.path.join(tmp, "visco_part.h5")
+    commonv = ["-scene", "structure", "-mesh_file", series, "-membrane_thickness", H, "-material_young", E1,
+               "-material_poisson", NU1, "-bc_x0_fix", "x", "-bc_all_fix", "yz", "-bc_x1_ux", D, "-load_monitor", 0,
+               "-output_file", partv, "-structure_history", os.path.join(tmp, "visco_part.csv")] + left_visco + timed
+    run(etfe, commonv + ["-load_stop_after", 6, "-checkpoint_file", ckv])
+    run(etfe, commonv + ["-restart", ckv])
+    fails = h5compare.compare(os.path.join(tmp, "visco_left.h5"), partv, step="all", default_rtol=0.0,
+                              default_atol=0.0)
+    hpv = read_history(os.path.join(tmp, "visco_part.csv"))
+    chk.check(hv and not fails and hpv == hv, "viscoelastic left | elastic right halves: stopped in the hold and "
+                                              "restarted, results and history equal the uninterrupted run bit for bit%s"
+              % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
+
     # Refusals by name, before the run.
     refusals = [
         (["-film_roof_material_young", 900], r"-film_roof_material_young: no such group.*left, right"),
@@ -122,6 +155,8 @@ with scratch_dir() as tmp:
          r"-film_right_material_yield has 3 values but -film_right_material_hardening has 2"),
         (["-film_all_material_young", 900, "-film_right_material_young", 1600],
          r"surface groups all and right, which both give it a law of their own"),
+        (["-structure_check", "patch", "-film_right_material_young", 1600],
+         r"-structure_check patch compares against a closed form for a film of one law; drop -film_right_material_\*"),
     ]
     for args, pattern in refusals:
         out, _ = stretch(series, tmp, "refused", args, expect_fail=True)
