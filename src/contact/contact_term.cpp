@@ -127,6 +127,13 @@ void ContactSet::Fingerprint(Fnv64 &h) const {
   }
   // A coefficient per support; none adds nothing, so the fingerprint of such runs is unchanged.
   if (!support_mu.empty()) h.Add(std::string("support_mu")), h.Add(support_mu);
+  if (!support_laws.empty()) {
+    h.Add(std::string("support_laws"));
+    for (const std::vector<FrictionLaw> &laws : support_laws) {
+      h.Add(laws.size());
+      for (FrictionLaw l : laws) h.Add((int)l);
+    }
+  }
   // Penalties per unit length; off adds nothing, so the fingerprint of such runs is unchanged.
   if (penalty_length > 0) h.Add(std::string("penalty_length")), h.Add(penalty_length);
 }
@@ -151,9 +158,17 @@ PetscErrorCode ContactSet::SetupLines(const Problem &, std::vector<std::string> 
   PetscFunctionBeginUser;
   if (!support_mu.empty()) {
     std::string line = "contact: friction coefficient per support (-contact_<support>_mu):";
+    static const char *const names[] = {"lagged", "implicit", "none", "fixed"};
     for (size_t s = 0; s < supports.size(); ++s) {
       PetscCall(PetscSNPrintf(buf, sizeof buf, "%s %s %g", s ? "," : "", supports[s].name.c_str(), support_mu[s]));
       line += buf;
+      // Its own law (-contact_<support>_friction), per stage.
+      if (!support_laws.empty() && !support_laws[s].empty()) {
+        line += " (";
+        for (size_t k = 0; k < support_laws[s].size(); ++k)
+          line += std::string(k ? "," : "") + names[(int)support_laws[s][k]];
+        line += ")";
+      }
     }
     lines->push_back(line);
   }

@@ -6,7 +6,10 @@ tb, both the plane z = 0: each takes the nodes of its -rigid_<name>_nodes group)
 test_structure_scenes.py: each pull equals its own table's mu times the normal force on its pairs
 (the pressure on the sheet less what the held edge takes itself, its reaction Z), within 1e-3, with
 ta at -contact_mu 0.3 and tb at -contact_tb_mu 0.6. Refused by name: a coefficient of a support
-the scene does not have, and a negative one.
+the scene does not have, and a negative one. A law per support (-contact_<support>_friction): tb
+frictionless (none) beside ta at 0.3 slides at no force; with the set's law none and tb's own
+implicit, tb slides at -contact_mu 0.3 times its normal force and ta at none. Refused: a law of a
+support the scene does not have, and an unknown law.
 """
 import os
 import re
@@ -42,7 +45,25 @@ with scratch_dir() as tmp:
         chk.less(abs(pull - expect) / expect, 1e-3, "sheet %s on t%s slides at T = %.4f N, mu (q A - R_z) = %.4f N "
                                                     "(mu %.1f), relative difference" % (s, s, pull, expect, mu))
 
+    # A law per support (-contact_<support>_friction): tb frictionless beside ta's friction, and the
+    # reverse, with the set's law none and tb's own implicit (tb then at -contact_mu as given).
+    def pulls(args, name):
+        path = os.path.join(tmp, name + ".csv")
+        run(etfe, base + args + ["-structure_history", path])
+        last = read_history(path)[-1]
+        return [(float(last["%s_right_RX" % s]), Q * 1e-3 * L * W - float(last["%s_right_RZ" % s])) for s in "ab"]
+    (ta, na), (tb, nb) = pulls(["-contact_tb_friction", "none"], "tb_none")
+    chk.check(abs(ta - 0.3 * na) < 1e-3 * 0.3 * na and abs(tb) < 1e-6 * ta,
+              "-contact_tb_friction none: sheet a slides at %.4f N = 0.3 x %.4f N, sheet b on its frictionless table "
+              "at %.2e N" % (ta, na, tb))
+    (ta, na), (tb, nb) = pulls(["-contact_friction", "none", "-contact_tb_friction", "implicit"], "ta_none")
+    chk.check(abs(tb - 0.3 * nb) < 1e-3 * 0.3 * nb and abs(ta) < 1e-6 * tb,
+              "-contact_friction none -contact_tb_friction implicit: sheet b slides at %.4f N = -contact_mu 0.3 x "
+              "%.4f N, sheet a at %.2e N" % (tb, nb, ta))
+
     refusals = [
+        (["-contact_tc_friction", "none"], r"-contact_tc_friction: no such rigid support.*\(ta, tb\)"),
+        (["-contact_tb_friction", "rubber"], r"-contact_tb_friction: \"rubber\" \(entry 1\) is not a friction law"),
         (["-contact_tc_mu", 0.5], r"-contact_tc_mu: no such rigid support.*\(ta, tb\)"),
         (["-contact_tb_mu", -0.1], r"-contact_tb_mu -0\.1: the friction coefficient must be >= 0"),
     ]

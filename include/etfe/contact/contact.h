@@ -64,6 +64,9 @@ struct ContactSet : PhysicsTerm {
   // -contact_<support>_mu: the friction coefficient of each support's pairs, in the order of
   // `supports` (empty: params.mu on every support, the single-coefficient run unchanged).
   std::vector<double> support_mu;
+  // -contact_<support>_friction: a support's own law per stage (one entry: every stage), in the
+  // order of `supports`; an empty entry, or none at all: the set's law (`law`, `stage_laws`).
+  std::vector<std::vector<FrictionLaw>> support_laws;
   // The largest coefficient of any support (whether the slip tangent makes J non-symmetric).
   double MaxMu() const {
     double mu = params.mu;
@@ -159,8 +162,10 @@ PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[4]);
 PetscErrorCode ContactLaggedBeginStep(Problem *problem);
 PetscErrorCode ContactLaggedRevise(Problem *problem, PetscInt *changed);
 PetscErrorCode ContactLaggedUndoRevise(Problem *problem);
-// The law in force at load time t (stage s covers t in (s, s+1]).
+// The law in force at load time t (stage s covers t in (s, s+1]): the set's, or on a support with
+// a law of its own (-contact_<support>_friction) that one.
 FrictionLaw ContactLawAt(const ContactSet &c, double time);
+FrictionLaw ContactLawAt(const ContactSet &c, int support, double time);
 ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);
 // Appends one line per probe pair to <stem>_contact_node<id>.csv, stem = the results file without
 // its extension (written by the owning rank): step, time, status, slide x0/y0 (local), slide X/Y
