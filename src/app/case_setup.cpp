@@ -48,6 +48,22 @@ PetscErrorCode CreateCase(MPI_Comm comm, bool formfind, SceneSpec &&scene,
              "-membrane_wrinkling tension_field with -material_type viscoelastic_plastic: the wrinkled return map "
              "has no relaxation; use -material_type plastic or drop the wrinkling model");
   if (P->wrinkling) material = MaterialWrapTensionField(std::move(material));
+  // The surface groups' own laws (-film_<group>_material_*), each over the film's options.
+  PetscCheck(!formfind || scene.material_prefixes.empty(), comm, PETSC_ERR_ARG_INCOMP,
+             "-%smaterial_*: form finding prescribes the stress and uses no material law; drop the surface group's "
+             "material options for -analysis formfind",
+             scene.material_prefixes.empty() ? "" : scene.material_prefixes[0].c_str());
+  for (const std::string &prefix : scene.material_prefixes) {
+    std::unique_ptr<Material> law;
+    PetscCall(MaterialCreateFromOptions(comm, &law, prefix.c_str()));
+    PetscCall(MaterialCheckPlausible(comm, *law, prefix.c_str()));
+    PetscCheck(!(P->wrinkling && std::strcmp(law->Name(), "viscoelastic_plastic") == 0), comm, PETSC_ERR_ARG_INCOMP,
+               "-membrane_wrinkling tension_field with -%smaterial_type viscoelastic_plastic: the wrinkled return "
+               "map has no relaxation; use the plastic law there or drop the wrinkling model",
+               prefix.c_str());
+    if (P->wrinkling) law = MaterialWrapTensionField(std::move(law));
+    P->part_materials.push_back(std::move(law));
+  }
   PetscCall(StageClockFromOptions(comm, formfind, &scene, &P->clock));
   PetscCall(CheckpointFingerprintScene(comm, scene, P));
   // A load history keeps only each rank's part (form finding keeps the global description on

@@ -97,6 +97,13 @@ PetscErrorCode PrintHeader(Problem *P, SNES snes) {
       "  physics: membrane (TL, h0 = %g mm), %s material%s, %" PetscInt_FMT " constrained DOF\n",
       P->thickness, P->material->Name(), FindTerm<PressureTerm>(*P) ? ", follower pressure" : "", ncon_all));
   PetscCall(P->material->View(P->comm));
+  // The surface groups' own laws ("film_<group>_": -film_<group>_material_*).
+  for (size_t k = 0; k < P->part_materials.size(); ++k) {
+    const std::string &prefix = P->scene.material_prefixes[k];
+    PetscCall(PetscPrintf(P->comm, "  surface group %s (-%smaterial_*):\n",
+                          prefix.substr(5, prefix.size() - 6).c_str(), prefix.c_str()));
+    PetscCall(P->part_materials[k]->View(P->comm));
+  }
   PetscCall(PrintSolver(P->comm, snes));
   {
     // The streamed set-up: rank 0 alone held the global mesh and description and sent each rank

@@ -40,10 +40,11 @@ inline int MembraneElement(const Problem *P, PetscInt e, const double x[9], doub
   if (!AllFinite(x, 9)) return KERNEL_NONFINITE;
   MembraneKinematics(ref, x, F, E);
   if (MembraneAreaRatio(ref, x, nullptr) < P->min_area_ratio) return KERNEL_COLLAPSED;
-  const int nh = P->material->HistorySize();
+  const Material &law = P->MaterialOf(e);
+  const int nh = law.HistorySize();
   double hist_new[kMaxHistorySize];
-  const double *hist_old = nh ? &P->history[(size_t)nh * e] : nullptr;
-  return P->material->Evaluate(E, hist_old, nh ? hist_new : nullptr, S, D);
+  const double *hist_old = nh ? &P->history[(size_t)P->history_size * e] : nullptr;
+  return law.Evaluate(E, hist_old, nh ? hist_new : nullptr, S, D);
 }
 
 // The tensile part of a membrane stress: negative principal values set to zero. Used for the
@@ -378,7 +379,7 @@ PetscErrorCode UpdateReference(Problem *P, Vec U) {
 
 PetscErrorCode CommitHistory(Problem *P, Vec U) {
   const LocalMesh &m = P->mesh;
-  const int nh = P->material->HistorySize();
+  const int nh = P->history_size;
   Vec Ul;
   const PetscScalar *u;
   int status = KERNEL_OK;
@@ -387,11 +388,13 @@ PetscErrorCode CommitHistory(Problem *P, Vec U) {
   if (nh == 0) PetscFunctionReturn(0);
   PetscCall(GetLocalArray(U, P->U_work, &Ul, &u));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
+    // An element whose law keeps no history (an elastic part beside a plastic one) skips it.
+    const Material &law = P->MaterialOf(e);
+    if (law.HistorySize() == 0) continue;
     double x[9], F[6], E[3], S[3], D[9];
     GatherCoordinates(m, e, u, x);
     MembraneKinematics(m.ref[e], x, F, E);
-    int st = P->material->Evaluate(E, &P->history[(size_t)nh * e],
-                                   &P->history_trial[(size_t)nh * e], S, D);
+    int st = law.Evaluate(E, &P->history[(size_t)nh * e], &P->history_trial[(size_t)nh * e], S, D);
     if (st != KERNEL_OK) status = st, bad = m.element_natural[e];
   }
   PetscCall(RestoreLocalArray(P->U_work, &Ul, &u));
@@ -406,7 +409,7 @@ PetscErrorCode CommitHistory(Problem *P, Vec U) {
 PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_true_stress) {
   const LocalMesh &m = P->mesh;
   const PetscInt ne = m.num_elements;
-  const int nh = P->material->HistorySize();
+  const int nh = P->history_size;
   Vec Ul, acc, accl;
   const PetscScalar *u;
   PetscScalar *a;
@@ -423,7 +426,7 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_tru
   c->principal.assign(2 * nt, 0);
   c->dir1.assign(3 * nt, 0);
   c->dir2.assign(3 * nt, 0);
-  const bool plastic = P->material->HasPlasticStrain();
+  const bool plastic = P->HasPlasticStrain();
   c->ep.assign(plastic ? 3 * ne : 0, 0);
   c->ep_bar.assign(plastic ? ne : 0, 0);
   const bool wrinkling = P->wrinkling;
@@ -443,8 +446,9 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_tru
     double x[9], F[6], E[3], S[3], D[9], hist[kMaxHistorySize];
     GatherCoordinates(m, e, u, x);
     MembraneKinematics(m.ref[e], x, F, E);
-    const double *h = nh ? &P->history[(size_t)nh * e] : nullptr;
-    P->material->Evaluate(E, h, nh ? hist : nullptr, S, D);
+    const Material &law = P->MaterialOf(e);
+    const double *h = law.HistorySize() ? &P->history[(size_t)nh * e] : nullptr;
+    law.Evaluate(E, h, h ? hist : nullptr, S, D);
     for (int i = 0; i < 3; ++i) c->stress[3 * e + i] = S[i];
     c->strain[3 * e + 0] = E[0];
     c->strain[3 * e + 1] = E[1];
@@ -458,14 +462,13 @@ PetscErrorCode ComputeCellFields(Problem *P, Vec U, CellFields *c, bool with_tru
       c->cauchy_mises[e] = MisesStress3(&c->cauchy[6 * e]);
       PrincipalStresses(F, &c->cauchy[6 * e], &c->principal[2 * e], &c->dir1[3 * e], &c->dir2[3 * e]);
     }
-    if (plastic) {
-      double ep[3], epb;
-      P->material->PlasticStrain(h, ep, &epb);
+    double ep[3] = {0, 0, 0}, epb = 0.0;
+    if (plastic && law.PlasticStrain(h, ep, &epb)) {
       c->ep[3 * e] = ep[0], c->ep[3 * e + 1] = ep[1], c->ep[3 * e + 2] = 0.5 * ep[2];
       c->ep_bar[e] = epb;
     }
     WrinkleInfo wi;
-    if (wrinkling && P->material->Wrinkling(E, h, &wi)) {
+    if (wrinkling && law.Wrinkling(E, h, &wi)) {
       c->wrinkle_state[e] = wi.state;
       c->wrinkle_strain[e] = wi.strain;
       if (wi.state == WRINKLE_WRINKLED) {

@@ -13,13 +13,13 @@ PetscErrorCode ReportPlausibility(MPI_Comm comm, const PlausibilityCheck &c) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MaterialCheckPlausible(MPI_Comm comm, const Material &material) {
+PetscErrorCode MaterialCheckPlausible(MPI_Comm comm, const Material &material, const char *prefix) {
   double young, nu;
   PetscFunctionBeginUser;
   material.ElasticConstants(&young, &nu);
-  PetscCall(ReportPlausibility(comm, CheckYoung(young)));
+  PetscCall(ReportPlausibility(comm, CheckYoung(young, prefix ? prefix : "")));
   if (const PlasticMaterial *law = material.PlasticLaw())
-    PetscCall(ReportPlausibility(comm, CheckYield(law->yield, law->nseg, young)));
+    PetscCall(ReportPlausibility(comm, CheckYield(law->yield, law->nseg, young, prefix ? prefix : "")));
   PetscFunctionReturn(0);
 }
 

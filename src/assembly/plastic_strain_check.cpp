@@ -9,16 +9,16 @@ namespace etfe {
 
 PetscErrorCode LargestPlasticStrain(Problem *P, double *value, PetscInt *element, double centroid[3]) {
   const LocalMesh &m = P->mesh;
-  const int nh = P->material->HistorySize();
+  const int nh = P->history_size;
   struct {
     double v;
     int rank;
   } mine = {-1.0, (int)P->rank}, best;
   PetscInt local = -1;
   PetscFunctionBeginUser;
-  for (PetscInt e = 0; e < m.num_elements; ++e) {
+  for (PetscInt e = 0; nh > 0 && e < m.num_elements; ++e) {
     double ep[3], ep_bar = 0.0;
-    if (P->material->PlasticStrain(&P->history[(size_t)nh * e], ep, &ep_bar) && ep_bar > mine.v)
+    if (P->MaterialOf(e).PlasticStrain(&P->history[(size_t)nh * e], ep, &ep_bar) && ep_bar > mine.v)
       mine.v = ep_bar, local = e;
   }
   PetscCallMPI(MPI_Allreduce(&mine, &best, 1, MPI_DOUBLE_INT, MPI_MAXLOC, P->comm));

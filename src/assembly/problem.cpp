@@ -93,15 +93,24 @@ PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<M
   const PetscInt nl = m.NumLocal();
   P->element_stress_ratio = std::move(share.element_stress_ratio);
 
-  // History only when the material has one.
-  const int nh = P->material->HistorySize();
-  // The element loops keep a trial history on the stack (kMaxHistorySize doubles).
-  PetscCheck(nh <= kMaxHistorySize, comm, PETSC_ERR_SUP, "material %s keeps %d history values per element; at most %d are supported",
-             P->material->Name(), nh, kMaxHistorySize);
+  PetscCheck(P->part_materials.size() == P->scene.material_prefixes.size(), comm, PETSC_ERR_PLIB,
+             "the scene names %zu surface groups with their own law but %zu laws were made",
+             P->scene.material_prefixes.size(), P->part_materials.size());
+  P->element_material = std::move(share.element_material);
+  // History only when a law has one: as many doubles per element as the largest keeps.
+  int nh = 0;
+  for (const Material *law : P->Materials()) {
+    // The element loops keep a trial history on the stack (kMaxHistorySize doubles).
+    PetscCheck(law->HistorySize() <= kMaxHistorySize, comm, PETSC_ERR_SUP,
+               "material %s keeps %d history values per element; at most %d are supported", law->Name(),
+               law->HistorySize(), kMaxHistorySize);
+    nh = std::max(nh, law->HistorySize());
+  }
+  P->history_size = nh;
   if (nh > 0) {
     P->history.resize((size_t)nh * m.num_elements);
     P->history_trial.resize((size_t)nh * m.num_elements);
-    for (PetscInt e = 0; e < m.num_elements; ++e) P->material->InitHistory(&P->history[nh * e]);
+    for (PetscInt e = 0; e < m.num_elements; ++e) P->MaterialOf(e).InitHistory(&P->history[nh * e]);
   }
 
   // Constraints: every local DOF (owned or ghost) knows whether it is constrained.
@@ -166,6 +175,7 @@ PetscErrorCode ProblemReleaseScene(Problem *P) {
   std::vector<double>().swap(s.element_stress_ratio);
   std::vector<double>().swap(s.element_thickness);
   std::vector<double>().swap(s.element_md);
+  std::vector<int>().swap(s.element_material);
 #ifdef __GLIBC__
   // The reader's mesh and its parsing left freed blocks all over the heap (each below the mmap
   // threshold): hand their pages back before the matrix and the factors are made.

@@ -47,6 +47,17 @@ bool CheckDescription(const SceneSpec &s, std::string *err) {
       std::snprintf(buf, sizeof buf, "%s: %zu %s for %zu", m.source.c_str(), a.v.size(), a.what, a.count);
       return *err = buf, false;
     }
+  if (!s.element_material.empty() && s.element_material.size() != (size_t)ne) {
+    std::snprintf(buf, sizeof buf, "%s: %zu element materials for %d elements", m.source.c_str(),
+                  s.element_material.size(), ne);
+    return *err = buf, false;
+  }
+  for (int k : s.element_material)
+    if (k < 0 || k > (int)s.material_prefixes.size()) {
+      std::snprintf(buf, sizeof buf, "scene %s: element material %d is not one of the %zu laws", s.name.c_str(), k,
+                    s.material_prefixes.size() + 1);
+      return *err = buf, false;
+    }
   return true;
 }
 
@@ -76,6 +87,7 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
     }
     std::vector<std::vector<PetscInt>> pressed(loaded.size());
     std::vector<double> guess, ratio, reference, thickness, md;
+    std::vector<int> material;
     for (size_t k = 0; k < r.elements.size(); ++k) {
       const PetscInt e = r.elements[k];
       for (size_t p = 0; p < loaded.size(); ++p)
@@ -85,13 +97,14 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
         reference.insert(reference.end(), s.element_reference.begin() + 9 * e, s.element_reference.begin() + 9 * e + 9);
       if (!s.element_thickness.empty()) thickness.push_back(s.element_thickness[e]);
       if (!s.element_md.empty()) md.insert(md.end(), s.element_md.begin() + 3 * e, s.element_md.begin() + 3 * e + 3);
+      if (!s.element_material.empty()) material.push_back(s.element_material[e]);
     }
     if (!s.initial_guess.empty())
       for (PetscInt l = 0; l < r.num_owned; ++l)
         guess.insert(guess.end(), s.initial_guess.begin() + 3 * r.nodes[l], s.initial_guess.begin() + 3 * r.nodes[l] + 3);
     w->Put(cons), w->Put(forces), w->Put((unsigned long long)pressed.size());
     for (const auto &p : pressed) w->Put(p);
-    w->Put(guess), w->Put(ratio), w->Put(reference), w->Put(thickness), w->Put(md);
+    w->Put(guess), w->Put(ratio), w->Put(reference), w->Put(thickness), w->Put(md), w->Put(material);
   };
   ByteReader rd;
   PetscCall(LocalMeshDistribute(comm, s.mesh, extra, mesh, &share->d_nnz, &share->o_nnz, &rd));
@@ -100,7 +113,7 @@ PetscErrorCode SceneDistribute(MPI_Comm comm, const SceneSpec &s, LocalMesh *mes
   share->pressure_elements.resize(rd.ok ? (size_t)loads : 0);
   for (auto &p : share->pressure_elements) rd.Get(&p);
   rd.Get(&share->initial_guess), rd.Get(&share->element_stress_ratio), rd.Get(&share->element_reference);
-  rd.Get(&share->element_thickness), rd.Get(&share->element_md);
+  rd.Get(&share->element_thickness), rd.Get(&share->element_md), rd.Get(&share->element_material);
   PetscCheck(rd.ok && rd.AtEnd(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "rank %d: the scene share sent by rank 0 is malformed",
              rank);
   PetscFunctionReturn(0);

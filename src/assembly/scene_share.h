@@ -20,6 +20,7 @@ struct SceneShare {
   std::vector<double> element_reference;     // 9 per local element, or empty
   std::vector<double> element_thickness;     // per local element, or empty
   std::vector<double> element_md;            // 3 per local element, or empty
+  std::vector<int> element_material;         // per local element, or empty (SceneSpec::element_material)
   std::vector<PetscInt> d_nnz, o_nnz;        // preallocation of the owned rows (3x3 blocks)
 };
 

@@ -29,18 +29,60 @@ double SupportProject(const SupportSpec &s, const double p[3], double M[3], doub
 
 } // namespace
 
+namespace {
+
+// Stage s (0-based) covers load times (s, s+1]; the tolerance keeps a stage end that the
+// increments reach with round-off above it in its own stage.
+size_t StageOf(double time) {
+  const double s = std::ceil(time - 1e-9) - 1.0;
+  return s <= 0.0 ? 0 : (size_t)s;
+}
+
+// Whether a fixed law holds a support's pairs where they touched at t0 (one law throughout), not
+// where the last commit left them (a fixed stage after another law).
+bool HeldSinceStart(const ContactSet &c, int support) {
+  if (c.support_laws.empty() || c.support_laws[support].empty()) return c.stage_laws.empty();
+  const std::vector<FrictionLaw> &laws = c.support_laws[support];
+  return std::all_of(laws.begin(), laws.end(), [&](FrictionLaw l) { return l == laws[0]; });
+}
+
+} // namespace
+
 FrictionLaw ContactLawAt(const ContactSet &c, double time) {
   if (c.stage_laws.empty()) return c.law;
-  // Stage s (0-based) covers load times (s, s+1]; the tolerance keeps a stage end that the
-  // increments reach with round-off above it in its own stage.
-  const double s = std::ceil(time - 1e-9) - 1.0;
-  const size_t stage = s <= 0.0 ? 0 : (size_t)s;
-  return c.stage_laws[std::min(stage, c.stage_laws.size() - 1)];
+  return c.stage_laws[std::min(StageOf(time), c.stage_laws.size() - 1)];
+}
+
+FrictionLaw ContactLawAt(const ContactSet &c, int support, double time) {
+  if (c.support_laws.empty() || c.support_laws[support].empty()) return ContactLawAt(c, time);
+  const std::vector<FrictionLaw> &laws = c.support_laws[support];
+  return laws[std::min(StageOf(time), laws.size() - 1)];
+}
+
+// The laws named in names[0..n) (freed here), checked by the option's name.
+static PetscErrorCode ParseFrictionLaws(MPI_Comm comm, const std::string &option, char **names, PetscInt n,
+                                        std::vector<FrictionLaw> *out) {
+  static const char *const laws[] = {"lagged", "implicit", "none", "fixed"};
+  PetscFunctionBeginUser;
+  out->clear();
+  PetscErrorCode bad = 0;
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscInt k = 0;
+    while (k < 4 && std::strcmp(names[i], laws[k]) != 0) ++k;
+    if (k == 4 && !bad) bad = (PetscErrorCode)(i + 1);
+    out->push_back(k < 4 ? (FrictionLaw)k : FrictionLaw::Implicit);
+  }
+  std::string bad_name = bad ? names[bad - 1] : "";
+  for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i]));
+  PetscCheck(!bad, comm, PETSC_ERR_ARG_WRONG,
+             "%s: \"%s\" (entry %d) is not a friction law; use lagged, implicit, none or fixed, one "
+             "value or one per stage separated by commas",
+             option.c_str(), bad_name.c_str(), (int)bad);
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,
                                              ContactOptions *o) {
-  static const char *const laws[] = {"lagged", "implicit", "none", "fixed"};
   static const char *const frames[] = {"frozen", "follow"};
   PetscInt frame = 0;
   PetscInt probes[64] = {0}, nprobe = 64;
@@ -91,21 +133,8 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
              "-contact_lagged_repeat %" PetscInt_FMT ": use 0 (the thesis's lagged law) or a positive limit",
              o->lagged_repeat);
   o->probe_nodes.assign(probes, probes + nprobe);
-  o->stage_laws.clear();
   if (!law_set) nlaw = 0;
-  PetscErrorCode bad = 0;
-  for (PetscInt i = 0; i < nlaw; ++i) {
-    PetscInt k = 0;
-    while (k < 4 && std::strcmp(law_names[i], laws[k]) != 0) ++k;
-    if (k == 4 && !bad) bad = (PetscErrorCode)(i + 1);
-    o->stage_laws.push_back(k < 4 ? (FrictionLaw)k : FrictionLaw::Implicit);
-  }
-  std::string bad_name = bad ? law_names[bad - 1] : "";
-  for (PetscInt i = 0; i < nlaw; ++i) PetscCall(PetscFree(law_names[i]));
-  PetscCheck(!bad, comm, PETSC_ERR_ARG_WRONG,
-             "-contact_friction: \"%s\" (entry %d) is not a friction law; use lagged, implicit, none or fixed, one "
-             "value or one per stage separated by commas",
-             bad_name.c_str(), (int)bad);
+  PetscCall(ParseFrictionLaws(comm, "-contact_friction", law_names, nlaw, &o->stage_laws));
   o->law = o->stage_laws.empty() ? FrictionLaw::Implicit : o->stage_laws[0];
   const bool one_law =
       std::all_of(o->stage_laws.begin(), o->stage_laws.end(), [&](FrictionLaw l) { return l == o->law; });
@@ -179,6 +208,80 @@ static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<Petsc
   PetscFunctionReturn(0);
 }
 
+// -contact_<support>_mu and -contact_<support>_friction: a support's own friction coefficient and
+// law (per stage, as -contact_friction), over -contact_mu and -contact_friction (collective). A
+// -contact_<name>_mu or _friction whose name is no support is refused, naming the supports.
+static PetscErrorCode ReadSupportFriction(MPI_Comm comm, int stages, const ContactOptions &o,
+                                          const std::vector<SupportSpec> &supports, ContactSet *c) {
+  // The coefficient as given: a support with a law of its own has friction even where the set's
+  // "none" made -contact_mu 0.
+  PetscReal mu_given = 0.3;
+  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-contact_mu", &mu_given, nullptr));
+  const bool none = o.law == FrictionLaw::None && std::all_of(o.stage_laws.begin(), o.stage_laws.end(),
+                                                              [](FrictionLaw l) { return l == FrictionLaw::None; });
+  std::vector<double> mu(supports.size());
+  std::vector<std::vector<FrictionLaw>> laws(supports.size());
+  bool any_mu = false, any_law = false;
+  std::string names;
+  PetscFunctionBeginUser;
+  for (size_t s = 0; s < supports.size(); ++s) {
+    const std::string prefix = "contact_" + supports[s].name + "_";
+    PetscBool set = PETSC_FALSE, law_set = PETSC_FALSE;
+    char *law_names[64] = {nullptr};
+    PetscInt nlaw = 64;
+    names += (names.empty() ? "" : ", ") + supports[s].name;
+    PetscOptionsBegin(comm, prefix.c_str(), ("Friction on rigid support " + supports[s].name).c_str(), "Contact");
+    PetscCall(PetscOptionsStringArray("-friction",
+                                      "Friction law of this support's pairs (default -contact_friction): lagged, "
+                                      "implicit, none or fixed, or one per stage separated by commas",
+                                      "", law_names, &nlaw, &law_set));
+    if (!law_set) nlaw = 0;
+    PetscCall(ParseFrictionLaws(comm, "-" + prefix + "friction", law_names, nlaw, &laws[s]));
+    mu[s] = !laws[s].empty() ? mu_given : c->params.mu;
+    PetscCall(PetscOptionsReal("-mu", "Coulomb friction coefficient of this support's pairs (default -contact_mu)", "",
+                               mu[s], &mu[s], &set));
+    PetscOptionsEnd();
+    PetscCheck(mu[s] >= 0 && std::isfinite(mu[s]), comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "-%smu %g: the friction coefficient must be >= 0", prefix.c_str(), mu[s]);
+    PetscCheck(laws[s].size() <= (size_t)stages, comm, PETSC_ERR_ARG_SIZ,
+               "-%sfriction lists %d laws but the analysis has %d stages: give one law, or one per stage",
+               prefix.c_str(), (int)laws[s].size(), stages);
+    PetscCheck(!(o.follow && std::count(laws[s].begin(), laws[s].end(), FrictionLaw::Lagged) > 0), comm,
+               PETSC_ERR_SUP,
+               "-contact_normal follow works with -%sfriction implicit, none or fixed; the lagged (thesis) law keeps "
+               "the thesis's frozen frame",
+               prefix.c_str());
+    // "none" throughout is frictionless (as -contact_mu is then), on a support without a law of
+    // its own by the set's law.
+    const bool own_none = !laws[s].empty() && std::all_of(laws[s].begin(), laws[s].end(),
+                                                          [](FrictionLaw l) { return l == FrictionLaw::None; });
+    if (own_none || (laws[s].empty() && none)) mu[s] = 0.0;
+    any_mu |= set || !laws[s].empty();
+    any_law |= !laws[s].empty();
+  }
+  // Left over: -contact_<x>_mu or _friction of a name that is no support (a typo, or a support
+  // not listed).
+  PetscInt n;
+  char **left, **values;
+  std::string bad;
+  PetscCall(PetscOptionsLeftGet(nullptr, &n, &left, &values));
+  for (PetscInt i = 0; i < n && bad.empty(); ++i) {
+    const size_t len = std::strlen(left[i]);
+    if (std::strncmp(left[i], "contact_", 8) == 0 &&
+        ((len > 11 && std::strcmp(left[i] + len - 3, "_mu") == 0) ||
+         (len > 17 && std::strcmp(left[i] + len - 9, "_friction") == 0)))
+      bad = left[i];
+  }
+  PetscCall(PetscOptionsLeftRestore(nullptr, &n, &left, &values));
+  PetscCheck(bad.empty(), comm, PETSC_ERR_ARG_WRONG,
+             "-%s: no such rigid support; -contact_<support>_mu and -contact_<support>_friction take a support of this "
+             "scene (%s)",
+             bad.c_str(), names.c_str());
+  if (any_mu) c->support_mu = mu;
+  if (any_law) c->support_laws = laws;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
   const ContactSpec &spec = P->scene.contact;
   ContactOptions o;
@@ -196,9 +299,14 @@ static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
     c->stage_laws = o.stage_laws;
   // AddContactTerm marks the tangent non-symmetric from the first stage's law; a later stage
   // with friction needs it too (slip tangent, eq. 4.31).
+  PetscCall(ReadSupportFriction(P->comm, P->scene.NumStages(), o, spec.supports, c));
   for (FrictionLaw l : c->stage_laws)
-    if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->params.mu > 0)
+    if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->MaxMu() > 0)
       PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));
+  for (const std::vector<FrictionLaw> &laws : c->support_laws)
+    for (FrictionLaw l : laws)
+      if (l != FrictionLaw::Fixed && l != FrictionLaw::None && c->MaxMu() > 0)
+        PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));
   c->frictionless_until = o.frictionless_until;
   c->lagged_repeat = o.lagged_repeat;
   c->probe_nodes = o.probe_nodes;
@@ -211,9 +319,14 @@ static PetscErrorCode ContactCreate(Problem *P, ContactSet *c) {
   const LocalMesh &m = P->mesh;
   std::vector<char> candidate(m.NumLocal(), 1), pair_local(m.NumLocal(), 0);
   if (!spec.node_set.empty()) PetscCall(ProblemNodeSetFlags(P, spec.node_set.c_str(), &candidate));
+  std::vector<std::vector<char>> own(spec.supports.size());  // a support's own candidates (empty: all)
+  for (size_t s = 0; s < spec.supports.size(); ++s)
+    if (!spec.supports[s].node_set.empty())
+      PetscCall(ProblemNodeSetFlags(P, spec.supports[s].node_set.c_str(), &own[s]));
   for (PetscInt l = 0; l < m.NumLocal(); ++l) {
     if (!candidate[l]) continue;
     for (size_t s = 0; s < spec.supports.size(); ++s) {
+      if (!own[s].empty() && !own[s][l]) continue;
       ContactPair pr{};
       const double *X = &m.X[3 * l];
       const double d = SupportProject(spec.supports[s], X, pr.M, pr.R);
@@ -269,7 +382,7 @@ PetscErrorCode AddContactTerm(Problem *P) {
   if (!P->scene.contact.active) PetscFunctionReturn(0);
   auto c = std::make_unique<ContactSet>();
   PetscCall(ContactCreate(P, c.get()));
-  if (c->law != FrictionLaw::Fixed && c->params.mu > 0)
+  if (c->law != FrictionLaw::Fixed && c->MaxMu() > 0)
     PetscCall(MatSetOption(P->J, MAT_SYMMETRIC, PETSC_FALSE));  // slip tangent, eq. 4.31
   P->terms.push_back(std::move(c));
   PetscFunctionReturn(0);
@@ -277,10 +390,12 @@ PetscErrorCode AddContactTerm(Problem *P) {
 
 namespace {
 
-// A pair's penalties: the set's, scaled by the pair's share of the contact line.
+// A pair's parameters: the set's penalties scaled by the pair's share of the contact line, and
+// its support's friction coefficient.
 ContactParameters PairParameters(const ContactSet &c, const ContactPair &pr) {
   ContactParameters p = c.params;
   p.kn *= pr.k_scale, p.kt *= pr.k_scale;
+  if (!c.support_mu.empty()) p.mu = c.support_mu[pr.support];
   return p;
 }
 
@@ -334,7 +449,7 @@ ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pr) {
 int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], double time,
                     double fg[3], double Kg[9]) {
   const bool frictionless = time <= c.frictionless_until + 1e-12;
-  const FrictionLaw law = ContactLawAt(c, time);
+  const FrictionLaw law = ContactLawAt(c, pr.support, time);
   ContactParameters params = PairParameters(c, pr);
   if (c.follow) return EvaluateFollow(c, pr, params, u, law, frictionless, fg, Kg);
   double g[3], f[3], K[9];
@@ -353,7 +468,7 @@ int ContactEvaluate(const ContactSet &c, ContactPair &pr, const double u[3], dou
     // A run fixed throughout holds each node where it touched at t0. A fixed stage after
     // another law holds it where the last commit left it, with the force it had: springs from
     // the committed state (the pair no longer slides, whatever its friction did before).
-    const bool held_since_t0 = c.stage_laws.empty();
+    const bool held_since_t0 = HeldSinceStart(c, pr.support);
     const double *g_from = held_since_t0 ? pr.g0 : pr.committed.g;
     const double dg[3] = {g[0] - g_from[0], g[1] - g_from[1], g[2] - g_from[2]};
     ContactFixedForce(params, dg, f, K);
@@ -381,7 +496,7 @@ PetscErrorCode ContactCommit(Problem *P, PetscInt counts[4]) {
     double fg[3];
     ContactEvaluate(c, pr, &u[3 * l], P->time, fg, nullptr);
     const int before = pr.committed.status;
-    if (ContactLawAt(c, P->time) == FrictionLaw::Lagged)
+    if (ContactLawAt(c, pr.support, P->time) == FrictionLaw::Lagged)
       (c.lagged_repeat > 0 ? ContactLaggedCommitSettled : ContactLaggedCommit)(PairParameters(c, pr), pr.committed,
                                                                                pr.trial.g, pr.trial.f, &pr.committed);
     else pr.committed = pr.trial;
@@ -418,9 +533,10 @@ PetscErrorCode ContactLaggedRevise(Problem *P, PetscInt *changed) {
   *changed = 0;
   // Frictionless tensioning runs the return map whatever the law: no statuses to settle.
   const bool frictionless = P->time <= c.frictionless_until + 1e-12;
-  if (frictionless || ContactLawAt(c, P->time) != FrictionLaw::Lagged) PetscFunctionReturn(0);
+  if (frictionless) PetscFunctionReturn(0);
   PetscCall(VecGetArrayRead(P->U, &u));
   for (ContactPair &pr : c.pairs) {
+    if (ContactLawAt(c, pr.support, P->time) != FrictionLaw::Lagged) continue;
     pr.solved = pr.committed;
     if (pr.committed.status == CONTACT_OPEN || pr.step_changes >= 2) continue;
     double fg[3];

@@ -126,6 +126,15 @@ void ContactSet::Fingerprint(Fnv64 &h) const {
     for (FrictionLaw l : stage_laws)
       h.Add((int)l);
   }
+  // A coefficient per support; none adds nothing, so the fingerprint of such runs is unchanged.
+  if (!support_mu.empty()) h.Add(std::string("support_mu")), h.Add(support_mu);
+  if (!support_laws.empty()) {
+    h.Add(std::string("support_laws"));
+    for (const std::vector<FrictionLaw> &laws : support_laws) {
+      h.Add(laws.size());
+      for (FrictionLaw l : laws) h.Add((int)l);
+    }
+  }
   // Penalties per unit length; off adds nothing, so the fingerprint of such runs is unchanged.
   if (penalty_length > 0) h.Add(std::string("penalty_length")), h.Add(penalty_length);
 }
@@ -148,6 +157,22 @@ TermSolverNeeds ContactSet::SolverNeeds() const {
 PetscErrorCode ContactSet::SetupLines(const Problem &, std::vector<std::string> *lines) const {
   char buf[256];
   PetscFunctionBeginUser;
+  if (!support_mu.empty()) {
+    std::string line = "contact: friction coefficient per support (-contact_<support>_mu):";
+    static const char *const names[] = {"lagged", "implicit", "none", "fixed"};
+    for (size_t s = 0; s < supports.size(); ++s) {
+      PetscCall(PetscSNPrintf(buf, sizeof buf, "%s %s %g", s ? "," : "", supports[s].name.c_str(), support_mu[s]));
+      line += buf;
+      // Its own law (-contact_<support>_friction), per stage.
+      if (!support_laws.empty() && !support_laws[s].empty()) {
+        line += " (";
+        for (size_t k = 0; k < support_laws[s].size(); ++k)
+          line += std::string(k ? "," : "") + names[(int)support_laws[s][k]];
+        line += ")";
+      }
+    }
+    lines->push_back(line);
+  }
   if (penalty_length <= 0) PetscFunctionReturn(0);
   PetscCall(PetscSNPrintf(buf, sizeof buf,
                           "contact: %" PetscInt_FMT

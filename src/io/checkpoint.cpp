@@ -76,7 +76,7 @@ PetscInt PairRows(const Problem *P) {
 
 Shape ProblemShape(const Problem *P) {
   return {(long long)P->mesh.num_nodes_global, (long long)P->mesh.num_elements_global,
-          (long long)PairRows(P), (long long)P->material->HistorySize(),
+          (long long)PairRows(P), (long long)P->history_size,
           (long long)P->scene.NumStages()};
 }
 

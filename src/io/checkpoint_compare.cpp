@@ -160,6 +160,9 @@ std::uint64_t ScenePhysicsState(const SceneSpec &s, double thickness, double min
   h.Add(s.name);
   h.Add(s.md_axis);
   h.Add(s.element_thickness), h.Add(s.element_md);
+  // The surface groups' own laws (none: the hash of a film with one law, as before them).
+  if (!s.material_prefixes.empty()) h.Add(s.material_prefixes.size()), h.Add(s.element_material);
+  for (const std::string &p : s.material_prefixes) h.Add(p);
   h.Add(thickness);
   h.Add(min_area_ratio);
   h.Add(s.schedules.size());
@@ -199,6 +202,8 @@ std::vector<std::uint64_t> LoadPathStates(const SceneSpec &s, double thickness, 
     h.Add(s.name);
     h.Add(s.md_axis);
     h.Add(s.element_thickness), h.Add(s.element_md), h.Add(s.element_reference);
+    if (!s.material_prefixes.empty()) h.Add(s.material_prefixes.size()), h.Add(s.element_material);
+    for (const std::string &p : s.material_prefixes) h.Add(p);
     h.Add(thickness), h.Add(min_area_ratio);
     values(s.reference_blend, &x), h.Add(x);
     h.Add(s.constraints.size());
@@ -230,9 +235,12 @@ std::uint64_t PhysicsFingerprint(const Problem *P) { return PhysicsFingerprintFr
 std::uint64_t PhysicsFingerprintFrom(const Problem *P, std::uint64_t scene_state) {
   Fnv64 h(scene_state);
   for (const auto &term : P->terms) term->Fingerprint(h);  // contact's parameters
-  double young = 0.0, nu = 0.0;
-  P->material->ElasticConstants(&young, &nu);
-  h.Add(std::string(P->material->Name())), h.Add(young), h.Add(nu), h.Add(P->material->HistorySize());
+  // The film's law, then the surface groups' own (none: the hash of a film with one law).
+  for (const Material *law : P->Materials()) {
+    double young = 0.0, nu = 0.0;
+    law->ElasticConstants(&young, &nu);
+    h.Add(std::string(law->Name())), h.Add(young), h.Add(nu), h.Add(law->HistorySize());
+  }
   return h.Value();
 }
 

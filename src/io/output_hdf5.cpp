@@ -55,7 +55,7 @@ std::vector<const OutputField *> FieldsWritten(const Problem *P, bool open) {
     switch (f.when) {
     case FieldWhen::Open: on = open; break;
     case FieldWhen::Step: on = !open; break;
-    case FieldWhen::Plastic: on = !open && P->material->HasPlasticStrain(); break;
+    case FieldWhen::Plastic: on = !open && P->HasPlasticStrain(); break;
     case FieldWhen::Wrinkling: on = !open && P->wrinkling; break;
     case FieldWhen::Contact: on = !open && FindTerm<ContactSet>(*P); break;
     case FieldWhen::Term: break;  // WriteTermFields

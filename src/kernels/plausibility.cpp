@@ -71,27 +71,28 @@ PlausibilityCheck CheckThickness(double h, const char *option) {
                      intent);
 }
 
-PlausibilityCheck CheckYoung(double E) {
+PlausibilityCheck CheckYoung(double E, const char *prefix) {
   if (E >= kYoungMin && E <= kYoungMax) return {};
   const std::string intent = Intent(E, kYoungMin, kYoungMax, {{1e-6, "Pa"}, {1e-3, "kPa"}, {1e3, "GPa"}});
   const bool error = E > kYoungErrorMax;
   return Verdict(error ? Plausibility::Error : Plausibility::Warning,
-                 "-material_young " + Num(E) + ": Young's modulus is in MPa and foils have " + Num(kYoungMin) + "-" +
+                 "-" + std::string(prefix) + "material_young " + Num(E) +
+                     ": Young's modulus is in MPa and foils have " + Num(kYoungMin) + "-" +
                      Num(kYoungMax) + " MPa (ETFE about 800)" +
                      (error ? "; above " + Num(kYoungErrorMax) + " MPa no solid is." : ".") + intent);
 }
 
-PlausibilityCheck CheckYield(const double *yield, int n, double young) {
+PlausibilityCheck CheckYield(const double *yield, int n, double young, const char *prefix) {
   for (int k = 0; k < n; ++k) {
     const double s = yield[k];
     if (s >= kYieldMin && s <= kYieldMax && s < young) continue;
     const std::string intent = Intent(s, kYieldMin, kYieldMax, {{1e-6, "Pa"}, {1e-3, "kPa"}, {1e3, "GPa"}});
     const bool error = s >= young;
     return Verdict(error ? Plausibility::Error : Plausibility::Warning,
-                   "-material_yield " + Num(s) + " (value " + std::to_string(k + 1) +
+                   "-" + std::string(prefix) + "material_yield " + Num(s) + " (value " + std::to_string(k + 1) +
                        "): yield stresses are in MPa and ETFE yields at 10-30 MPa (the range checked: " +
                        Num(kYieldMin) + "-" + Num(kYieldMax) + " MPa)" +
-                       (error ? "; it is not below -material_young " + Num(young) +
+                       (error ? "; it is not below -" + std::string(prefix) + "material_young " + Num(young) +
                                     " MPa (a yield strain of 100 % or more): the two are in different units."
                               : ".") +
                        intent);

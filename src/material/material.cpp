@@ -1,10 +1,12 @@
 // Material registry (-material_type) and the two laws: plane-stress St. Venant-Kirchhoff and the
 // ETFE elasto-plastic law (docs/theory.md §3.2); the viscoelastic-plastic law is in
-// viscoelastic_plastic.cpp. Parameters come from -material_* options.
+// viscoelastic_plastic.cpp. Parameters come from -material_* options, or for a surface group's own
+// law from -film_<group>_material_* over them (material_internal.h).
 #include <petscsys.h>
 
 #include <algorithm>
 #include <cstring>
+#include <string>
 
 #include "etfe/kernels/elastic.h"
 #include "etfe/kernels/plasticity.h"
@@ -94,67 +96,77 @@ public:
   }
 };
 
-PetscErrorCode ReadElasticConstants(double *young, double *nu) {
+PetscErrorCode ReadElasticConstants(const char *pre, double *young, double *nu) {
   PetscFunctionBeginUser;
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Material: elastic constants", "Material");
-  PetscCall(PetscOptionsReal("-material_young", "Young's modulus [MPa]", "", *young, young, nullptr));
-  PetscCall(PetscOptionsReal("-material_poisson", "Poisson's ratio", "", *nu, nu, nullptr));
-  PetscOptionsEnd();
+  for (int pass = 0; pass < MaterialPasses(pre); ++pass) {
+    PetscOptionsBegin(PETSC_COMM_WORLD, MaterialPassPrefix(pre, pass), "Material: elastic constants", "Material");
+    PetscCall(PetscOptionsReal("-material_young", "Young's modulus [MPa]", "", *young, young, nullptr));
+    PetscCall(PetscOptionsReal("-material_poisson", "Poisson's ratio", "", *nu, nu, nullptr));
+    PetscOptionsEnd();
+  }
   PetscCheck(*young > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_young %g: Young's modulus must be positive (MPa)", *young);
+             "-%smaterial_young %g: Young's modulus must be positive (MPa)", MaterialPre(pre), *young);
   PetscCheck(*nu > -1.0 && *nu < 0.5, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_poisson %g: Poisson's ratio must lie in (-1, 0.5)", *nu);
+             "-%smaterial_poisson %g: Poisson's ratio must lie in (-1, 0.5)", MaterialPre(pre), *nu);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CreateElastic(std::unique_ptr<Material> *out) {
+PetscErrorCode CreateElastic(const char *pre, std::unique_ptr<Material> *out) {
   auto mat = std::make_unique<ElasticMaterial>();
   PetscFunctionBeginUser;
-  PetscCall(ReadElasticConstants(&mat->young, &mat->nu));
+  PetscCall(ReadElasticConstants(pre, &mat->young, &mat->nu));
   *out = std::move(mat);
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CreatePlastic(std::unique_ptr<Material> *out) {
+PetscErrorCode CreatePlastic(const char *pre, std::unique_ptr<Material> *out) {
   auto mat = std::make_unique<PlasticMaterialLaw>();
   PetscFunctionBeginUser;
-  PetscCall(ReadPlasticMaterial(&mat->m));
+  PetscCall(ReadPlasticMaterial(pre, &mat->m));
   *out = std::move(mat);
   PetscFunctionReturn(0);
 }
 
 } // namespace
 
-PetscErrorCode ReadPlasticMaterial(PlasticMaterial *mp) {
+PetscErrorCode ReadPlasticMaterial(const char *pre, PlasticMaterial *mp) {
   PlasticMaterial &m = *mp;
   PetscFunctionBeginUser;
   m.young = 800.0;
   m.nu = 0.43;
-  PetscCall(ReadElasticConstants(&m.young, &m.nu));
+  PetscCall(ReadElasticConstants(pre, &m.young, &m.nu));
   // Thesis Table 4.2 (case 1): first yield 13.28 MPa with H' = 80.5, second 23.04 with H' = 3.
   PetscReal yield[kMaxHardeningSegments] = {13.28, 23.04}, H[kMaxHardeningSegments] = {80.5, 3.0};
-  PetscInt ny = kMaxHardeningSegments, nH = kMaxHardeningSegments;
-  PetscBool sety = PETSC_FALSE, setH = PETSC_FALSE;
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Plastic material", "Material");
-  PetscCall(PetscOptionsRealArray("-material_yield",
-                                  "Yield stresses where the hardening segments start [MPa, 2nd Piola-Kirchhoff] "
-                                  "(default 13.28,23.04: thesis Table 4.2, case 1)",
-                                  "", yield, &ny, &sety));
-  PetscCall(PetscOptionsRealArray("-material_hardening",
-                                  "Plastic modulus H' of each segment [MPa] (default 80.5,3.0)", "", H,
-                                  &nH, &setH));
-  PetscOptionsEnd();
-  if (!sety) ny = 2;
-  if (!setH) nH = 2;
+  PetscInt ny = 2, nH = 2;
+  for (int pass = 0; pass < MaterialPasses(pre); ++pass) {
+    // A pass that does not give an array leaves the one before it (PETSc zeroes the count then).
+    PetscReal y[kMaxHardeningSegments], h[kMaxHardeningSegments];
+    PetscInt n_y = kMaxHardeningSegments, n_h = kMaxHardeningSegments;
+    PetscBool sety = PETSC_FALSE, setH = PETSC_FALSE;
+    for (int k = 0; k < kMaxHardeningSegments; ++k) y[k] = yield[k], h[k] = H[k];
+    PetscOptionsBegin(PETSC_COMM_WORLD, MaterialPassPrefix(pre, pass), "Plastic material", "Material");
+    PetscCall(PetscOptionsRealArray("-material_yield",
+                                    "Yield stresses where the hardening segments start [MPa, 2nd Piola-Kirchhoff] "
+                                    "(default 13.28,23.04: thesis Table 4.2, case 1)",
+                                    "", y, &n_y, &sety));
+    PetscCall(PetscOptionsRealArray("-material_hardening",
+                                    "Plastic modulus H' of each segment [MPa] (default 80.5,3.0)", "", h,
+                                    &n_h, &setH));
+    PetscOptionsEnd();
+    if (sety)
+      for (int k = 0; k < kMaxHardeningSegments; ++k) yield[k] = y[k], ny = n_y;
+    if (setH)
+      for (int k = 0; k < kMaxHardeningSegments; ++k) H[k] = h[k], nH = n_h;
+  }
   PetscCheck(ny == nH && ny >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ,
-             "-material_yield has %" PetscInt_FMT " values but -material_hardening has %" PetscInt_FMT
+             "-%smaterial_yield has %" PetscInt_FMT " values but -%smaterial_hardening has %" PetscInt_FMT
              "; give one plastic modulus per yield stress",
-             ny, nH);
+             MaterialPre(pre), ny, MaterialPre(pre), nH);
   m.nseg = (int)ny;
   for (int k = 0; k < m.nseg; ++k) m.yield[k] = yield[k], m.H[k] = H[k];
   char msg[256] = "";
   PetscCheck(PlasticMaterialCheck(m, msg, sizeof msg) == 0, PETSC_COMM_WORLD,
-             PETSC_ERR_ARG_OUTOFRANGE, "plastic material: %s (options -material_*)", msg);
+             PETSC_ERR_ARG_OUTOFRANGE, "plastic material: %s (options -%smaterial_*)", msg, MaterialPre(pre));
   PetscFunctionReturn(0);
 }
 
@@ -171,20 +183,38 @@ PetscErrorCode MaterialRegisterAll(void) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material) {
+PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material, const char *prefix) {
   char type[64] = "elastic";
   PetscBool set;
   MaterialCreator create = nullptr;
   PetscFunctionBeginUser;
   PetscCall(MaterialRegisterAll());
-  PetscOptionsBegin(comm, nullptr, "Material", "Material");
-  PetscCall(PetscOptionsFList("-material_type", "Constitutive law", "", material_list, type, type,
-                              sizeof type, &set));
-  PetscOptionsEnd();
+  for (int pass = 0; pass < MaterialPasses(prefix); ++pass) {
+    PetscOptionsBegin(comm, MaterialPassPrefix(prefix, pass), "Material", "Material");
+    PetscCall(PetscOptionsFList("-material_type", "Constitutive law", "", material_list, type, type,
+                                sizeof type, &set));
+    PetscOptionsEnd();
+  }
   PetscCall(PetscFunctionListFind(material_list, type, &create));
   PetscCheck(create, comm, PETSC_ERR_ARG_UNKNOWN_TYPE,
-             "-material_type %s is unknown; the registered laws are: elastic, plastic, viscoelastic_plastic", type);
-  PetscCall(create(material));
+             "-%smaterial_type %s is unknown; the registered laws are: elastic, plastic, viscoelastic_plastic",
+             MaterialPre(prefix), type);
+  PetscCall(create(prefix, material));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode MaterialOptionsGiven(MPI_Comm comm, const char *prefix, PetscBool *given) {
+  // Every -material_* option a law reads (material.cpp, viscoelastic_plastic.cpp).
+  static const char *const keys[] = {"type",        "young", "poisson",     "yield",
+                                     "hardening",   "strain_measure",       "prony_tau",
+                                     "prony_g",     "ea",    "temperature", "reference_temperature"};
+  PetscFunctionBeginUser;
+  *given = PETSC_FALSE;
+  for (const char *k : keys) {
+    PetscBool has = PETSC_FALSE;
+    PetscCall(PetscOptionsHasName(nullptr, prefix, (std::string("-material_") + k).c_str(), &has));
+    if (has) *given = PETSC_TRUE;
+  }
   PetscFunctionReturn(0);
 }
 

@@ -9,10 +9,19 @@
 
 namespace etfe {
 
+// Where a law's options are read (`pre`): nullptr, the film's -material_*; "film_<group>_", a
+// surface group's own law, -film_<group>_material_*, each option falling back to the film's.
+// An options block is read once per pass: the film's options, then the group's over them (a
+// group's option left out keeps the film's value).
+inline int MaterialPasses(const char *pre) { return pre ? 2 : 1; }
+inline const char *MaterialPassPrefix(const char *pre, int pass) { return pass ? pre : nullptr; }
+// The prefix in a message: "-%smaterial_young" names the option the value came from.
+inline const char *MaterialPre(const char *pre) { return pre ? pre : ""; }
+
 // -material_young, -material_poisson, -material_yield, -material_hardening into m (thesis
 // Table 4.2, case 1, by default), checked.
-PetscErrorCode ReadPlasticMaterial(PlasticMaterial *m);
+PetscErrorCode ReadPlasticMaterial(const char *pre, PlasticMaterial *m);
 // -material_type viscoelastic_plastic (viscoelastic_plastic.cpp).
-PetscErrorCode CreateViscoelasticPlastic(std::unique_ptr<Material> *out);
+PetscErrorCode CreateViscoelasticPlastic(const char *pre, std::unique_ptr<Material> *out);
 
 } // namespace etfe

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include "etfe/assembly/input_plausibility.h"
 #include "etfe/kernels/viscoelastic_plastic.h"
@@ -76,109 +77,132 @@ public:
 };
 
 // -material_prony_tau / -material_prony_g, checked by name.
-PetscErrorCode ReadSpectrum(ViscoelasticPlasticMaterial *m) {
+PetscErrorCode ReadSpectrum(const char *pre, ViscoelasticPlasticMaterial *m) {
   PetscReal tau[kMaxPronyTerms] = {0.0}, g[kMaxPronyTerms] = {0.0};
-  PetscInt nt = kMaxPronyTerms, ng = kMaxPronyTerms;
-  PetscBool set_t = PETSC_FALSE, set_g = PETSC_FALSE;
+  PetscInt nt = 0, ng = 0;
   PetscFunctionBeginUser;
   const char *measures[] = {"green_lagrange", "engineering"};
   PetscInt measure = m->measure;
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Viscoelastic-plastic material", "Material");
-  PetscCall(PetscOptionsEList("-material_strain_measure",
-                              "Strain and stress the law's numbers are in: green_lagrange (Green-Lagrange strain, PK2 "
-                              "stress, as the plastic law) or engineering (Biot strain U - I and its conjugate stress: "
-                              "uniaxially the engineering strain and nominal stress of a lab curve, for parameters "
-                              "fitted to one)",
-                              "", measures, 2, measures[measure], &measure, nullptr));
+  for (int pass = 0; pass < MaterialPasses(pre); ++pass) {
+    // A pass that does not give an array leaves the one before it (PETSc zeroes the count then).
+    PetscReal tau_p[kMaxPronyTerms], g_p[kMaxPronyTerms];
+    PetscInt nt_p = kMaxPronyTerms, ng_p = kMaxPronyTerms;
+    PetscBool set_t = PETSC_FALSE, set_g = PETSC_FALSE;
+    for (int i = 0; i < kMaxPronyTerms; ++i) tau_p[i] = tau[i], g_p[i] = g[i];
+    PetscOptionsBegin(PETSC_COMM_WORLD, MaterialPassPrefix(pre, pass), "Viscoelastic-plastic material", "Material");
+    PetscCall(PetscOptionsEList("-material_strain_measure",
+                                "Strain and stress the law's numbers are in: green_lagrange (Green-Lagrange strain, PK2 "
+                                "stress, as the plastic law) or engineering (Biot strain U - I and its conjugate stress: "
+                                "uniaxially the engineering strain and nominal stress of a lab curve, for parameters "
+                                "fitted to one)",
+                                "", measures, 2, measures[measure], &measure, nullptr));
+    PetscCall(PetscOptionsRealArray("-material_prony_tau",
+                                    "Relaxation times of the Maxwell branches [s at the reference temperature], "
+                                    "increasing (none: the plastic law)",
+                                    "", tau_p, &nt_p, &set_t));
+    PetscCall(PetscOptionsRealArray("-material_prony_g",
+                                    "Moduli of the Maxwell branches as fractions of -material_young (the instantaneous "
+                                    "modulus E0); E(t) = E0 (1 - sum g_i (1 - exp(-t/tau_i)))",
+                                    "", g_p, &ng_p, &set_g));
+    PetscOptionsEnd();
+    if (set_t)
+      for (int i = 0; i < kMaxPronyTerms; ++i) tau[i] = tau_p[i], nt = nt_p;
+    if (set_g)
+      for (int i = 0; i < kMaxPronyTerms; ++i) g[i] = g_p[i], ng = ng_p;
+  }
   m->measure = measure == 1 ? kMeasureBiot : kMeasureGreenLagrange;
-  PetscCall(PetscOptionsRealArray("-material_prony_tau",
-                                  "Relaxation times of the Maxwell branches [s at the reference temperature], "
-                                  "increasing (none: the plastic law)",
-                                  "", tau, &nt, &set_t));
-  PetscCall(PetscOptionsRealArray("-material_prony_g",
-                                  "Moduli of the Maxwell branches as fractions of -material_young (the instantaneous "
-                                  "modulus E0); E(t) = E0 (1 - sum g_i (1 - exp(-t/tau_i)))",
-                                  "", g, &ng, &set_g));
-  PetscOptionsEnd();
-  if (!set_t) nt = 0;
-  if (!set_g) ng = 0;
+  const char *p = MaterialPre(pre);
   PetscCheck(nt == ng, PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ,
-             "-material_prony_tau has %" PetscInt_FMT " values but -material_prony_g has %" PetscInt_FMT
+             "-%smaterial_prony_tau has %" PetscInt_FMT " values but -%smaterial_prony_g has %" PetscInt_FMT
              "; give one modulus fraction per relaxation time",
-             nt, ng);
+             p, nt, p, ng);
   double sum = 0.0;
   for (PetscInt i = 0; i < nt; ++i) {
     PetscCheck(tau[i] > 0 && std::isfinite(tau[i]), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-               "-material_prony_tau: relaxation time %" PetscInt_FMT " is %g s; relaxation times must be > 0", i + 1,
+               "-%smaterial_prony_tau: relaxation time %" PetscInt_FMT " is %g s; relaxation times must be > 0", p, i + 1,
                (double)tau[i]);
     PetscCheck(i == 0 || tau[i] > tau[i - 1], PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-               "-material_prony_tau: the spectrum is not sorted (%g s after %g s); list the relaxation times "
-               "increasing, -material_prony_g in the same order",
-               (double)tau[i], (double)tau[i - 1]);
+               "-%smaterial_prony_tau: the spectrum is not sorted (%g s after %g s); list the relaxation times "
+               "increasing, -%smaterial_prony_g in the same order",
+               p, (double)tau[i], (double)tau[i - 1], p);
     PetscCheck(g[i] > 0 && std::isfinite(g[i]), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-               "-material_prony_g: modulus fraction %" PetscInt_FMT " is %g; a branch's modulus must be > 0",
+               "-%smaterial_prony_g: modulus fraction %" PetscInt_FMT " is %g; a branch's modulus must be > 0", p,
                i + 1, (double)g[i]);
     sum += g[i];
     m->tau[i] = tau[i], m->g[i] = g[i];
   }
   PetscCheck(sum < 1.0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_prony_g sums to %g: the fractions must sum to < 1 (1 - sum is the relaxed modulus's)", sum);
+             "-%smaterial_prony_g sums to %g: the fractions must sum to < 1 (1 - sum is the relaxed modulus's)", p,
+             sum);
   m->nterms = (int)nt;
   PetscFunctionReturn(0);
 }
 
 // -material_ea, -material_temperature, -material_reference_temperature: the shift factor.
-PetscErrorCode ReadTemperatureShift(ViscoelasticPlasticLaw *law) {
+PetscErrorCode ReadTemperatureShift(const char *pre, ViscoelasticPlasticLaw *law) {
+  PetscBool temperature_set = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(PETSC_COMM_WORLD, nullptr, "Viscoelastic-plastic material: temperature", "Material");
-  PetscCall(PetscOptionsReal("-material_ea",
-                             "Activation energy of the Arrhenius time-temperature shift [kJ/mol] (0: no shift)", "",
-                             law->ea, &law->ea, nullptr));
-  PetscCall(PetscOptionsReal("-material_reference_temperature",
-                             "Temperature the relaxation times are given at [deg C]", "", law->reference_temperature,
-                             &law->reference_temperature, nullptr));
-  law->temperature = law->reference_temperature;
-  PetscCall(PetscOptionsReal("-material_temperature", "Temperature of the film [deg C] (default: the reference)", "",
-                             law->temperature, &law->temperature, nullptr));
-  PetscOptionsEnd();
+  for (int pass = 0; pass < MaterialPasses(pre); ++pass) {
+    PetscBool set = PETSC_FALSE;
+    PetscOptionsBegin(PETSC_COMM_WORLD, MaterialPassPrefix(pre, pass), "Viscoelastic-plastic material: temperature",
+                      "Material");
+    PetscCall(PetscOptionsReal("-material_ea",
+                               "Activation energy of the Arrhenius time-temperature shift [kJ/mol] (0: no shift)", "",
+                               law->ea, &law->ea, nullptr));
+    PetscCall(PetscOptionsReal("-material_reference_temperature",
+                               "Temperature the relaxation times are given at [deg C]", "", law->reference_temperature,
+                               &law->reference_temperature, nullptr));
+    // The temperature defaults to the reference: a group's own reference moves it unless a
+    // temperature was given (the film's or the group's).
+    if (!temperature_set) law->temperature = law->reference_temperature;
+    PetscCall(PetscOptionsReal("-material_temperature", "Temperature of the film [deg C] (default: the reference)", "",
+                               law->temperature, &law->temperature, &set));
+    PetscOptionsEnd();
+    temperature_set = (PetscBool)(temperature_set || set);
+  }
+  const char *p = MaterialPre(pre);
+  const std::string t_opt = std::string("-") + p + "material_temperature";
+  const std::string tref_opt = std::string("-") + p + "material_reference_temperature";
   // PETSc reads "inf" as a number: an infinite temperature would give a_T = 0 (the film fully
   // relaxed at once) without a word. Then the range: a value in K, or past the melting point.
   PetscCheck(std::isfinite(law->reference_temperature), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_reference_temperature %s: not a finite number; give the temperature in deg C",
+             "-%smaterial_reference_temperature %s: not a finite number; give the temperature in deg C", p,
              std::isnan(law->reference_temperature) ? "nan" : "inf");
   PetscCheck(std::isfinite(law->temperature), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_temperature %s: not a finite number; give the temperature in deg C (default: the reference, "
-             "-material_reference_temperature)",
-             std::isnan(law->temperature) ? "nan" : "inf");
+             "-%smaterial_temperature %s: not a finite number; give the temperature in deg C (default: the reference, "
+             "-%smaterial_reference_temperature)",
+             p, std::isnan(law->temperature) ? "nan" : "inf", p);
   PetscCheck(law->reference_temperature > -kZeroCelsius, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_reference_temperature %g C is below absolute zero (-273.15 C)", law->reference_temperature);
+             "-%smaterial_reference_temperature %g C is below absolute zero (-273.15 C)", p,
+             law->reference_temperature);
   PetscCheck(law->temperature > -kZeroCelsius, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_temperature %g C is below absolute zero (-273.15 C)", law->temperature);
-  PetscCall(ReportPlausibility(PETSC_COMM_WORLD, CheckTemperature("-material_temperature", law->temperature)));
+             "-%smaterial_temperature %g C is below absolute zero (-273.15 C)", p, law->temperature);
+  PetscCall(ReportPlausibility(PETSC_COMM_WORLD, CheckTemperature(t_opt.c_str(), law->temperature)));
   PetscCall(ReportPlausibility(PETSC_COMM_WORLD,
-                               CheckTemperature("-material_reference_temperature", law->reference_temperature)));
+                               CheckTemperature(tref_opt.c_str(), law->reference_temperature)));
   PetscCheck(law->ea >= 0 && std::isfinite(law->ea), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_ea %g kJ/mol: the activation energy must be >= 0", law->ea);
+             "-%smaterial_ea %g kJ/mol: the activation energy must be >= 0", p, law->ea);
   const double T = law->temperature + kZeroCelsius, Tref = law->reference_temperature + kZeroCelsius;
   law->shift = std::exp(1e3 * law->ea / kGasConstant * (1.0 / T - 1.0 / Tref));
   PetscCheck(std::isfinite(law->shift) && law->shift > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE,
-             "-material_ea %g kJ/mol at -material_temperature %g C (reference %g C): the shift factor a_T = %g is "
-             "out of range",
-             law->ea, law->temperature, law->reference_temperature, law->shift);
+             "-%smaterial_ea %g kJ/mol at -%smaterial_temperature %g C (reference %g C): the shift factor a_T = %g "
+             "is out of range",
+             p, law->ea, p, law->temperature, law->reference_temperature, law->shift);
   PetscFunctionReturn(0);
 }
 
 } // namespace
 
-PetscErrorCode CreateViscoelasticPlastic(std::unique_ptr<Material> *out) {
+PetscErrorCode CreateViscoelasticPlastic(const char *pre, std::unique_ptr<Material> *out) {
   auto law = std::make_unique<ViscoelasticPlasticLaw>();
   PetscFunctionBeginUser;
-  PetscCall(ReadPlasticMaterial(&law->m.plastic));
-  PetscCall(ReadSpectrum(&law->m));
-  PetscCall(ReadTemperatureShift(law.get()));
+  PetscCall(ReadPlasticMaterial(pre, &law->m.plastic));
+  PetscCall(ReadSpectrum(pre, &law->m));
+  PetscCall(ReadTemperatureShift(pre, law.get()));
   char msg[256] = "";
   PetscCheck(ViscoelasticPlasticMaterialCheck(law->m, msg, sizeof msg) == 0, PETSC_COMM_WORLD,
-             PETSC_ERR_ARG_OUTOFRANGE, "viscoelastic_plastic material: %s (options -material_*)", msg);
+             PETSC_ERR_ARG_OUTOFRANGE, "viscoelastic_plastic material: %s (options -%smaterial_*)", msg,
+             MaterialPre(pre));
   *out = std::move(law);
   PetscFunctionReturn(0);
 }

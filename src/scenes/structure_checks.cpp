@@ -62,6 +62,11 @@ PetscErrorCode StructureCheckResolve(MPI_Comm comm, const SceneSpec &scene, Stru
   PetscFunctionBeginUser;
   *fn = StructureCheckFns();
   if (ck.name.empty()) PetscFunctionReturn(0);
+  // Every check's closed form has one film law.
+  PetscCheck(scene.material_prefixes.empty(), comm, PETSC_ERR_ARG_INCOMP,
+             "-structure_check %s compares against a closed form for a film of one law; drop -%smaterial_* (a "
+             "surface group's own law) or the check",
+             ck.name.c_str(), scene.material_prefixes.front().c_str());
   if (ck.name == "hencky") {
     fn->report = HenckyCheck;
     if (ck.given) PetscFunctionReturn(0);

@@ -66,6 +66,9 @@ struct FilmInput {
   double thickness = 0.0;     // mm (0: -membrane_thickness)
   std::vector<double> md;     // MD direction x,y,z (empty: -structure_md)
   bool md_strip = false;      // MD along the group's long axis
+  // A law of its own (-film_<group>_material_*, each option over the film's -material_*): read
+  // with the film's law when the problem is made (case_setup.cpp), not here.
+  bool own_material = false;
   StageArray pressure;        // follower pressure along the elements' normal [kPa]
   std::string pressure_schedule;  // its schedule's name ("": <group>.pressure); a built-in scene's own
   double wind_cp = 0.0;       // pressure coefficient on the face the normal points to
@@ -187,7 +190,7 @@ int StructureAddSchedule(SceneSpec *scene, const std::string &name, const std::v
 PetscErrorCode StructureAddSupports(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
 // Follower pressures, wind, snow, self-weight and group forces.
 PetscErrorCode StructureAddLoads(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);
-// Per-element thickness and MD direction of the surface groups that set them.
+// Per-element thickness, MD direction and law of the surface groups that set them.
 PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, SceneSpec *scene);
 // Gas chambers: their specs and boundary pressure loads.
 PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene);

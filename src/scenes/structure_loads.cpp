@@ -393,14 +393,16 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
 
 namespace {
 
-// Rank 0: each element's thickness and MD from the surface groups that set them; "" or the
+// Rank 0: each element's thickness, MD and law from the surface groups that set them; "" or the
 // message naming an element two groups give different values.
 PetscErrorCode FillFilmParts(const StructureInputs &in, bool any_h, bool any_md, SceneSpec *scene, std::string *err) {
   MeshData &m = scene->mesh;
   PetscFunctionBeginUser;
   // Each element takes a group's value; two groups giving it different values is an error.
-  std::vector<std::string> h_from(m.NumElements()), md_from(m.NumElements());
+  std::vector<std::string> h_from(m.NumElements()), md_from(m.NumElements()), law_from(m.NumElements());
   if (any_h) scene->element_thickness.assign(m.NumElements(), 0.0);  // 0: the default, filled in by the problem
+  if (!scene->material_prefixes.empty()) scene->element_material.assign(m.NumElements(), 0);  // 0: the film's law
+  int law = 0;  // the group's law among material_prefixes (1-based, as element_material)
   if (any_md)
     for (int e = 0; e < m.NumElements(); ++e) scene->element_md.insert(scene->element_md.end(), in.md, in.md + 3);
   for (const FilmInput &f : in.films) {
@@ -419,7 +421,15 @@ PetscErrorCode FillFilmParts(const StructureInputs &in, bool any_h, bool any_md,
       for (int i = 0; i < 3; ++i) axis[i] = f.md[i];
     }
     const bool md = f.md_strip || !f.md.empty();
+    if (f.own_material) ++law;
     for (int e : els) {
+      if (f.own_material) {
+        // Two laws are not compared (a law is many options): an element may take one group's only.
+        if (!law_from[e].empty())
+          *err = "element " + std::to_string(e) + " is in the surface groups " + law_from[e] + " and " + f.group +
+                 ", which both give it a law of their own (-film_<group>_material_*): give the law to one of them";
+        scene->element_material[e] = law, law_from[e] = f.group;
+      }
       if (f.thickness > 0) {
         if (!h_from[e].empty() && scene->element_thickness[e] != f.thickness)
           *err = "element " + std::to_string(e) + " is in the surface groups " + h_from[e] + " and " + f.group +
@@ -479,9 +489,12 @@ PetscErrorCode StructureFilmParts(MPI_Comm comm, const StructureInputs &in, Scen
   std::string err, warning;
   PetscFunctionBeginUser;
   for (const FilmInput &f : in.films) any_h |= f.thickness > 0, any_md |= f.md_strip || !f.md.empty();
+  // The groups with a law of their own, in the films' order (every rank: the laws are made on each).
+  for (const FilmInput &f : in.films)
+    if (f.own_material) scene->material_prefixes.push_back("film_" + f.group + "_");
   // Rank 0 holds the mesh; every rank takes its outcome (Rank0Outcome is collective).
   if (SceneHoldsMesh(comm)) {
-    if (any_h || any_md) PetscCall(FillFilmParts(in, any_h, any_md, scene, &err));
+    if (any_h || any_md || !scene->material_prefixes.empty()) PetscCall(FillFilmParts(in, any_h, any_md, scene, &err));
     if (err.empty()) err = CheckMdAcrossFilm(in, *scene, &warning);
   }
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
@@ -497,6 +510,9 @@ PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, Scene
     SupportSpec s;
     s.name = r.name;
     s.type = r.type;
+    // Its own candidates where it names node groups (with two supports in reach of a node, the
+    // node pairs with the one whose groups hold it).
+    if (!r.nodes.empty() && in.rigids.size() > 1) s.node_set = "structure_contact_" + r.name;
     if (r.type == "curve") {
       PetscCall(FitRigidCurve(comm, m, r, &s));
     } else {
@@ -514,11 +530,18 @@ PetscErrorCode StructureAddRigid(MPI_Comm comm, const StructureInputs &in, Scene
     std::vector<int> held(m.NumNodes(), 0);
     for (const DofConstraint &c : scene->constraints) held[c.node]++;
     std::vector<char> cand(m.NumNodes(), 0);
-    for (const RigidInput &r : in.rigids) {
+    for (size_t k = 0; k < in.rigids.size(); ++k) {
+      const RigidInput &r = in.rigids[k];
       std::vector<char> mine(m.NumNodes(), r.nodes.empty() ? 1 : 0);
       for (const std::string &g : r.nodes)
         for (int n : m.node_sets.at(g)) mine[n] = 1;
-      for (int n = 0; n < m.NumNodes(); ++n) cand[n] |= mine[n] && (r.fixed_nodes || held[n] < 3);
+      for (int n = 0; n < m.NumNodes(); ++n) mine[n] = mine[n] && (r.fixed_nodes || held[n] < 3), cand[n] |= mine[n];
+      const std::string &own = scene->contact.supports[scene->contact.supports.size() - in.rigids.size() + k].node_set;
+      if (!own.empty()) {
+        std::vector<int> &set = m.node_sets[own];
+        for (int n = 0; n < m.NumNodes(); ++n)
+          if (mine[n]) set.push_back(n);
+      }
     }
     std::vector<int> &set = m.node_sets["structure_contact"];
     for (int n = 0; n < m.NumNodes(); ++n)

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "etfe/assembly/input_plausibility.h"
+#include "etfe/material/material.h"
 #include "real_array_option.h"
 #include "structure_inputs.h"
 
@@ -182,6 +183,15 @@ PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
                               "", &f->wind_cp, &set));
   PetscCall(ReadStageArray(PetscOptionsObject, prefix, "snow",
                            "Snow [kPa per plan area] at the end of each stage: a vertical dead load", &f->snow));
+  {
+    // Listed here for -help; the law itself is made with the film's (MaterialOptionsGiven below).
+    char law[64] = "";
+    PetscCall(PetscOptionsString("-material_type",
+                                 "A law of this group's own (elastic, plastic, viscoelastic_plastic; default the "
+                                 "film's -material_type): every -material_* option given as -film_<group>_material_* is "
+                                 "this group's, the others the film's",
+                                 "", law, law, sizeof law, nullptr));
+  }
   PetscOptionsEnd();
   f->wind_given = set;
   // Given, the thickness is this group's, with -membrane_thickness's checks; an explicit 0 is no
@@ -220,6 +230,10 @@ PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
   }
   PetscCheck(f->stress_ratio > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sstress_ratio %g must be positive",
              prefix.c_str(), f->stress_ratio);
+  // Its own law: read and checked with the film's when the problem is made (case_setup.cpp).
+  PetscBool own = PETSC_FALSE;
+  PetscCall(MaterialOptionsGiven(comm, prefix.c_str(), &own));
+  f->own_material = own;
   PetscFunctionReturn(0);
 }
 
@@ -353,10 +367,19 @@ PetscErrorCode CheckKeyedOptions(MPI_Comm comm, const StructureInputs &in) {
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsLeftGet(nullptr, &n, &names, &values));
   std::string bad;
+  // A surface group's own law is read when the problem is made: its -film_<group>_material_*
+  // options are not left over yet (a misspelt one is refused after, with the unused options).
+  auto later = [&in](const char *name) {
+    for (const FilmInput &f : in.films)
+      if (f.own_material && std::strncmp(name, ("film_" + f.group + "_material_").c_str(), f.group.size() + 15) == 0)
+        return true;
+    return false;
+  };
   for (PetscInt i = 0; i < n && bad.empty(); ++i)
     for (const char *p : {"bc_", "film_", "rigid_", "region_", "chamber_"})
       // -chamber_rank_one belongs to the chambers' component, read when the problem is made.
-      if (std::strncmp(names[i], p, std::strlen(p)) == 0 && std::strcmp(names[i], "chamber_rank_one") != 0)
+      if (std::strncmp(names[i], p, std::strlen(p)) == 0 && std::strcmp(names[i], "chamber_rank_one") != 0 &&
+          !later(names[i]))
         bad = names[i];
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
   if (bad.empty()) PetscFunctionReturn(0);

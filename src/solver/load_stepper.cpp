@@ -368,7 +368,7 @@ PetscErrorCode WarnPlasticStrain(LoadStepper *s) {
   double ep, x[3];
   PetscInt element;
   PetscFunctionBeginUser;
-  if (s->strain_warned || o.plastic_strain_limit <= 0 || !P->material->HasPlasticStrain()) PetscFunctionReturn(0);
+  if (s->strain_warned || o.plastic_strain_limit <= 0 || !P->HasPlasticStrain()) PetscFunctionReturn(0);
   PetscCall(LargestPlasticStrain(P, &ep, &element, x));
   if (ep <= o.plastic_strain_limit) PetscFunctionReturn(0);
   s->strain_warned = true;
@@ -392,7 +392,8 @@ PetscErrorCode AttemptIncrement(LoadStepper *s, Increment *inc) {
   PetscCall(PetscLogEventBegin(LogEvents().increment, 0, 0, 0, 0));
   PetscCall(PetscTime(&inc->start));
   PetscCall(PredictIncrement(s, *inc));
-  P->material->SetIncrementSeconds(P->clock.Seconds(inc->t_new) - P->clock.Seconds(inc->t));
+  const double seconds = P->clock.Seconds(inc->t_new) - P->clock.Seconds(inc->t);
+  for (Material *law : P->Materials()) law->SetIncrementSeconds(seconds);
   PetscCall(ProblemSetLoadTime(P, inc->t_new, P->U));
   inc->max_it = (s->step > 0 && o.max_it > 0) ? std::min(o.max_it, s->snes_max_it) : s->snes_max_it;
   PetscCall(SNESSetTolerances(s->snes, s->snes_atol, s->snes_rtol, s->snes_stol, inc->max_it, s->snes_max_f));
@@ -481,7 +482,8 @@ PetscErrorCode CommitIncrement(LoadStepper *s, const Increment &inc) {
   Problem *P = s->P;
   PetscFunctionBeginUser;
   PetscCall(CommitHistory(P, P->U));
-  P->material->SetIncrementSeconds(0.0);  // from here on the committed state's own stress
+  // From here on the committed state's own stress (every law: a group's own too).
+  for (Material *law : P->Materials()) law->SetIncrementSeconds(0.0);
   PetscCall(AccountIncrementWork(s));
   PetscCall(VecCopy(s->U_committed, s->U_previous));
   PetscCall(VecCopy(P->U, s->U_committed));

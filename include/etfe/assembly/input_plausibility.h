@@ -14,6 +14,6 @@ class Material;
 PetscErrorCode ReportPlausibility(MPI_Comm comm, const PlausibilityCheck &c);
 // Young's modulus (ElasticConstants) and, for a law with one, the yield stresses of a material
 // made from the -material_* options; call it right after the material is created.
-PetscErrorCode MaterialCheckPlausible(MPI_Comm comm, const Material &material);
+PetscErrorCode MaterialCheckPlausible(MPI_Comm comm, const Material &material, const char *prefix = nullptr);
 
 } // namespace etfe

@@ -90,8 +90,30 @@ struct Problem {
   // constrained DOFs, their diagonal (unassembled.cpp).
   PetscBool unassembled = PETSC_FALSE;
   Vec constraint_unit = nullptr;
-  std::unique_ptr<Material> material;
-  std::vector<double> history;        // committed history, HistorySize() per local element
+  std::unique_ptr<Material> material;  // the film's law (-material_*)
+  // The surface groups' own laws (-film_<group>_material_*, in the order of the scene's
+  // material_prefixes; set before ProblemCreate), and per local element which law it takes: 0
+  // `material`, k part_materials[k-1]. Both empty where the film has one law.
+  std::vector<std::unique_ptr<Material>> part_materials;
+  std::vector<int> element_material;
+  const Material &MaterialOf(PetscInt e) const {
+    return element_material.empty() || element_material[e] == 0 ? *material : *part_materials[element_material[e] - 1];
+  }
+  // Every law the elements use (the film's first): for what is set or asked of all of them.
+  std::vector<Material *> Materials() const {
+    std::vector<Material *> all{material.get()};
+    for (const auto &m : part_materials) all.push_back(m.get());
+    return all;
+  }
+  bool HasPlasticStrain() const {
+    for (const Material *m : Materials())
+      if (m->HasPlasticStrain()) return true;
+    return false;
+  }
+  // Doubles of history per element: the largest HistorySize() of the laws (an element's law uses
+  // the first of its own); 0: no history arrays.
+  int history_size = 0;
+  std::vector<double> history;        // committed history, history_size per local element
   std::vector<double> history_trial;  // scratch for the commit pass
 
   // Constraints on local DOFs (owned and ghost): the element loops drop their rows/columns.
@@ -134,7 +156,8 @@ struct Problem {
 // Distributes the scene (rank 0's global description: local_mesh.h, scene_share.h), builds
 // vectors, the preallocated matrix and the local constraint/pressure/force lists, and puts U at
 // the prescribed values of load time 0. Unless keep_scene, rank 0's global description is
-// dropped as soon as it is distributed (ProblemReleaseScene); form finding keeps it.
+// dropped as soon as it is distributed (ProblemReleaseScene); form finding keeps it. The surface
+// groups' own laws are in problem->part_materials already (one per scene.material_prefixes).
 PetscErrorCode ProblemCreate(MPI_Comm comm, SceneSpec &&scene, std::unique_ptr<Material> material, bool keep_scene,
                              Problem *problem);
 // The membrane element's options (-membrane_*: thickness, collapse ratio, tangent shift and

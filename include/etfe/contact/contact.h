@@ -3,6 +3,7 @@
 // Each pair lives on the rank that owns its film node; its frame is fixed at t0 (the thesis's
 // Assumption 1, -contact_normal frozen).
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include <petscsys.h>
@@ -60,6 +61,18 @@ struct ContactPairReport {
 
 struct ContactSet : PhysicsTerm {
   ContactParameters params{};
+  // -contact_<support>_mu: the friction coefficient of each support's pairs, in the order of
+  // `supports` (empty: params.mu on every support, the single-coefficient run unchanged).
+  std::vector<double> support_mu;
+  // -contact_<support>_friction: a support's own law per stage (one entry: every stage), in the
+  // order of `supports`; an empty entry, or none at all: the set's law (`law`, `stage_laws`).
+  std::vector<std::vector<FrictionLaw>> support_laws;
+  // The largest coefficient of any support (whether the slip tangent makes J non-symmetric).
+  double MaxMu() const {
+    double mu = params.mu;
+    for (double m : support_mu) mu = std::max(mu, m);
+    return mu;
+  }
   FrictionLaw law = FrictionLaw::Implicit;  // the law of the first stage
   // -contact_friction a,b,c: the law of each stage (the last one holds for the stages after it);
   // empty when one law serves the whole run. A stage with "none" is frictionless (mu = 0).
@@ -152,8 +165,10 @@ PetscErrorCode ContactCommit(Problem *problem, PetscInt counts[4]);
 PetscErrorCode ContactLaggedBeginStep(Problem *problem);
 PetscErrorCode ContactLaggedRevise(Problem *problem, PetscInt *changed);
 PetscErrorCode ContactLaggedUndoRevise(Problem *problem);
-// The law in force at load time t (stage s covers t in (s, s+1]).
+// The law in force at load time t (stage s covers t in (s, s+1]): the set's, or on a support with
+// a law of its own (-contact_<support>_friction) that one.
 FrictionLaw ContactLawAt(const ContactSet &c, double time);
+FrictionLaw ContactLawAt(const ContactSet &c, int support, double time);
 ContactPairReport ContactReport(const ContactSet &c, const ContactPair &pair);
 // Appends one line per probe pair to <stem>_contact_node<id>.csv, stem = the results file without
 // its extension (written by the owning rank): step, time, status, slide x0/y0 (local), slide X/Y

@@ -76,6 +76,9 @@ struct SupportSpec {
   double centre[3] = {0, 0, 0};
   double axis[3] = {0, 1, 0};
   double radius = 1.0;
+  // The node set of the nodes that may touch this support (empty: ContactSpec::node_set's): a
+  // node within reach of two supports pairs with one that lists it.
+  std::string node_set;
 };
 
 // Contact candidates: the scene names the supports and the film nodes that may touch them
@@ -132,6 +135,11 @@ struct SceneSpec {
   // thickness [mm] (empty: -membrane_thickness everywhere) and MD direction (3 per element;
   // empty: md_axis everywhere).
   std::vector<double> element_thickness, element_md;
+  // Surface groups with a law of their own (-film_<group>_material_*): the options prefix of each
+  // ("film_<group>_", every rank), and per element which law it takes, 0 the film's (-material_*)
+  // and k the prefix k-1's (rank 0; empty, as material_prefixes: one law for the whole film).
+  std::vector<std::string> material_prefixes;
+  std::vector<int> element_material;
   // Stress-free shape of each element where it differs from the nodes' positions (a cutting
   // pattern laid onto the surface: -saddle_reference pattern): 9 coordinates per element in
   // scene order, any placement; empty: every element is stress free where its nodes are.

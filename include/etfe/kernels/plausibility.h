@@ -72,10 +72,11 @@ struct PlausibilityCheck {
 PlausibilityCheck CheckMeshExtent(const double *coords, int num_nodes, const std::string &file);
 // A film thickness (mm) given by `option` (-membrane_thickness, -film_<group>_thickness).
 PlausibilityCheck CheckThickness(double thickness, const char *option = "-membrane_thickness");
-// -material_young (MPa).
-PlausibilityCheck CheckYoung(double young);
-// -material_yield: the n yield stresses (MPa) of a law with Young's modulus `young` (MPa).
-PlausibilityCheck CheckYield(const double *yield, int n, double young);
+// -material_young (MPa); prefix "film_<group>_": a surface group's own -film_<group>_material_young.
+PlausibilityCheck CheckYoung(double young, const char *prefix = "");
+// -material_yield: the n yield stresses (MPa) of a law with Young's modulus `young` (MPa) (prefix
+// as CheckYoung's).
+PlausibilityCheck CheckYield(const double *yield, int n, double young, const char *prefix = "");
 // A uniform cutting-pattern compensation given by `option` (a fraction: 0.01 = 1 %).
 PlausibilityCheck CheckCompensation(const char *option, double compensation);
 // A design prestress given by `option`: its larger principal stress (MPa).

@@ -1,6 +1,7 @@
 // Constitutive laws behind one interface: GL strain (and committed history) in, PK2 stress and
 // tangent (and trial history) out. Registered by name (-material_type). An elastic law keeps no
-// history, so a scene without plasticity allocates none.
+// history, so a scene without plasticity allocates none. The film has one law; a surface group of
+// the general scene may have its own (-film_<group>_material_*, Problem::MaterialOf).
 #pragma once
 #include <petscsys.h>
 
@@ -49,7 +50,9 @@ public:
 // the viscoelastic-plastic law with 32 Prony terms keeps 7 + 3 * 32.
 constexpr int kMaxHistorySize = 112;
 
-typedef PetscErrorCode (*MaterialCreator)(std::unique_ptr<Material> *);
+// prefix: nullptr for the film's law (-material_*); "film_<group>_" for a surface group's own law
+// (-film_<group>_material_*, each option falling back to the film's -material_* value).
+typedef PetscErrorCode (*MaterialCreator)(const char *prefix, std::unique_ptr<Material> *);
 
 // Form finding: a constant PK2 stress (s_md, s_td, 0) in the element's MD/TD frame and no
 // material stiffness, so the tangent is the geometric stiffness alone (thesis eqs. 2.14-2.20).
@@ -60,6 +63,11 @@ std::unique_ptr<Material> MaterialCreatePrescribedStress(double s_md, double s_t
 std::unique_ptr<Material> MaterialWrapTensionField(std::unique_ptr<Material> inner);
 
 PetscErrorCode MaterialRegisterAll(void);
-PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material);
+// The law of -material_type and its -material_* options; with a prefix ("film_<group>_") the
+// group's -film_<group>_material_* options over the film's (collective).
+PetscErrorCode MaterialCreateFromOptions(MPI_Comm comm, std::unique_ptr<Material> *material,
+                                         const char *prefix = nullptr);
+// Whether any -<prefix>material_* option a law reads is given (a surface group's own law).
+PetscErrorCode MaterialOptionsGiven(MPI_Comm comm, const char *prefix, PetscBool *given);
 
 } // namespace etfe
