@@ -112,6 +112,10 @@ PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_find
   PetscCheck(!fd_set || c->force_density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-%sforce_density %s: a cable's force density is positive (N/mm: its force per mm of its length)",
              prefix.c_str(), OptionNum(c->force_density).c_str());
+  PetscCheck(!(fd_set && sliding), comm, PETSC_ERR_ARG_INCOMP,
+             "cable %s: -%ssliding with -%sforce_density: a pocket carries one force along the cable, a force "
+             "density one per segment (q l); give the pocket's force with -%sprestress",
+             group.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
   PetscCheck(!sag_set || c->sag > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-%ssag %s: an edge cable's sag is positive (mm, from the chord between its ends into the film)",
              prefix.c_str(), OptionNum(c->sag).c_str());

@@ -109,6 +109,8 @@ def test(etfe, chk):
                 r"-cable_south_sag 1000: the sag of a circular edge is below half its chord \(2000\.000000 mm"),
                (["-cable_south_force_density", -1, "-cable_north_prestress", 500],
                 r"-cable_south_force_density -1: a cable's force density is positive"),
+               (["-cable_south_force_density", q, "-cable_south_sliding", "-cable_north_prestress", 500],
+                r"cable south: -cable_south_sliding with -cable_south_force_density: a pocket carries one force"),
                (["-cable_south_sag", s, "-cable_south_length", 2000, "-cable_north_prestress", 500],
                 r"cable south: -cable_south_sag sets the cable's force and its cut length follows; drop -cable_south_length"),
                (["-cable_south_sag", s, "-cable_north_prestress", 500, "-film_film_stress_ratio", 2],
