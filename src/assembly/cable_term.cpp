@@ -21,8 +21,10 @@
 // the report gives its reaction.
 //
 // Form finding (P->scene.form_finding): a cable carries its prescribed force T whatever its length
-// (kernels/cable.h: CableSegmentConstantForce); its stress-free (cut) length is then found from T
-// and EA (CableLengthForForce) and reported.
+// (kernels/cable.h: CableSegmentConstantForce; a target sag is such a T, found by the scene), or
+// with a force density q each segment carries q times its current length (CableSegmentForceDensity);
+// each segment's stress-free (cut) length is then found from its force and EA (CableLengthForForce)
+// and their sum reported.
 #include "etfe/assembly/cable_term.h"
 
 #include <algorithm>
@@ -161,9 +163,10 @@ PetscErrorCode CableTerm::SetUp(Problem &P) {
     for (double &L : c.L0) L = s.length > 0 ? L * s.length / total : CableLengthForForce(L, s.prestress, s.EA);
     for (double L : c.L0) c.L0_total += L;
     // A segment's length from coordinates of size |x| carries eps |x| of round-off, its force
-    // that times EA / L0 (form finding: a constant force T turning by eps |x| / L0).
+    // that times EA / L0 (form finding: a constant force T turning by eps |x| / L0; a force
+    // density q: q times it).
     for (double L : c.L0) {
-      const double k = (form_finding_ ? s.prestress : s.EA) / L;
+      const double k = form_finding_ && s.force_density > 0 ? s.force_density : (form_finding_ ? s.prestress : s.EA) / L;
       roundoff_per_x_ += k * k;
     }
     c.segment.assign(c.count - 1, CableState());
@@ -231,7 +234,9 @@ void CableTerm::Evaluate(const Problem &P) {
     }
     for (int k = 0; k + 1 < c.count && (form_finding_ || c.clamp.empty()); ++k) {
       double fe[6];
-      if (form_finding_) {
+      if (form_finding_ && s.force_density > 0) {
+        c.segment[k] = CableSegmentForceDensity(&x[3 * k], s.force_density, fe, nullptr);
+      } else if (form_finding_) {
         c.segment[k] = CableSegmentConstantForce(&x[3 * k], s.prestress, fe, nullptr);
       } else if (s.sliding) {
         c.segment[k].length = CableSlidingSegment(&x[3 * k], c.chain.force, 0.0, fe, nullptr);
@@ -335,7 +340,8 @@ PetscErrorCode CableTerm::AddTangent(Problem &P, Vec, const PetscScalar *, Mat A
     }
     for (int k = 0; k + 1 < c.count; ++k) {
       double fe[6], K[36];
-      if (form_finding_) CableSegmentConstantForce(&x[3 * k], s.prestress, fe, K);
+      if (form_finding_ && s.force_density > 0) CableSegmentForceDensity(&x[3 * k], s.force_density, fe, K);
+      else if (form_finding_) CableSegmentConstantForce(&x[3 * k], s.prestress, fe, K);
       else if (sliding) CableSlidingSegment(&x[3 * k], c.chain.force, 0.0, fe, K);
       else CableSegment(&x[3 * k], c.L0[k], s.EA, fe, K);
       const std::vector<int> cols = {c.first + k, c.first + k + 1};
@@ -410,11 +416,12 @@ PetscErrorCode CableTerm::Report(const Problem &, std::vector<std::string> *line
     double nmin = 1e300, nmax = 0.0;
     int slack = 0;
     for (const CableState &st : c.segment) nmin = std::min(nmin, st.force), nmax = std::max(nmax, st.force), slack += st.slack;
-    // Cut length: the stress-free length; form finding finds it from the force at the shape found.
+    // Cut length: the stress-free length; form finding finds it per segment from the segment's
+    // force at the shape found (the prescribed T, or q l).
     double cut = c.L0_total;
     if (form_finding_) {
       cut = 0.0;
-      for (const CableState &st : c.segment) cut += CableLengthForForce(st.length, s.prestress, s.EA);
+      for (const CableState &st : c.segment) cut += CableLengthForForce(st.length, st.force, s.EA);
     }
     std::snprintf(buf, sizeof buf,
                   "cable %s (%d segments%s): force min = %.6e N, max = %.6e N, length = %.6f mm, cut_length = %.6f mm, "

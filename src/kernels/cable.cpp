@@ -73,6 +73,19 @@ CableState CableSegmentConstantForce(const double x[6], double T, double f[6], d
   return s;
 }
 
+CableState CableSegmentForceDensity(const double x[6], double q, double f[6], double K[36]) {
+  const double d[3] = {x[3] - x[0], x[4] - x[1], x[5] - x[2]};
+  CableState s;
+  s.length = Length(d);
+  s.force = q * s.length;
+  for (int i = 0; i < 3; ++i) f[3 + i] = q * d[i], f[i] = -q * d[i];
+  if (K) {
+    const double B[9] = {q, 0.0, 0.0, 0.0, q, 0.0, 0.0, 0.0, q};
+    SegmentBlocks(B, K);
+  }
+  return s;
+}
+
 CableState CableSliding(int nodes, const double *x, double L0, double EA, double *f, double *K) {
   const int n = 3 * nodes;
   CableState s;

@@ -22,7 +22,7 @@ namespace {
 PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_finding, CableInput *c, bool *any) {
   const std::string prefix = "cable_" + group + "_";
   PetscBool ea_set = PETSC_FALSE, len_set = PETSC_FALSE, pre_set = PETSC_FALSE, sl_set = PETSC_FALSE, w_set = PETSC_FALSE;
-  PetscBool sliding = PETSC_FALSE, cl_set = PETSC_FALSE, mu_set = PETSC_FALSE;
+  PetscBool sliding = PETSC_FALSE, cl_set = PETSC_FALSE, mu_set = PETSC_FALSE, fd_set = PETSC_FALSE, sag_set = PETSC_FALSE;
   char *clamps[64];
   PetscInt nclamps = 64;
   PetscFunctionBeginUser;
@@ -38,6 +38,14 @@ PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_find
                               "Force [N] the cable carries at the mesh's geometry (sets its stress-free length); form "
                               "finding: the cable's prescribed force",
                               "N", &c->prestress, &pre_set));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-force_density",
+                              "Form finding: the cable's force density q [N/mm], each segment's force q times its "
+                              "current length (instead of -cable_<group>_prestress)",
+                              "N/mm", &c->force_density, &fd_set));
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-sag",
+                              "Form finding: an edge cable's target sag [mm] from the chord between its held ends; its "
+                              "force T = n R follows from the film's stress n and the circle's radius R",
+                              "mm", &c->sag, &sag_set));
   PetscCall(PetscOptionsBool("-sliding", "One force along the whole cable (a frictionless pocket) instead of a force per segment",
                              "", sliding, &sliding, &sl_set));
   c->weight.option = "-" + prefix + "weight";
@@ -60,7 +68,7 @@ PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_find
     c->clamps.push_back(clamps[i]);
     PetscCall(PetscFree(clamps[i]));
   }
-  *any = ea_set || len_set || pre_set || sl_set || w_set || cl_set || mu_set;
+  *any = ea_set || len_set || pre_set || sl_set || w_set || cl_set || mu_set || fd_set || sag_set;
   if (!*any) PetscFunctionReturn(0);
   PetscCheck(ea_set, comm, PETSC_ERR_ARG_WRONG,
              "cable %s: give its axial stiffness -%sEA <N> (a cable option was given for the group)", group.c_str(),
@@ -76,10 +84,41 @@ PetscErrorCode ReadCable(MPI_Comm comm, const std::string &group, bool form_find
   PetscCheck(c->prestress >= 0 && c->prestress < c->EA, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-%sprestress %s: a cable carries tension only; give a force between 0 and EA (%s N)", prefix.c_str(),
              OptionNum(c->prestress).c_str(), OptionNum(c->EA).c_str());
-  PetscCheck(!form_finding || c->prestress > 0, comm, PETSC_ERR_ARG_WRONG,
-             "cable %s: form finding needs the cable's force: -%sprestress <N> (the film's stress and each cable's "
-             "force give the shape)",
-             group.c_str(), prefix.c_str());
+  // Form finding: the cable's force from exactly one of its force, its force density or its sag.
+  const std::pair<bool, const char *> force_from[3] = {
+      {pre_set == PETSC_TRUE, "prestress"}, {fd_set == PETSC_TRUE, "force_density"}, {sag_set == PETSC_TRUE, "sag"}};
+  for (const auto &[given, name] : {force_from[1], force_from[2]}) {
+    PetscCheck(!given || form_finding, comm, PETSC_ERR_ARG_WRONG,
+               "-%s%s: a form-finding input (-analysis formfind); a static run's cable takes its stress-free length "
+               "(-%slength) or its force at the mesh's geometry (-%sprestress)",
+               prefix.c_str(), name, prefix.c_str(), prefix.c_str());
+    PetscCheck(!(given && len_set), comm, PETSC_ERR_ARG_INCOMP,
+               "cable %s: -%s%s sets the cable's force and its cut length follows; drop -%slength", group.c_str(),
+               prefix.c_str(), name, prefix.c_str());
+  }
+  if (form_finding && pre_set + fd_set + sag_set > 1) {
+    std::string list;
+    for (const auto &[given, name] : force_from)
+      if (given) list += (list.empty() ? "-" : " and -") + prefix + name;
+    SETERRQ(comm, PETSC_ERR_ARG_INCOMP,
+            "cable %s: %s both set the cable's force in form finding; give one of -%sprestress (a force), "
+            "-%sforce_density (a force per length) or -%ssag (an edge cable's target sag)",
+            group.c_str(), list.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
+  }
+  PetscCheck(!form_finding || c->prestress > 0 || fd_set || sag_set, comm, PETSC_ERR_ARG_WRONG,
+             "cable %s: form finding needs the cable's force: -%sprestress <N>, -%sforce_density <N/mm> or -%ssag <mm> "
+             "(the film's stress and each cable's force give the shape)",
+             group.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
+  PetscCheck(!fd_set || c->force_density > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sforce_density %s: a cable's force density is positive (N/mm: its force per mm of its length)",
+             prefix.c_str(), OptionNum(c->force_density).c_str());
+  PetscCheck(!(fd_set && sliding), comm, PETSC_ERR_ARG_INCOMP,
+             "cable %s: -%ssliding with -%sforce_density: a pocket carries one force along the cable, a force "
+             "density one per segment (q l); give the pocket's force with -%sprestress",
+             group.c_str(), prefix.c_str(), prefix.c_str(), prefix.c_str());
+  PetscCheck(!sag_set || c->sag > 0, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "-%ssag %s: an edge cable's sag is positive (mm, from the chord between its ends into the film)",
+             prefix.c_str(), OptionNum(c->sag).c_str());
   PetscCheck(c->sliding || !(cl_set || mu_set), comm, PETSC_ERR_ARG_INCOMP,
              "cable %s: clamps and friction (-%sclamps, -%smu) act on a sliding cable; add -%ssliding (a fixed "
              "cable's segments each carry their own force already)",
@@ -110,7 +149,7 @@ PetscErrorCode CheckUnknownCables(MPI_Comm comm, const std::vector<std::string> 
   for (const std::string &g : groups) list += (list.empty() ? "" : ", ") + g;
   SETERRQ(comm, PETSC_ERR_ARG_WRONG,
           "-%s: no such cable option or 1-D group. -cable_<group>_* takes a 1-D physical group (line elements) of the "
-          "mesh (%s) and EA, length, prestress, weight, sliding, clamps or mu",
+          "mesh (%s) and EA, length, prestress, force_density, sag, weight, sliding, clamps or mu",
           bad.c_str(), list.empty() ? "the mesh has none" : list.c_str());
 }
 
@@ -237,8 +276,82 @@ std::string FreeEdge(const SceneSpec &scene) {
     if (held[kv.first.first] && held[kv.first.second]) continue;
     return "form finding: the film's edge from " + NodeName(m, kv.first.first) + " to " + NodeName(m, kv.first.second) +
            " is free (no cable, no support); a free edge under a prescribed stress has no equilibrium shape: run a "
-           "cable along it (a 1-D group with -cable_<group>_EA and _prestress) or hold it with -bc_<group>_fix";
+           "cable along it (a 1-D group with -cable_<group>_EA and _prestress, _force_density or _sag) or hold it with -bc_<group>_fix";
   }
+  return "";
+}
+
+// The film's form-finding stress, as the run will prescribe it: -formfind_stress S [MPa] (TD) and
+// -formfind_ratio (MD:TD; a scene's per-element ratios replace it, src/analyses/formfind.cpp), and
+// -membrane_thickness where no film group gives its own (the defaults: analyses/formfind.h and
+// the scene's thickness, read here before the analysis and the membrane read them).
+struct FilmStress {
+  double S = 1.0, ratio = 1.0, h = 0.25;
+};
+
+// Rank 0, form finding: the force T = n R of an edge cable given its target sag s (docs/theory.md
+// §14): its segments each border one triangle, its ends are held (the chord c between them stays),
+// the triangles along it have one thickness h and an isotropic stress S (ratio 1), n = S h, and
+// R = (c^2/4 + s^2) / (2 s) for 0 < s < c/2. Else the message why not; *note says what was taken.
+std::string SagForce(const SceneSpec &scene, const CableInput &c, const CableSpec &s, const FilmStress &film, double *T,
+                     std::string *note) {
+  const MeshData &m = scene.mesh;
+  const std::string opt = "-cable_" + c.group + "_sag";
+  std::vector<int> held(m.NumNodes(), 0);
+  for (const DofConstraint &d : scene.constraints) held[d.node] |= 1 << d.comp;
+  for (int end : {s.nodes.front(), s.nodes.back()})
+    if (held[end] != 7)
+      return opt + ": cable " + c.group + "'s end " + NodeName(m, end) + " is not held in x, y and z; the sag is "
+             "measured from the chord between its held ends (hold it with -bc_<group>_fix xyz, or give the cable's "
+             "force with -cable_" + c.group + "_prestress)";
+  std::map<std::pair<int, int>, std::vector<int>> sides;
+  for (int e = 0; e < m.NumElements(); ++e)
+    for (int a = 0; a < 3; ++a) {
+      const int p = m.triangles[3 * e + a], q = m.triangles[3 * e + (a + 1) % 3];
+      sides[{std::min(p, q), std::max(p, q)}].push_back(e);
+    }
+  double h = -1.0;
+  for (size_t k = 0; k + 1 < s.nodes.size(); ++k) {
+    const int a = s.nodes[k], b = s.nodes[k + 1];
+    const auto it = sides.find({std::min(a, b), std::max(a, b)});
+    if (it == sides.end() || it->second.size() != 1)
+      return opt + ": the segment from " + NodeName(m, a) + " to " + NodeName(m, b) + " of cable " + c.group +
+             " is not on the film's edge (" + std::to_string(it == sides.end() ? 0 : it->second.size()) +
+             " triangles share it); a target sag sets the force of an edge cable: give -cable_" + c.group +
+             "_prestress or _force_density";
+    const int e = it->second[0];
+    const double ratio = scene.element_stress_ratio.empty() ? film.ratio : scene.element_stress_ratio[e];
+    const double he = scene.element_thickness.empty() || scene.element_thickness[e] == 0 ? film.h : scene.element_thickness[e];
+    char buf[256];
+    if (ratio != 1.0) {
+      std::snprintf(buf, sizeof buf, "the film beside cable %s has the stress ratio MD:TD = %g (element %d, "
+                    "-formfind_ratio or -film_<group>_stress_ratio)", c.group.c_str(), ratio, e);
+      return opt + ": " + buf + "; the edge's circle T = n R needs an isotropic film stress (ratio 1): give the "
+             "cable's force with -cable_" + c.group + "_prestress";
+    }
+    if (h >= 0 && he != h) {
+      std::snprintf(buf, sizeof buf, "the film beside cable %s is %g mm thick at one segment and %g mm at another "
+                    "(element %d)", c.group.c_str(), h, he, e);
+      return opt + ": " + buf + "; the edge is a circle where n = S h is one value along it: give the cable's force "
+             "with -cable_" + c.group + "_prestress";
+    }
+    h = he;
+  }
+  const double *A = &m.coords[3 * s.nodes.front()], *B = &m.coords[3 * s.nodes.back()];
+  const double chord = std::sqrt((B[0] - A[0]) * (B[0] - A[0]) + (B[1] - A[1]) * (B[1] - A[1]) + (B[2] - A[2]) * (B[2] - A[2]));
+  char buf[512];
+  if (!(c.sag < 0.5 * chord)) {
+    std::snprintf(buf, sizeof buf, "%s %s: the sag of a circular edge is below half its chord (%.6f mm between its "
+                  "held ends): a smaller sag, or the cable's force with -cable_%s_prestress", opt.c_str(),
+                  OptionNum(c.sag).c_str(), chord, c.group.c_str());
+    return buf;
+  }
+  const double R = (0.25 * chord * chord + c.sag * c.sag) / (2.0 * c.sag), n = film.S * h;
+  *T = n * R;
+  std::snprintf(buf, sizeof buf, "cable %s: target sag %.9g mm over the chord %.6f mm: edge radius R = (c^2/4 + s^2) / "
+                "(2 s) = %.9e mm, film stress n = %g MPa x %g mm = %.9e N/mm, cable force T = n R = %.9e N",
+                c.group.c_str(), c.sag, chord, R, film.S, h, n, *T);
+  *note = buf;
   return "";
 }
 
@@ -262,11 +375,24 @@ PetscErrorCode StructureCablesRead(MPI_Comm comm, const MeshData &mesh, bool for
 PetscErrorCode StructureAddCables(MPI_Comm comm, const StructureInputs &in, int stages, SceneSpec *scene) {
   PetscFunctionBeginUser;
   std::string err;
+  FilmStress film;
+  film.h = scene->thickness;
+  if (std::any_of(in.cables.begin(), in.cables.end(), [](const CableInput &c) { return c.sag > 0; })) {
+    PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-formfind_stress", &film.S, nullptr));
+    PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-formfind_ratio", &film.ratio, nullptr));
+    PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-membrane_thickness", &film.h, nullptr));
+  }
+  std::vector<std::string> sag_notes;  // rank 0: each sag cable's circle and force
   for (const CableInput &c : in.cables) {
     CableSpec s;
     s.name = c.group, s.EA = c.EA, s.length = c.length, s.prestress = c.prestress, s.sliding = c.sliding;
-    s.mu = c.mu;
+    s.mu = c.mu, s.force_density = c.force_density;
     if (SceneHoldsMesh(comm) && err.empty()) err = Chain(scene->mesh, c.group, &s.nodes);
+    if (SceneHoldsMesh(comm) && err.empty() && c.sag > 0) {
+      std::string note;
+      err = SagForce(*scene, c, s, film, &s.prestress, &note);
+      sag_notes.push_back(note);
+    }
     if (SceneHoldsMesh(comm) && err.empty() && (!c.clamps.empty() || c.mu_set)) err = Clamps(*scene, c, &s);
     if (c.weight.Given() && !scene->form_finding) {
       std::vector<double> v;
@@ -292,7 +418,15 @@ PetscErrorCode StructureAddCables(MPI_Comm comm, const StructureInputs &in, int 
   }
   if (SceneHoldsMesh(comm) && err.empty() && scene->form_finding) err = FreeEdge(*scene);
   PetscCall(Rank0Outcome(comm, err.empty() ? 1 : 0, err, PETSC_ERR_ARG_WRONG));
-  for (CableSpec &s : scene->cables) {
+  for (size_t k = 0; k < scene->cables.size(); ++k) {
+    CableSpec &s = scene->cables[k];
+    if (in.cables[k].sag > 0) {  // the force found from the sag on rank 0
+      PetscCallMPI(MPI_Bcast(&s.prestress, 1, MPI_DOUBLE, 0, comm));
+      PetscCheck(s.prestress < s.EA, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-cable_%s_sag %s: the force it needs, %s N, is not below the cable's EA (%s N): a larger sag or a "
+                 "stiffer cable", s.name.c_str(), OptionNum(in.cables[k].sag).c_str(), OptionNum(s.prestress).c_str(),
+                 OptionNum(s.EA).c_str());
+    }
     for (std::vector<int> *v : {&s.nodes, &s.clamps}) {
       int n = (int)v->size();
       PetscCallMPI(MPI_Bcast(&n, 1, MPI_INT, 0, comm));
@@ -300,6 +434,7 @@ PetscErrorCode StructureAddCables(MPI_Comm comm, const StructureInputs &in, int 
       PetscCallMPI(MPI_Bcast(v->data(), n, MPI_INT, 0, comm));
     }
   }
+  for (const std::string &note : sag_notes) PetscCall(PetscPrintf(comm, "structure: %s\n", note.c_str()));
   PetscFunctionReturn(0);
 }
 

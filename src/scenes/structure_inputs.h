@@ -139,6 +139,8 @@ struct CheckInput {
 struct CableInput {
   std::string group;
   double EA = 0.0, length = 0.0, prestress = 0.0;
+  double force_density = 0.0;  // -cable_<group>_force_density: form finding, N/mm
+  double sag = 0.0;            // -cable_<group>_sag: form finding, an edge cable's target sag [mm]
   bool sliding = false;
   StageArray weight;  // N/m per stage
   std::vector<std::string> clamps;  // -cable_<group>_clamps: node groups or node tags of the file

@@ -1,6 +1,6 @@
 // Cable kernels (src/kernels/cable.cpp): a straight segment's force against EA E l / L0, the
 // consistent tangent against central differences taut and slack, tension only, the constant-force
-// segment, and the sliding chain (force uniform, the sum of segment lengths, its dense tangent).
+// and force-density segments, and the sliding chain (force uniform, the sum of segment lengths, its dense tangent).
 #include "etfe/kernels/cable.h"
 
 #include "check.h"
@@ -76,6 +76,29 @@ int main() {
     auto res = [&](const double *y, double *out) { CableSegmentConstantForce(y, T, out, nullptr); };
     etfe_test::CentralDifferenceJacobian(res, x, 6, 6, 1e-4, Kfd);
     CHECK(MaxDiff(K, Kfd, 36) <= 1e-8 * MaxAbs(Kfd, 36), "constant-force tangent: %g", MaxDiff(K, Kfd, 36));
+  }
+
+  // Force-density segment: force q (x2 - x1), N = q l, tangent q I blocks against differences (and
+  // symmetric: the residual is linear in x).
+  {
+    const double x[6] = {10, -20, 5, 310, 380, 125}, q = 0.75;
+    const double l = std::sqrt(300.0 * 300.0 + 400.0 * 400.0 + 120.0 * 120.0);
+    double f[6], K[36], Kfd[36];
+    const CableState s = CableSegmentForceDensity(x, q, f, K);
+    CHECK_CLOSE(s.length, l, 1e-14, 0.0);
+    CHECK_CLOSE(s.force, q * l, 1e-14, 0.0);
+    CHECK_CLOSE(std::sqrt(f[3] * f[3] + f[4] * f[4] + f[5] * f[5]), q * l, 1e-14, 0.0);
+    for (int i = 0; i < 3; ++i) {
+      CHECK_CLOSE(f[3 + i], q * (x[3 + i] - x[i]), 1e-15, 0.0);
+      CHECK_CLOSE(f[i], -f[3 + i], 0.0, 0.0);
+    }
+    auto res = [&](const double *y, double *out) { CableSegmentForceDensity(y, q, out, nullptr); };
+    etfe_test::CentralDifferenceJacobian(res, x, 6, 6, 1e-4, Kfd);
+    CHECK(MaxDiff(K, Kfd, 36) <= 1e-8 * MaxAbs(Kfd, 36), "force-density tangent: %g", MaxDiff(K, Kfd, 36));
+    double asym = 0.0;
+    for (int r = 0; r < 6; ++r)
+      for (int c = 0; c < 6; ++c) asym = std::fmax(asym, std::fabs(K[6 * r + c] - K[6 * c + r]));
+    CHECK(asym == 0.0, "force-density tangent symmetric: %g", asym);
   }
 
   // Sliding chain of 5 nodes over a bent path: force uniform (every segment's pull equals N), the

@@ -98,6 +98,9 @@ struct CableSpec {
   double EA = 0.0;         // axial stiffness [N]
   double length = 0.0;     // stress-free length of the whole cable [mm] (0: from prestress)
   double prestress = 0.0;  // force at the reference geometry [N]; form finding: the prescribed force
+  // Form finding: the prescribed force density [N/mm] (each segment's force q l), 0: none (then
+  // prestress is the force, given or found from a target sag).
+  double force_density = 0.0;
   bool sliding = false;    // one force along the whole chain (a frictionless pocket)
   // Sliding only: interior chain nodes that split it into sub-chains of their own force, the
   // stress-free length crossing them by capstan friction (mu); in chain order. Empty: none.

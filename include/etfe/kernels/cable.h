@@ -1,5 +1,5 @@
 // Cables (docs/theory.md §14): a two-node total-Lagrangian cable segment, tension-only; the constant-force
-// segment form finding uses; a sliding cable over a node chain (one axial force along it). PETSc-free.
+// and force-density segments form finding uses; a sliding cable over a node chain (one axial force along it). PETSc-free.
 //
 // Layouts: x holds the current positions, 3 per node, node after node (a segment: x1 then x2;
 // a chain: n0 ... nk). f holds the internal nodal forces in the same layout (the residual adds
@@ -29,6 +29,11 @@ CableState CableSegment(const double x[6], double L0, double EA, double f[6], do
 // Constant-force segment (form finding: the cable's prescribed force T whatever its length):
 // f2 = T e = -f1 with e = d / l, K22 = (T / l)(I - e e^T). K may be null.
 CableState CableSegmentConstantForce(const double x[6], double T, double f[6], double K[36]);
+
+// Force-density segment (form finding: the cable's prescribed force density q [N/mm], its force
+// q l proportional to its current length): f2 = q d = -f1 with d = x2 - x1, N = q l, K22 = q I,
+// K11 = K22, K12 = K21 = -K22 (linear in x: the tangent is exact and symmetric). K may be null.
+CableState CableSegmentForceDensity(const double x[6], double q, double f[6], double K[36]);
 
 // Sliding cable over nodes 0..k (frictionless pocket): l = sum of |x_{i+1} - x_i|, one force
 // N = EA (l - L0) / L0 for l > L0 (else 0) along the whole cable; f = N g with g = dl/dx;
