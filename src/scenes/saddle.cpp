@@ -97,8 +97,8 @@ PetscErrorCode SaddleFormFindPreset(MPI_Comm, StructureInputs *in, void *vctx) {
     in->bcs.back().group = gf.first, in->bcs.back().fix = gf.second;
   }
   for (FilmInput &film : in->films) {
-    if (film.group == "middle") film.stress_ratio = f->ratio_mid;
-    if (film.group == "corner") film.stress_ratio = f->ratio_corner;
+    if (film.group == "middle") film.stress_ratio = f->ratio_mid, film.stress_ratio_given = true;
+    if (film.group == "corner") film.stress_ratio = f->ratio_corner, film.stress_ratio_given = true;
   }
   in->check.name = "saddle", in->check.rise = f->g.rise, in->check.given = true;
   PetscFunctionReturn(0);

@@ -41,12 +41,14 @@ std::string EmptyRegion(const StructureInputs &in, const MeshData &m) {
 }
 
 // Form finding: MD:TD per element from its surface group (the last group listed wins where
-// groups overlap; an element in none keeps 1).
-void FormFindingRatios(const StructureInputs &in, SceneSpec *scene) {
+// groups overlap; an element in none takes -formfind_ratio, `ratio`). No group with a ratio of its
+// own: none per element, so the analysis's -formfind_ratio holds everywhere.
+void FormFindingRatios(const StructureInputs &in, double ratio, SceneSpec *scene) {
   const MeshData &m = scene->mesh;
-  scene->element_stress_ratio.assign(m.NumElements(), 1.0);
+  scene->element_stress_ratio.clear();
   for (const FilmInput &f : in.films) {
-    if (f.stress_ratio == 1.0) continue;
+    if (!f.stress_ratio_given) continue;
+    if (scene->element_stress_ratio.empty()) scene->element_stress_ratio.assign(m.NumElements(), ratio);
     for (int e : m.element_sets.at(f.group)) scene->element_stress_ratio[e] = f.stress_ratio;
   }
 }
@@ -187,7 +189,10 @@ PetscErrorCode StructureBuild(MPI_Comm comm, SceneSpec *scene, SceneObserver *ob
                "form finding needs a boundary: hold the supported node groups with -bc_<group>_fix xyz");
     scene->AddSchedule({"boundary", 0.0, {1.0}});
     PetscCall(StructureAddSupports(comm, in, 1, scene));
-    if (SceneHoldsMesh(comm)) FormFindingRatios(in, scene);
+    // The analysis's -formfind_ratio (read there, with its checks) for the groups without their own.
+    PetscReal ratio = 1.0;
+    PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-formfind_ratio", &ratio, nullptr));
+    if (SceneHoldsMesh(comm)) FormFindingRatios(in, ratio, scene);
     PetscCall(StructureFilmParts(comm, in, scene));
     PetscCall(StructureAddCables(comm, in, 1, scene));
   } else {

@@ -63,6 +63,7 @@ struct BcInput {
 struct FilmInput {
   std::string group;
   double stress_ratio = 1.0;  // form finding: MD:TD
+  bool stress_ratio_given = false;  // else the group takes -formfind_ratio
   double thickness = 0.0;     // mm (0: -membrane_thickness)
   std::vector<double> md;     // MD direction x,y,z (empty: -structure_md)
   bool md_strip = false;      // MD along the group's long axis

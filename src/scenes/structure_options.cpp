@@ -171,8 +171,10 @@ PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
                                "MD (roll) direction of this group: x,y,z, or strip (its long axis, as the strips "
                                "of the cutting patterns run)",
                                "", md, md, sizeof md, nullptr));
-  PetscCall(OptionsRealFinite(PetscOptionsObject, "-stress_ratio", "Form finding: MD:TD prestress ratio of this group",
-                              "", &f->stress_ratio, nullptr));
+  PetscBool ratio_set = PETSC_FALSE;
+  PetscCall(OptionsRealFinite(PetscOptionsObject, "-stress_ratio",
+                              "Form finding: MD:TD prestress ratio of this group (default -formfind_ratio)", "",
+                              &f->stress_ratio, &ratio_set));
   PetscCall(ReadStageArray(PetscOptionsObject, prefix, "pressure",
                            "Follower pressure [kPa] at the end of each stage, along the elements' normal (the side "
                            "the triangles' orientation points to)",
@@ -194,6 +196,7 @@ PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
   }
   PetscOptionsEnd();
   f->wind_given = set;
+  f->stress_ratio_given = ratio_set;
   // Given, the thickness is this group's, with -membrane_thickness's checks; an explicit 0 is no
   // thickness (not "the default", which is what leaving the option out gives).
   if (h_set) {
