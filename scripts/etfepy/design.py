@@ -19,6 +19,7 @@ import re
 
 from . import REPO
 from . import options as optionsfile
+from .resistance import Resistance, ResistanceError
 
 # EN 1990 (2002) Annex A1 recommended values (Tables A1.1 and A1.2(B)); a National Annex may set
 # others, and the design file's "factors" replace any of them.
@@ -32,17 +33,6 @@ DEFAULT_FACTORS = {
     "psi2_snow": 0.0,
     "psi2_wind": 0.0,
     "psi2_imposed": 0.3,
-}
-
-# Example resistance (documented in docs/design-run.md): NOT the values of CEN/TS 19102.
-EXAMPLE_RESISTANCE = {
-    "stress": "cauchy_mises",
-    "f_k": 21.0,
-    "k_mod": {"short": 1.0, "medium": 0.9, "long": 0.75},
-    "gamma_M": 1.2,
-    "source": ("example values for demonstration only: f_k 21 MPa is near the lower end of ETFE's second yield "
-               "point at 23 C (21-25 MPa, Surholt, Uhlemann, Stranghoener, Polymers 14 (2022) 3156); k_mod and "
-               "gamma_M are illustrative. They are not the values of CEN/TS 19102:2023: give your own."),
 }
 
 LOAD_OPTION = re.compile(r"^(structure_self_weight|structure_wind|film_\w+_(snow|pressure)|chamber_\w+_pressure"
@@ -94,8 +84,10 @@ class Design:
         self.factors = dict(DEFAULT_FACTORS)
         self.factors.update(data.get("factors", {}))
         self.cases = data.get("load_cases", {})
-        self.resistance = dict(EXAMPLE_RESISTANCE)
-        self.resistance.update(data.get("resistance", {}))
+        try:
+            self.resistance = Resistance(data.get("resistance"))
+        except ResistanceError as e:
+            raise DesignError(str(e))
         self.checks = data.get("checks", [])
         self.combinations = []
         for k, c in enumerate(list(data.get("combinations", [])) + self.generated(data.get("generate", []))):
@@ -107,7 +99,7 @@ class Design:
                 f[case] = factor_value(expr, self.factors, where)
             self.combinations.append(dict(name=c["name"], situation=c.get("situation", "ULS"), factors=f,
                                           expressions=dict(c.get("factors", {})),
-                                          duration=c.get("duration", "short"),
+                                          duration=c.get("duration"), temperature=c.get("temperature"),
                                           options=dict(c.get("options", {}))))
         self.validate()
 
@@ -136,8 +128,7 @@ class Design:
                         continue
                     psi = "psi0_" + oc.get("kind", "variable")
                     f[other] = psi if sit == "SLS" else "gamma_Q*" + psi
-                out.append(dict(name="%s-%s" % (sit, lead), situation=sit, factors=f,
-                                duration=lc.get("duration", "short")))
+                out.append(dict(name="%s-%s" % (sit, lead), situation=sit, factors=f))
         return out
 
     @staticmethod
@@ -179,9 +170,42 @@ class Design:
             if chk.get("kind") == "cable_force" and not isinstance(chk.get("breaking_load"), dict):
                 raise DesignError("check %s: a cable_force check needs breaking_load {cable group: N}"
                                   % chk.get("name", "cable_force"))
+        self.validate_resistance()
         for opt, v in self.base_loads.items():
             if len(v) != self.base_stages:
                 raise DesignError("base load %s has %d values for %d base stages" % (opt, len(v), self.base_stages))
+
+    def validate_resistance(self):
+        """Every combination a utilisation check applies to has a duration class and a strength for it
+        (and its temperature) in every material the design names; refused by name otherwise."""
+        r = self.resistance
+        mats = sorted(set(r.groups.values()) | ({r.default} if r.default else set()))
+        checked = set()
+        for chk in self.checks:
+            if chk.get("kind") == "utilisation":
+                checked |= set(chk.get("situations", ["ULS", "SLS"]))
+        for comb in self.combinations:
+            try:
+                dur, temp, _ = r.combination_class(comb, self.cases)
+                if comb["situation"] in checked or comb.get("duration") is not None:
+                    for m in mats:
+                        r.design_strength(m, dur, temp, "combination %s" % comb["name"])
+            except ResistanceError as e:
+                raise DesignError(str(e))
+
+    def mesh_file(self):
+        """The run's mesh file (the design's options over the model's -mesh_file), as etfe finds it."""
+        path = self.options.get("mesh_file")
+        if path is None:
+            model = self.model if os.path.isabs(self.model) else os.path.join(REPO, self.model)
+            path = dict((k.lstrip("-"), v) for k, v in optionsfile.read(model)).get("mesh_file")
+        if path is None:
+            raise DesignError("resistance groups: the model gives no -mesh_file to read the surface groups from")
+        return path if os.path.isabs(str(path)) else os.path.join(REPO, str(path))
+
+    def strength_class(self, comb):
+        """(duration class or None, temperature C, where they came from) of a combination."""
+        return self.resistance.combination_class(comb, self.cases)
 
     def in_base(self, case):
         return bool(self.cases[case].get("in_base", False))

@@ -9,15 +9,16 @@ import numpy as np
 from .envelope import ENVELOPES, finite
 
 COMBINATION_COLUMNS = [
-    ("combination", ""), ("situation", ""), ("loads", ""), ("status", ""), ("design_resistance", "MPa"),
+    ("combination", ""), ("situation", ""), ("loads", ""), ("status", ""), ("duration", ""), ("temperature", "C"),
+    ("design_resistance", "MPa"),
     ("max_utilisation", "1"),
     ("utilisation_place", ""), ("max_principal_stress", "MPa"), ("max_deflection", "mm"),
     ("max_plastic_strain", "1"), ("wrinkled_elements", "1"), ("increments", "1"), ("newton_iterations", "1"),
     ("cutbacks", "1"), ("wall", "s"), ("steps", "1"), ("reactions", "N"), ("chamber_pressures", "kPa"),
     ("cable_forces", "N"), ("warnings", "")]
 CABLE_COLUMNS = [("cable", ""), ("max_force", "N"), ("combination", ""), ("segment", "")]
-GROUP_COLUMNS = [("quantity", ""), ("max", "unit"), ("max_combination", ""), ("min", "unit"), ("min_combination", ""),
-                 ("unit", "")]
+GROUP_COLUMNS = [("quantity", ""), ("max", "unit"), ("max_combination", ""), ("max_increment", ""), ("min", "unit"),
+                 ("min_combination", ""), ("min_increment", ""), ("unit", "")]
 CHECK_COLUMNS = [("check", ""), ("combination", ""), ("situation", ""), ("value", "unit"), ("limit", "unit"),
                  ("unit", ""), ("verdict", ""), ("place", "")]
 
@@ -129,10 +130,12 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
     for k, v in summary:
         body.append("<tr><th>%s</th><td>%s</td></tr>" % (html.escape(k), html.escape(str(v))))
     body.append("</table>")
-    body.append("<h2>Resistance model</h2><p>f_d = f_k &middot; k_mod / &gamma;_M with f_k = %s MPa, &gamma;_M = %s, "
-                "k_mod = %s; design stress: %s. Source: %s</p>"
-                % (number(r["f_k"]), number(r["gamma_M"]), html.escape(str(r.get("k_mod"))),
-                   html.escape(r.get("stress", "cauchy_mises")), html.escape(r.get("source", ""))))
+    body.append("<h2>Resistance model</h2><p>f_d = f_k(duration, temperature) / &gamma;_M per material, each element "
+                "taking its surface group's material at the combination's duration class and temperature (column "
+                "design_resistance of the combinations); f_k linear in temperature between the tabulated ones; "
+                "design stress: %s. Source: %s</p>" % (html.escape(r.stress), html.escape(r.source)))
+    body.append(table([("material", ""), ("groups", ""), ("gamma_M", "1"), ("f_k", "")],
+                      [dict(material=m, groups=g, gamma_M=gm, f_k=t) for m, g, gm, t in r.describe()], "resistance"))
     body.append("<h2>Verdicts</h2>")
     body.append(table(CHECK_COLUMNS, check_rows, "verdicts", "verdict"))
     body.append("<h2>Combinations</h2><p>Each combination is its own nonlinear run from the base state (%s), its "
@@ -143,6 +146,7 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
                 "written steps.</p>")
     if env:
         u, ug = env["utilisation"]
+        u = np.nan_to_num(u, nan=0.0)  # NaN: no combination with a duration class
         body.append(plan_svg(X, tri, u, "Utilisation envelope (plan)", "", lo=0.0, hi=max(1.0, float(u.max()))))
         body.append(plan_svg(X, tri, ug, "Governing combination of the utilisation (where it is largest in plan)", "",
                              categories=names, order=u))
@@ -156,7 +160,9 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
             where, how, unit, desc = ENVELOPES[name]
             if name.endswith("governing"):
                 continue
-            i = int(np.argmax(vals) if how == "max" else np.argmin(vals))
+            if np.all(np.isnan(vals)):
+                continue
+            i = int(np.nanargmax(vals) if how == "max" else np.nanargmin(vals))
             rows.append(dict(field=name, extreme="%s %s %s" % (how, number(vals[i]), unit), where="%s %d" % (where, i),
                              governing=names[int(idx[i])], description=desc))
         body.append(table([("field", ""), ("extreme", ""), ("where", ""), ("governing", ""), ("description", "")],
@@ -164,7 +170,9 @@ def write_html(path, design, summary, comb_rows, check_rows, X, tri, env, names,
     else:
         body.append("<p class='FAIL'>No combination completed: no envelope.</p>")
     if groups:
-        body.append("<h3>Reactions per support group and chamber pressures</h3>")
+        body.append("<h3>Reactions per support group and chamber pressures</h3><p>Over every increment of each "
+                    "combination's stage (the history CSV's rows), with the combination and increment giving "
+                    "each extreme.</p>")
         body.append(table(GROUP_COLUMNS, groups, "groups"))
     if cables:
         body.append("<h3>Largest cable force per cable</h3>")

@@ -3,8 +3,9 @@
 Each combination's quantities are the element-wise (node-wise, segment-wise) extremes over every
 step its results file holds: a branch writes only the steps of the combination's own stage (after
 the base), every -output_every-th increment and the stage end, so the extremes cover the ramp as
-written, not the increments between written steps. A combination that did not complete has no
-state and makes the envelopes incomplete. Envelope
+written, not the increments between written steps. Reactions per support group and chamber
+pressures come from the history CSV, one row per increment, so theirs cover every increment. A
+combination that did not complete has no state and makes the envelopes incomplete. Envelope
 fields are element-wise (cells) or node-wise extremes over the completed combinations, each with
 the index of the governing combination (the first in the design's order on a tie).
 """
@@ -69,26 +70,39 @@ def mesh(path):
         return f["mesh/coordinates"][()], f["mesh/triangles"][()]
 
 
-def last_history_row(stem):
-    """The history CSV's last row (reactions per support group, chamber pressures) or {}."""
+def history_rows(stem, base_stages):
+    """The history CSV's rows of the combination's own stage (load time above the base's stages), one
+    per increment, as [{column: float}], or []. Reactions and chamber pressures are enveloped over these,
+    not over the written steps only."""
     path = stem + "_history.csv"
     if not os.path.exists(path):
-        return {}
+        return []
     with open(path) as f:
-        rows = list(csv.DictReader(f))
-    return {k: float(v) for k, v in rows[-1].items()} if rows else {}
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+    return [r for r in rows if r["time"] > base_stages + 1e-12]
 
 
-def resistance_of(design, comb):
-    r = design.resistance
-    kmod = r.get("k_mod", 1.0)
-    if isinstance(kmod, dict):
-        kmod = kmod.get(comb["duration"], 1.0)
-    return float(r["f_k"]) * float(kmod) / float(r["gamma_M"]), float(kmod)
+GROUP_SUFFIXES = ("_RX", "_RY", "_RZ", "_p_kPa")
 
 
-def quantities(state, base_u, design, comb):
-    """The per-element and per-node quantities the envelopes and checks take."""
+def history_extremes(rows):
+    """{column: (max, its increment, min, its increment)} of the reaction and chamber-pressure columns
+    over a combination's increments (rows: history_rows)."""
+    res = {}
+    for col in (rows[0] if rows else {}):
+        if not col.endswith(GROUP_SUFFIXES):
+            continue
+        vals = [r[col] for r in rows]
+        hi, lo = int(np.argmax(vals)), int(np.argmin(vals))
+        inc = [int(r.get("step", k)) for k, r in enumerate(rows)]
+        res[col] = (vals[hi], inc[hi], vals[lo], inc[lo])
+    return res
+
+
+def quantities(state, base_u, design, fd):
+    """The per-element and per-node quantities the envelopes and checks take; fd: the design strength
+    per element (its group's material at the combination's duration and temperature) or None (no
+    duration class: no utilisation, NaN)."""
     q = {}
     ps = state["principal_stress"]
     q["max_principal_stress"] = ps[:, 0]
@@ -99,10 +113,9 @@ def quantities(state, base_u, design, comb):
     n_el = ps.shape[0]
     q["plastic_strain_eq"] = state.get("plastic_strain_eq", np.zeros(n_el))
     q["wrinkle_state"] = state.get("wrinkle_state", np.zeros(n_el))
-    measure = design.resistance.get("stress", "cauchy_mises")
+    measure = design.resistance.stress
     sigma = q["max_principal_stress"] if measure == "max_principal_stress" else q["cauchy_mises"]
-    fd, _ = resistance_of(design, comb)
-    q["utilisation"] = sigma / fd
+    q["utilisation"] = sigma / fd if fd is not None else np.full(n_el, np.nan)
     u = state["displacement"]
     q["displacement_magnitude"] = np.linalg.norm(u, axis=1)
     q["deflection"] = np.linalg.norm(u - base_u, axis=1)
@@ -110,10 +123,10 @@ def quantities(state, base_u, design, comb):
     return q
 
 
-def over_steps(states, base_u, design, comb):
+def over_steps(states, base_u, design, fd):
     """The quantities of every step, each element's (node's) extreme over the steps (max or min as its
     envelope); the wrinkled area is the largest over the steps; cable segment forces their largest."""
-    qs = [quantities(st, base_u, design, comb) for st in states]
+    qs = [quantities(st, base_u, design, fd) for st in states]
     q = {}
     for name, (_, how, _, _) in ENVELOPES.items():
         stack = np.stack([x[name] for x in qs])
@@ -159,30 +172,34 @@ def envelopes(per_comb):
         return res
     for name, (_, how, _, _) in ENVELOPES.items():
         stack = np.stack([per_comb[k][name] for k in done])
-        idx = np.argmax(stack, axis=0) if how == "max" else np.argmin(stack, axis=0)
+        # NaN (a utilisation without a duration class) takes no part
+        filled = np.where(np.isnan(stack), -np.inf if how == "max" else np.inf, stack)
+        idx = np.argmax(filled, axis=0) if how == "max" else np.argmin(filled, axis=0)
         vals = np.take_along_axis(stack, idx[None, :], axis=0)[0]
         res[name] = (vals, np.array(done)[idx])
     return res
 
 
-def group_envelopes(names, extras):
-    """Reactions per support group (<group>_RX/RY/RZ, N) and chamber pressures (<c>_p_kPa) from each
-    completed combination's last history row: per column the largest and smallest value and the
-    combination that gives each. [dict(quantity, unit, max, max_combination, min, min_combination)]."""
+def group_envelopes(names, extremes):
+    """Reactions per support group (<group>_RX/RY/RZ, N) and chamber pressures (<c>_p_kPa) over every
+    increment of each completed combination (extremes: [history_extremes]): per column the largest and
+    smallest value and the combination and increment giving each. [dict(quantity, unit, max,
+    max_combination, max_increment, min, min_combination, min_increment)]."""
     cols = []
-    for h in extras:
+    for h in extremes:
         for k in h:
-            if (k.endswith(("_RX", "_RY", "_RZ")) or k.endswith("_p_kPa")) and k not in cols:
+            if k not in cols:
                 cols.append(k)
     rows = []
     for col in cols:
-        vals = [(h[col], names[k]) for k, h in enumerate(extras) if col in h]
+        vals = [(h[col], names[k]) for k, h in enumerate(extremes) if col in h]
         if not vals:
             continue
-        hi = max(vals, key=lambda v: v[0])
-        lo = min(vals, key=lambda v: v[0])
-        rows.append(dict(quantity=col, unit="kPa" if col.endswith("_p_kPa") else "N", max=hi[0],
-                         max_combination=hi[1], min=lo[0], min_combination=lo[1]))
+        hi = max(vals, key=lambda v: v[0][0])
+        lo = min(vals, key=lambda v: v[0][2])
+        rows.append(dict(quantity=col, unit="kPa" if col.endswith("_p_kPa") else "N", max=hi[0][0],
+                         max_combination=hi[1], max_increment=hi[0][1], min=lo[0][2], min_combination=lo[1],
+                         min_increment=lo[0][3]))
     return rows
 
 
@@ -208,8 +225,9 @@ def write_envelopes(path, X, tri, env, names, missing, groups=(), cables=()):
             d.attrs.update(units="1", description="index of the governing combination (root attribute combinations)")
         for g in groups:  # per support group and chamber: [max, min] and their combinations
             d = f.create_dataset("groups/" + g["quantity"], data=np.array([g["max"], g["min"]]))
-            d.attrs.update(units=g["unit"], description="largest and smallest over the combinations",
-                           governing="%s\n%s" % (g["max_combination"], g["min_combination"]))
+            d.attrs.update(units=g["unit"], description="largest and smallest over every increment of the combinations",
+                           governing="%s\n%s" % (g["max_combination"], g["min_combination"]),
+                           increment=np.array([g["max_increment"], g["min_increment"]], dtype=np.int64))
         for c in cables:  # per cable: its largest segment force over the combinations' steps
             d = f.create_dataset("cables/" + c["cable"] + "_force_max", data=np.array([c["max_force"]]))
             d.attrs.update(units="N", description="largest segment force over the combinations (every written step)",
@@ -302,12 +320,18 @@ def run_checks(design, combs, per_comb, extras, X, tri, cable_names=()):
                     rows.append(r)
                 continue
             elif kind == "chamber_pressure":
+                # every increment of the combination: the one furthest outside (or least inside) the range
                 col = chk["chamber"] + "_p_kPa"
-                value = extras[k].get(col, float("nan"))
                 lo, hi = chk["range"]
-                ok = lo <= value <= hi
+                ext = extras[k].get(col)
+                if ext is None:
+                    value, inc = float("nan"), None
+                else:
+                    value, inc = (ext[0], ext[1]) if ext[0] - hi >= lo - ext[2] else (ext[2], ext[3])
+                ok = inc is not None and lo <= ext[2] and ext[0] <= hi
                 row.update(value=value, limit="%g to %g" % (lo, hi), unit="kPa", verdict="pass" if ok else "FAIL",
-                           place="chamber " + chk["chamber"])
+                           place="chamber %s, increment %s (range over its increments %s to %s kPa)"
+                           % (chk["chamber"], inc, *(("%.4g" % ext[2], "%.4g" % ext[0]) if ext else ("-", "-"))))
             else:
                 raise ValueError("check %s: unknown kind %s (utilisation, plastic_strain, principal_strain, "
                                  "deflection, min_prestress, wrinkled_area, chamber_pressure, cable_force)"

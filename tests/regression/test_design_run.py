@@ -55,9 +55,9 @@ DESIGN = {
         "W": {"kind": "wind", "loads": {"structure_wind": 0.5}, "options": {"film_all_wind_cp": -0.8}},
     },
     "combinations": [
-        {"name": "ULS-S", "situation": "ULS", "factors": {"G": "gamma_G_sup", "S": "gamma_Q"}},
+        {"name": "ULS-S", "situation": "ULS", "duration": "short", "factors": {"G": "gamma_G_sup", "S": "gamma_Q"}},
         {"name": "SLS-W", "situation": "SLS", "factors": {"G": 1, "W": 1}},
-        {"name": "STUCK", "situation": "ULS", "factors": {"G": 1, "S": 8},
+        {"name": "STUCK", "situation": "ULS", "duration": "short", "factors": {"G": 1, "S": 8},
          "options": {"snes_max_it": 1, "load_max_cutbacks": 0}},
     ],
     "checks": [
@@ -176,8 +176,8 @@ CABLE_DESIGN = {
     "load_cases": {"G": {"kind": "permanent", "in_base": True, "loads": {"cable_cable_weight": 5}},
                    "Q": {"kind": "imposed", "loads": {"cable_cable_weight": 10}}},
     "combinations": [{"name": "ULS-Q", "situation": "ULS", "factors": {"G": "gamma_G_sup", "Q": "gamma_Q"}},
-                     {"name": "SLS-Q", "situation": "SLS", "factors": {"G": 1, "Q": 1}},
-                     {"name": "UNLOAD", "situation": "SLS", "factors": {"G": 0.5}}],
+                     {"name": "SLS-Q", "situation": "SLS", "duration": "short", "factors": {"G": 1, "Q": 1}},
+                     {"name": "UNLOAD", "situation": "SLS", "duration": "short", "factors": {"G": 0.5}}],
     "checks": [{"name": "cable force", "kind": "cable_force", "situations": ["ULS", "SLS"],
                 "breaking_load": {"cable": 1080}},
                {"name": "utilisation", "kind": "utilisation", "situations": ["SLS"]}],
@@ -195,7 +195,7 @@ def cable_checks(etfe, chk, tmp):
     zones = dict(DESIGN, load_cases=dict(DESIGN["load_cases"],
                                          WX={"kind": "wind", "loads": {"film_a_pressure": 0.35, "film_b_pressure": -0.25}},
                                          WY={"kind": "wind", "loads": {"film_a_pressure": -0.2, "film_b_pressure": -0.2}}),
-                 combinations=[{"name": "XY", "factors": {"G": 1, "WX": 1.5, "WY": 0.9}}])
+                 combinations=[{"name": "XY", "duration": "short", "factors": {"G": 1, "WX": 1.5, "WY": 0.9}}])
     got = designmod.Design(zones, "zones").combination_loads(designmod.Design(zones, "zones").combinations[0])
     chk.check(abs(got["film_a_pressure"] - (1.5 * 0.35 - 0.9 * 0.2)) < 1e-15 and
               abs(got["film_b_pressure"] - (-1.5 * 0.25 - 0.9 * 0.2)) < 1e-15,
@@ -275,7 +275,8 @@ def test(etfe, chk):
 def checks(etfe, chk, tmp):
     # EN 1990 generation (no run): snow leading and wind leading with G favourable.
     gen = dict(DESIGN, combinations=[], generate=["ULS", "SLS"])
-    gen["load_cases"] = dict(DESIGN["load_cases"], W=dict(DESIGN["load_cases"]["W"], G_favourable=True))
+    gen["load_cases"] = dict(DESIGN["load_cases"], W=dict(DESIGN["load_cases"]["W"], G_favourable=True, duration="short"),
+                             S=dict(DESIGN["load_cases"]["S"], duration="medium"))
     got = {c["name"]: c["factors"] for c in designmod.Design(gen, "gen").combinations}
     want = {"ULS-S": {"G": 1.35, "S": 1.5, "W": 1.5 * 0.6}, "ULS-W": {"G": 1.0, "W": 1.5, "S": 1.5 * 0.5},
             "SLS-S": {"G": 1.0, "S": 1.0, "W": 0.6}, "SLS-W": {"G": 1.0, "W": 1.0, "S": 0.5}}
