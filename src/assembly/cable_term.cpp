@@ -57,7 +57,7 @@ struct Cable {
   std::vector<int> clamp, clamp_node;
   std::vector<double> L0_sub, transfer, last_delta;
   std::vector<int> last_status;
-  CableClampState clamp_state;
+  CableClampState clamp_state{};
   std::vector<int> pulleys;  // sliding: chain indices of interior nodes held in x, y and z
   // The committed stress-free length per sub-chain.
   void CommittedLengths(double *L0c) const {
@@ -488,29 +488,36 @@ PetscErrorCode CableTerm::Commit(Problem &P, double) {
 PetscErrorCode CableTerm::State(const Problem &, std::vector<TermData> *blocks) const {
   PetscFunctionBeginUser;
   if (!clamped_) PetscFunctionReturn(0);
-  TermData d;
-  d.name = kCableCheckpoint.name, d.replicated = true;
+  std::vector<double> values;
   for (const Cable &c : cables_)
     for (size_t i = 0; i < c.clamp.size(); ++i)
-      d.values.insert(d.values.end(), {c.transfer[i], c.last_delta[i], (double)c.last_status[i]});
-  blocks->push_back(std::move(d));
+      values.insert(values.end(), {c.transfer[i], c.last_delta[i], (double)c.last_status[i]});
+  blocks->push_back(kCableCheckpoint.Block(std::move(values)));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode CableTerm::Restore(Problem &, const std::vector<TermData> &blocks) {
+PetscErrorCode CableTerm::Restore(Problem &P, const std::vector<TermData> &blocks) {
   PetscFunctionBeginUser;
-  for (const TermData &d : blocks) {
-    if (d.name != kCableCheckpoint.name) continue;
-    size_t k = 0;
-    for (Cable &c : cables_)
-      for (size_t i = 0; i < c.clamp.size(); ++i, k += 3)
-        c.transfer[i] = d.values[k], c.last_delta[i] = d.values[k + 1], c.last_status[i] = (int)d.values[k + 2];
-  }
+  const std::vector<double> *values = kCableCheckpoint.Find(blocks);
+  if (!values) PetscFunctionReturn(0);
+  size_t clamps = 0;
+  for (const Cable &c : cables_) clamps += c.clamp.size();
+  PetscCheck(values->size() == 3 * clamps, P.comm, PETSC_ERR_FILE_UNEXPECTED,
+             "the checkpoint's %s holds %zu values, not 3 for each of this run's %zu cable clamps: restart with "
+             "the clamps the checkpoint was written with",
+             kCableCheckpoint.name, values->size(), clamps);
+  size_t k = 0;
+  for (Cable &c : cables_)
+    for (size_t i = 0; i < c.clamp.size(); ++i, k += 3)
+      c.transfer[i] = (*values)[k], c.last_delta[i] = (*values)[k + 1], c.last_status[i] = (int)(*values)[k + 2];
   PetscFunctionReturn(0);
 }
 
-// Clamps change the physics of a restart; a run without them adds nothing (its fingerprint stays).
+// What a restart or a branch must keep: each cable's stiffness, stress-free length and kind (its
+// weight is a load, which a branch may change); the clamps. A run without cables adds nothing.
 void CableTerm::Fingerprint(Fnv64 &h) const {
+  if (!cables_.empty()) h.Add(std::string("cables"));
+  for (const Cable &c : cables_) h.Add(c.spec->name), h.Add(c.spec->EA), h.Add(c.L0), h.Add(c.spec->sliding);
   if (!clamped_) return;
   h.Add(std::string("cable_clamps"));
   for (const Cable &c : cables_) h.Add(c.spec->mu), h.Add(c.clamp_node);
@@ -521,9 +528,10 @@ void CableTerm::Fingerprint(Fnv64 &h) const {
 // the force tolerance without it. x_ (every cable node, on every rank) is the last evaluation's.
 PetscErrorCode CableTerm::ForceFloor(Problem &, Vec, double, double, double *floor) {
   double xmax = 0.0;
+  PetscFunctionBeginUser;
   for (double x : x_) xmax = std::max(xmax, std::fabs(x));
   *floor = std::max(*floor, PETSC_MACHINE_EPSILON * std::sqrt(roundoff_per_x_) * xmax);
-  return 0;
+  PetscFunctionReturn(0);
 }
 
 PetscErrorCode CableTerm::LargestMove(Problem &P, Vec U, PetscReal *move) {

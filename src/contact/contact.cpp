@@ -255,6 +255,12 @@ static PetscErrorCode ReadSupportFriction(MPI_Comm comm, int stages, const Conta
     // its own by the set's law.
     const bool own_none = !laws[s].empty() && std::all_of(laws[s].begin(), laws[s].end(),
                                                           [](FrictionLaw l) { return l == FrictionLaw::None; });
+    // A coefficient given where the law makes it 0 would be dropped unseen.
+    PetscCheck(!(set && mu[s] > 0 && (own_none || (laws[s].empty() && none))), comm, PETSC_ERR_ARG_INCOMP,
+               "-%smu %g: support %s is frictionless (%s none): give it a law of its own (-%sfriction implicit, "
+               "lagged or fixed) or leave out -%smu",
+               prefix.c_str(), mu[s], supports[s].name.c_str(),
+               own_none ? ("-" + prefix + "friction").c_str() : "-contact_friction", prefix.c_str(), prefix.c_str());
     if (own_none || (laws[s].empty() && none)) mu[s] = 0.0;
     any_mu |= set || !laws[s].empty();
     any_law |= !laws[s].empty();

@@ -140,10 +140,10 @@ CableClampReturnResult CableClampReturn(int m, const double *l, const double *L0
       for (int a = 0; a < na; ++a) delta[act[a]] += step * G[a], dmax = std::fmax(dmax, std::fabs(step * G[a]));
       for (int j = 0; j < m; ++j) lmax = std::fmax(lmax, L0[j]);
       update();
-      if (it + 1 == kNewtonMax) res.converged = false;
       // A step below this part of the lengths: converged (where a sub-chain turns slack, the
       // equations have a kink and Newton may alternate across it at this level).
       if (!(dmax > kStepTol * lmax)) break;
+      if (it + 1 == kNewtonMax) res.converged = false;
     }
     // A slip against its direction: the clamp sticks instead.
     bool changed = false;

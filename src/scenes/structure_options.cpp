@@ -136,6 +136,11 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
                "corner",
                prefix.c_str(), k / 3, OptionNum(a[0]).c_str(), OptionNum(a[1]).c_str(), k / 3 + 1,
                OptionNum(b[0]).c_str(), OptionNum(b[1]).c_str(), prefix.c_str());
+    // A vertical segment has no length in plan to take a fraction of.
+    PetscCheck(std::hypot(b[0] - a[0], b[1] - a[1]) > 1e-9 * scale, comm, PETSC_ERR_ARG_WRONG,
+               "-%spoints_interpolation axis: control points %zu and %zu are at one place in plan (%s, %s): a segment "
+               "of the drawn line needs a length in plan; use -%spoints_interpolation projection",
+               prefix.c_str(), k / 3, k / 3 + 1, OptionNum(a[0]).c_str(), OptionNum(a[1]).c_str(), prefix.c_str());
   }
   PetscCheck(bc->gradient.empty() || bc->gradient.size() == 4, comm, PETSC_ERR_ARG_SIZ,
              "-%sgradient: give the four components du_x/dX,du_x/dY,du_y/dX,du_y/dY (%zu values given)",
@@ -159,7 +164,7 @@ PetscErrorCode ReadBc(MPI_Comm comm, const std::string &group, BcInput *bc) {
 
 PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
   const std::string prefix = "film_" + group + "_";
-  PetscBool set = PETSC_FALSE, h_set = PETSC_FALSE;
+  PetscBool set = PETSC_FALSE, h_set = PETSC_FALSE, ratio_set = PETSC_FALSE;
   char md[256] = "";
   PetscFunctionBeginUser;
   f->group = group;
@@ -171,7 +176,6 @@ PetscErrorCode ReadFilm(MPI_Comm comm, const std::string &group, FilmInput *f) {
                                "MD (roll) direction of this group: x,y,z, or strip (its long axis, as the strips "
                                "of the cutting patterns run)",
                                "", md, md, sizeof md, nullptr));
-  PetscBool ratio_set = PETSC_FALSE;
   PetscCall(OptionsRealFinite(PetscOptionsObject, "-stress_ratio",
                               "Form finding: MD:TD prestress ratio of this group (default -formfind_ratio)", "",
                               &f->stress_ratio, &ratio_set));

@@ -186,12 +186,17 @@ PetscErrorCode TangentPredictor(Problem *P, SNES snes, Vec Un, double t, double 
   // A singular tangent (a flat film without prestress) fails the factorization: no solve with
   // it (MUMPS would stop the run in its solve phase), and the factorization starts again from a
   // new analysis in Newton's first solve (see NewtonSolve); the plain predictor is kept.
+  // The set-up's failure is this rank's (a block solver may fail on one rank only): all ranks
+  // take the same branch, since the solve is collective.
   PC pc;
-  PCFailedReason failed;
+  PCFailedReason failed_here;
+  int failed = 0;
   PetscCall(KSPSetUp(ksp));
   PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCGetFailedReason(pc, &failed));
-  if (failed == PC_NOERROR) {
+  PetscCall(PCGetFailedReasonRank(pc, &failed_here));
+  failed = failed_here != PC_NOERROR;
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &failed, 1, MPI_INT, MPI_MAX, P->comm));
+  if (!failed) {
     PetscCall(KSPSolve(ksp, R1, d));
     PetscCall(KSPGetConvergedReason(ksp, &kr));
   } else {
