@@ -6,7 +6,10 @@
     of every triangle that the scene adds to name the whole film (written, it overlapped both
     strips and the cutter refused the file);
   * the cutter flattens both strips and measures their cutting line, and the general scene reading
-    the found surface back still knows "all" (-film_all_* in its -help).
+    the found surface back still knows "all" (-film_all_* in its -help);
+  * -formfind_ratio holds where no group gives its own ratio: MD:TD 2 finds another surface than
+    1, and the same, bit for bit, as -film_all_stress_ratio 2 (it was ignored: every element
+    took 1).
 """
 import os
 import re
@@ -41,6 +44,18 @@ def main_test(etfe, chk):
         _, out = T.run(etfe, ["-scene", "structure", "-mesh_file", msh, "-help"])
         chk.check("-film_all_thickness" in out, "the general scene reading the found surface still names the whole "
                   "film \"all\" (-film_all_thickness in -help)")
+        found = {}
+        for name, extra in (("global", ["-formfind_ratio", 2]), ("group", ["-film_all_stress_ratio", 2])):
+            path = os.path.join(tmp, "ratio_%s.msh" % name)
+            T.run(etfe, ["-options_file", os.path.join(T.OPTIONS, "structure", "hypar_formfind.opts"),
+                         "-output_file", os.path.join(tmp, "ratio_%s.h5" % name), "-formfind_mesh_out", path] + extra)
+            with open(path, "rb") as f:
+                found[name] = f.read()
+        with open(msh, "rb") as f:
+            isotropic = f.read()
+        chk.check(found["global"] != isotropic, "-formfind_ratio 2 finds another surface than the isotropic one")
+        chk.check(found["global"] == found["group"],
+                  "-formfind_ratio 2 finds the surface -film_all_stress_ratio 2 finds, bit for bit")
 
 
 if __name__ == "__main__":
