@@ -135,12 +135,23 @@ void AddSupportsAndStart(const SceneSpec &s, Fnv64 *hash) {
   h.Add(s.initial_guess);
 }
 
+// A surface group's own model options, -film_<g>_material_*, _thickness, _md and _stress_ratio
+// (its pressure, wind and snow are loads, which a branch may change).
+bool FilmModelOption(const std::string &name) {
+  if (name.compare(0, 5, "film_") != 0) return false;
+  for (const std::string part : {"_material_", "_thickness", "_md", "_stress_ratio"}) {
+    const size_t at = name.rfind(part);
+    if (at != std::string::npos && at > 5 && (part.back() == '_' || at + part.size() == name.size())) return true;
+  }
+  return false;
+}
+
 } // namespace
 
 bool CheckpointOptionMayChange(const std::string &option, bool branch) {
   const std::string name = Lower(option[0] == '-' ? option.substr(1) : option);
   if (HasPrefix(name, kMayChange, sizeof kMayChange / sizeof *kMayChange)) return true;
-  return branch && !HasPrefix(name, kModel, sizeof kModel / sizeof *kModel);
+  return branch && !HasPrefix(name, kModel, sizeof kModel / sizeof *kModel) && !FilmModelOption(name);
 }
 
 std::uint64_t MeshFingerprint(const MeshData &m) {

@@ -93,6 +93,11 @@ int main() {
             !CheckpointOptionMayChange("-mesh_refine", true) && !CheckpointOptionMayChange("-scene", true) &&
             !CheckpointOptionMayChange("-contact_mu", true),
         "model options may not differ on a branch");
+  CHECK(!CheckpointOptionMayChange("-film_right_material_yield", true) &&
+            !CheckpointOptionMayChange("-film_roof_thickness", true) && !CheckpointOptionMayChange("-film_a_md", true) &&
+            !CheckpointOptionMayChange("-film_all_stress_ratio", true) &&
+            CheckpointOptionMayChange("-film_right_pressure", true) && CheckpointOptionMayChange("-film_md_snow", true),
+        "a surface group's law, thickness, MD and stress ratio may not differ on a branch; its loads may");
   CHECK(!CheckpointOptionMayChange("-film_all_snow") && !CheckpointOptionMayChange("-structure_stages") &&
             CheckpointOptionMayChange("-snes_rtol") && CheckpointOptionMayChange("-restart_branch"),
         "a plain restart: loads may not differ, solver options and the restart options may");
