@@ -129,6 +129,15 @@ def scratch_dir(name="etfe-test"):
             shutil.rmtree(d, ignore_errors=True)
 
 
+def stop_and_restart(etfe, args, part, ck, stop_after, full):
+    """Runs args (results into part) stopped after stop_after increments with a checkpoint ck, then
+    restarted from ck, and compares part with the uninterrupted run's results full bit for bit:
+    (the differences, as h5compare lists them, and the restarted run's printed output)."""
+    run(etfe, args + ["-output_file", part, "-load_stop_after", stop_after, "-checkpoint_file", ck])
+    _, out = run(etfe, args + ["-output_file", part, "-restart", ck])
+    return h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0), out
+
+
 def read_history(path):
     """Rows of a `<case>_history.csv` (-saddle_history) as dicts of strings."""
     with open(path) as f:

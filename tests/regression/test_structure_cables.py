@@ -143,9 +143,7 @@ def test(etfe, chk):
                  "catenary: each support carries half the cable's weight (N off)")
         # Restart mid-load: stop after 5 increments, restart from the checkpoint, compare.
         part, ck = os.path.join(tmp, "part.h5"), os.path.join(tmp, "ck.h5")
-        run(etfe, cat + ["-output", 1, "-output_file", part, "-load_stop_after", 5, "-checkpoint_file", ck])
-        _, outr = run(etfe, cat + ["-output", 1, "-output_file", part, "-restart", ck])
-        fails = T.h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
+        fails, outr = T.stop_and_restart(etfe, cat + ["-output", 1], part, ck, 5, full)
         chk.check(not fails, "catenary: stopped after 5 of 10 increments and restarted, the results equal the "
                              "uninterrupted run bit for bit%s" % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
         chk.check(LINE.search(outr) and LINE.search(outr).group(0) == LINE.search(out).group(0),
