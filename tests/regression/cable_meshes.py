@@ -5,7 +5,8 @@ group "cable" (n segments), the row y = W the 1-D group "far", the first and las
 cable the point groups "anchor" and "end". square(): a flat film [0, L]^2 on an n x n grid, its
 edges the 1-D groups "south" (y = 0), "north", "west" (x = 0) and "east". Node tags are the
 node indices + 1; the film is the surface group "film". read_nodes41(): the nodes of a Gmsh 4.1
-file etfe writes (a found form, -formfind_mesh_out).
+file etfe writes (a found form, -formfind_mesh_out). strip_model(): a cable strip model for the
+design-run tests.
 """
 import os
 import sys
@@ -29,6 +30,34 @@ def strip(path, L, W, n, points=None, lines=None, z=None):
     pts.update(points or {})
     msh22.write(path, nodes, points=pts, lines=groups, surfaces={"film": tris})
     return nodes
+
+
+# A cable of EA 2e6 N prestressed to 500 N along a strip of film without stiffness (E = 0.001
+# MPa), its ends and the far edge held: the model of the design-run tests (strip_model()).
+STRIP_MODEL = """-scene structure
+-mesh_file {mesh}
+-material_type elastic
+-material_young 1e-3
+-material_poisson 0.3
+-membrane_thickness 0.2
+-bc_far_fix xyz
+-bc_anchor_fix xyz
+-bc_end_fix xyz
+-cable_cable_EA 2e6
+-cable_cable_prestress 500
+-output_every 1
+"""
+
+
+def strip_model(tmp, name):
+    """Writes tmp/strip.msh (strip(): 2000 x 200 mm, 10 segments) and the options file tmp/name of
+    STRIP_MODEL on it; returns that file's path."""
+    mesh = os.path.join(tmp, "strip.msh")
+    strip(mesh, 2000.0, 200.0, 10)
+    model = os.path.join(tmp, name)
+    with open(model, "w") as f:
+        f.write(STRIP_MODEL.format(mesh=mesh))
+    return model
 
 
 def square(path, L, n):
