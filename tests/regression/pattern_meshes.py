@@ -1,13 +1,18 @@
 """Small surface meshes for the cutting-pattern tests, written as Gmsh 2.2 ASCII with
 physical groups, so that the tests need no Gmsh. A mesh is (nodes, triangles, groups): nodes a
 list of (x, y, z) in mm, triangles 0-based node triples, groups {name: (dim, [elements])} with
-dim 2 (triangle ids: a strip) or 1 (node pairs: a named curve)."""
+dim 2 (triangle ids: a strip) or 1 (node pairs: a named curve). cutpattern() and link_errors(): a
+cutting-pattern run on such a mesh and the link errors it prints, per strip."""
 import math
 import os
+import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scripts"))
 from etfepy import msh22  # noqa: E402  (scripts/etfepy/msh22.py)
+from etfe_testlib import run  # noqa: E402
+
+NUM = r"([-+]?\d+\.?\d*(?:e[-+]?\d+)?)"
 
 
 def grid(nx, ny, f):
@@ -194,3 +199,15 @@ def combine(parts):
         tris += [tuple(base + k for k in tri) for tri in t]
         groups[name] = (2, list(range(first, len(tris))))
     return nodes, tris, groups
+
+
+def cutpattern(etfe, tmp, name, mesh_file, args, expect_fail=False):
+    """etfe -analysis cutpattern on mesh_file (results tmp/name.h5): its printed output."""
+    return run(etfe, ["-analysis", "cutpattern", "-mesh_file", mesh_file, "-output_file",
+                      os.path.join(tmp, name + ".h5")] + list(args), expect_fail=expect_fail)[1]
+
+
+def link_errors(out):
+    """{strip: its largest link error} from a cutting-pattern run's output."""
+    return {m.group(1): float(m.group(2)) for m in re.finditer(
+        r"cutpattern: strip (\S+): \d+ nodes, \d+ links, .*?link error max %s" % NUM, out)}
