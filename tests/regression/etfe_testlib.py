@@ -170,9 +170,14 @@ FAMILIES = {"u": ("_uX", "_uY", "_uZ"), "strain": ("_Exx", "_Eyy", "_Exy", "_emi
 def largest_family_difference(h0, h):
     """Largest |h - h0| over the rows and the columns of each family, relative to the family's
     largest |h0|, and where it is (step, column)."""
+    return largest_group_difference(h0, h, [[c for c in h0[0] if c.endswith(ends)] for ends in FAMILIES.values()])
+
+
+def largest_group_difference(h0, h, groups):
+    """Largest |h - h0| over the rows and the columns of each group of columns, relative to the
+    group's largest |h0| (1 where that is 0), and where it is (step, column)."""
     worst, where = 0.0, None
-    for ends in FAMILIES.values():
-        cols = [c for c in h0[0] if c.endswith(ends)]
+    for cols in groups:
         if not cols:
             continue
         scale = max(abs(float(r[c])) for r in h0 for c in cols) or 1.0
