@@ -22,12 +22,7 @@ path = sys.argv[4] if len(sys.argv) > 4 else os.path.join(os.path.dirname(os.pat
 nx, ny = n * (ky + 1), n * (kx + 1)  # squares along x (ky + 1 bays between the y cables) and along y
 idx = lambda i, j: j * (nx + 1) + i  # noqa: E731
 nodes = [(a * i / nx, b * j / ny, 0.0) for j in range(ny + 1) for i in range(nx + 1)]
-tris = []
-for j in range(ny):
-    for i in range(nx):
-        p, q, r, s = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-        # Alternating diagonals: the mesh has no preferred shear direction.
-        tris += [(p, q, r), (p, r, s)] if (i + j) % 2 == 0 else [(p, q, s), (q, r, s)]
+tris = msh22.grid_triangles(nx, ny)
 lines = {"frame": [(idx(i, 0), idx(i + 1, 0)) for i in range(nx)] + [(idx(nx, j), idx(nx, j + 1)) for j in range(ny)]
          + [(idx(i + 1, ny), idx(i, ny)) for i in range(nx)] + [(idx(0, j + 1), idx(0, j)) for j in range(ny)]}
 for k in range(1, kx + 1):

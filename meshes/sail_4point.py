@@ -21,11 +21,7 @@ for j in range(n + 1):
     for i in range(n + 1):
         x, y = L * i / n, L * j / n
         nodes.append((x, y, H * (x / L + y / L - 2 * x * y / (L * L))))
-tris = []
-for j in range(n):
-    for i in range(n):
-        a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-        tris += [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+tris = msh22.grid_triangles(n, n)
 edges = {"edge_1": [(idx(i, 0), idx(i + 1, 0)) for i in range(n)],
          "edge_2": [(idx(n, j), idx(n, j + 1)) for j in range(n)],
          "edge_3": [(idx(n - i, n), idx(n - i - 1, n)) for i in range(n)],

@@ -1,12 +1,26 @@
 """One writer of ASCII Gmsh MSH 2.2 files for the meshes made by script (meshes/*.py,
 scripts/cushion-mesh, scripts/surface2msh) and by the regression tests (tests/regression/
-cable_meshes.py, group_meshes.py, pattern_meshes.py, balloon_mesh.py).
+cable_meshes.py, group_meshes.py, pattern_meshes.py, balloon_mesh.py), and the structured grid of
+triangles several of them cut (grid_triangles()).
 
 write_elements() writes the sections as given; write() names one physical group a name, tags
 1, 2, ... in the order points, lines, surfaces (each in its dict's order), and writes the
 elements in that same order, so a mesh writes the same bytes as long as its groups are given in
 the same order.
 """
+
+
+def grid_triangles(nx, ny):
+    """The squares of an nx x ny grid (node j (nx + 1) + i at column i, row j), row by row, each cut
+    into two counterclockwise triangles, the diagonals alternating (no preferred shear direction)."""
+    idx = lambda i, j: j * (nx + 1) + i  # noqa: E731
+    tris = []
+    for j in range(ny):
+        for i in range(nx):
+            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
+            tris += [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+    return tris
+
 
 GMSH_TYPE = {0: 15, 1: 1, 2: 2}  # a group's dimension -> Gmsh element type: point, 2-node line, triangle
 

@@ -3,11 +3,9 @@ the spherical triangle x, y, z >= 0 cut into n^2 triangles (a barycentric grid p
 sphere), normals out, surface group "skin", point groups "sym_x", "sym_y", "sym_z" on the three
 symmetry planes. write() returns the faceted octant's volume (mm^3) at its nodes' radius."""
 import math
-import os
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scripts"))
-from etfepy import msh22  # noqa: E402  (scripts/etfepy/msh22.py)
+import etfe_testlib  # noqa: F401  (puts <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
 
 
 def write(path, n, R):

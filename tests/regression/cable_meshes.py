@@ -9,10 +9,9 @@ file etfe writes (a found form, -formfind_mesh_out). strip_model(): a cable stri
 design-run tests.
 """
 import os
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scripts"))
-from etfepy import msh22  # noqa: E402  (scripts/etfepy/msh22.py)
+import etfe_testlib  # noqa: F401  (puts <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
 
 
 def strip(path, L, W, n, points=None, lines=None, z=None):
@@ -63,11 +62,7 @@ def strip_model(tmp, name):
 def square(path, L, n):
     idx = lambda i, j: j * (n + 1) + i  # noqa: E731
     nodes = [(L * i / n, L * j / n, 0.0) for j in range(n + 1) for i in range(n + 1)]
-    tris = []
-    for j in range(n):
-        for i in range(n):
-            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-            tris += [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+    tris = msh22.grid_triangles(n, n)
     lines = {"south": [(idx(i, 0), idx(i + 1, 0)) for i in range(n)],
              "north": [(idx(i, n), idx(i + 1, n)) for i in range(n)],
              "west": [(idx(0, j), idx(0, j + 1)) for j in range(n)],

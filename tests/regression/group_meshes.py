@@ -5,11 +5,8 @@ each cut into two triangles; split "x" makes the surface groups "left" (x < L/2)
 split "y" the groups "bottom" (y < W/2) and "top" (nx, ny even). Node groups: "x0" (x = 0),
 "x1" (x = L) and "all" (every node). Node tags are the node indices + 1.
 """
-import os
-import sys
-
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scripts"))
-from etfepy import msh22  # noqa: E402  (scripts/etfepy/msh22.py)
+import etfe_testlib  # noqa: F401  (puts <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
 
 
 def halves(path, L, W, nx, ny, split):

@@ -6,11 +6,9 @@ cutting-pattern run on such a mesh and the link errors it prints, per strip."""
 import math
 import os
 import re
-import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "scripts"))
-from etfepy import msh22  # noqa: E402  (scripts/etfepy/msh22.py)
-from etfe_testlib import run  # noqa: E402
+from etfe_testlib import run  # (and <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
 
 NUM = r"([-+]?\d+\.?\d*(?:e[-+]?\d+)?)"
 

@@ -39,6 +39,24 @@ def line_lengths(out):
         r"cutpattern: strip \S+ line cut_\S+: 3D %s mm, 2D %s mm" % (NUM, NUM), out)]
 
 
+SEAMS = re.compile(r"smallest triangle quality %s \(input %s\); seams: (\d+) mesh nodes moved onto them \(%s mm at "
+                   r"most\), (\d+) crossings taken to a node that could not move, seams within %s mm of the traced "
+                   r"lines, largest turn between seam segments %s deg" % (NUM, NUM, NUM, NUM, NUM))
+
+
+def parallel_cut(tmp, name, mesh):
+    """Cuts mesh (nodes, triangles, ...) into strips by planes y = const 205 mm apart: the match of
+    its seams line (SEAMS, None if missing), how far its seam nodes lie off their planes (largest
+    y range of a cut_* group, mm) and its link errors per strip."""
+    path = os.path.join(tmp, name + ".msh")
+    pm.write_msh(path, mesh[0], mesh[1], {})
+    out = pm.cutpattern(etfe, tmp, name, path, ["-cutpattern_strip_width", 205, "-cutpattern_strip_direction", "x",
+                                                "-cutpattern_strip_layout", "parallel"])
+    groups = pm.msh41_point_groups(os.path.join(tmp, name + "_cut.msh"))
+    off_plane = max(max(p[1] for p in v) - min(p[1] for p in v) for k, v in groups.items() if k.startswith("cut_"))
+    return SEAMS.search(out), off_plane, pm.link_errors(out)
+
+
 def least_width(pts):
     """The least width of plane points: across the narrowest caliper of their convex hull."""
     p = sorted(set(pts))
@@ -73,8 +91,9 @@ with scratch_dir() as tmp:
     path = os.path.join(tmp, "cone.msh")
     pm.write_msh(path, cone[0], cone[1], {})
     for layout in ("geodesic", "parallel"):
-        out = pm.cutpattern(etfe, tmp, "cone_" + layout, path, ["-cutpattern_strip_width", 90, "-cutpattern_strip_direction",
-                                                       "z", "-cutpattern_strip_layout", layout])
+        out = pm.cutpattern(etfe, tmp, "cone_" + layout, path, ["-cutpattern_strip_width", 90,
+                                                                "-cutpattern_strip_direction", "z",
+                                                                "-cutpattern_strip_layout", layout])
         errs, lines = pm.link_errors(out), line_lengths(out)
         worst_line = max(abs(l2 - l3) / l3 for l3, l2 in lines) if lines else float("nan")
         print("cone, %s seams: strips %s, largest link error %.2e, largest seam length error %.2e" % (
@@ -86,16 +105,7 @@ with scratch_dir() as tmp:
     # 2. A hypar 1000 x 1000 mm, rise 200 mm, 24 x 24 cells, cut by planes y = const 205 mm
     # apart along the surface (the grid's lines are 41.7 mm apart: the planes pass 3 mm from nodes).
     hyp = pm.hypar(n=24)
-    path = os.path.join(tmp, "hyp.msh")
-    pm.write_msh(path, hyp[0], hyp[1], {})
-    out = pm.cutpattern(etfe, tmp, "hyp", path, ["-cutpattern_strip_width", 205, "-cutpattern_strip_direction", "x",
-                                        "-cutpattern_strip_layout", "parallel"])
-    m = re.search(r"smallest triangle quality %s \(input %s\); seams: (\d+) mesh nodes moved onto them \(%s mm at "
-                  r"most\), (\d+) crossings taken to a node that could not move, seams within %s mm of the traced "
-                  r"lines, largest turn between seam segments %s deg" % (NUM, NUM, NUM, NUM, NUM), out)
-    groups = pm.msh41_point_groups(os.path.join(tmp, "hyp_cut.msh"))
-    off_plane = max(max(p[1] for p in v) - min(p[1] for p in v) for k, v in groups.items() if k.startswith("cut_"))
-    errs = pm.link_errors(out)
+    m, off_plane, errs = parallel_cut(tmp, "hyp", hyp)
     print("hypar, planar seams 205 mm apart: %d strips, quality %s (input %s), %s nodes moved onto the seams (up "
           "to %s mm), %s crossings taken to a fixed node, largest turn %s deg, seam nodes off their plane by %.2e mm"
           % ((len(errs),) + (m.groups() if m else ("?",) * 7)[:2] + (m.groups() if m else ("?",) * 7)[2:4] +
@@ -110,16 +120,7 @@ with scratch_dir() as tmp:
     # 2b. The same hypar turned by 45 deg (the saddle z = 0.4 (x^2 - y^2) / 1000 mm over 1000 x 1000 mm,
     # 24 x 24 cells): the planes y = const cut it in parabolas, curved seams.
     sad = pm.grid(24, 24, lambda u, v: ((u - 0.5) * 1000, (v - 0.5) * 1000, 400 * ((u - 0.5) ** 2 - (v - 0.5) ** 2)))
-    path = os.path.join(tmp, "sad.msh")
-    pm.write_msh(path, sad[0], sad[1], {})
-    out = pm.cutpattern(etfe, tmp, "sad", path, ["-cutpattern_strip_width", 205, "-cutpattern_strip_direction", "x",
-                                        "-cutpattern_strip_layout", "parallel"])
-    m = re.search(r"smallest triangle quality %s \(input %s\); seams: (\d+) mesh nodes moved onto them \(%s mm at "
-                  r"most\), (\d+) crossings taken to a node that could not move, seams within %s mm of the traced "
-                  r"lines, largest turn between seam segments %s deg" % (NUM, NUM, NUM, NUM, NUM), out)
-    groups = pm.msh41_point_groups(os.path.join(tmp, "sad_cut.msh"))
-    off_plane = max(max(p[1] for p in v) - min(p[1] for p in v) for k, v in groups.items() if k.startswith("cut_"))
-    errs = pm.link_errors(out)
+    m, off_plane, errs = parallel_cut(tmp, "sad", sad)
     print("saddle (hypar at 45 deg), planar seams 205 mm apart: %s" % (m.group(0) if m else "?"))
     print("  seam nodes off their plane by %.2e mm" % off_plane)
     chk.check(off_plane < 1e-9, "saddle: every seam node lies on its plane (1e-9 mm)")
@@ -136,7 +137,7 @@ with scratch_dir() as tmp:
                     "--lens", "300mm", "--size", "150"], check=True, capture_output=True)
     whole = pm.link_errors(pm.cutpattern(etfe, tmp, "whole", path, []))
     out = pm.cutpattern(etfe, tmp, "cush", path, ["-cutpattern_roll_width", 1500, "-cutpattern_seam_allowance", 15,
-                                         "-cutpattern_strip_fit_roll", "-cutpattern_strip_direction", "y"])
+                                                  "-cutpattern_strip_fit_roll", "-cutpattern_strip_direction", "y"])
     errs = pm.link_errors(out)
     widths = strip_widths(tmp, "cush", errs)
     nest = re.search(r"nesting on a roll 1500.0 mm wide: roll length %s mm" % NUM, out)
@@ -174,7 +175,8 @@ with scratch_dir() as tmp:
     path = os.path.join(tmp, "round.msh")
     subprocess.run([sys.executable, os.path.join(REPO, "scripts", "cushion-mesh"), path, "--circle", "1500",
                     "--lens", "200mm", "--size", "100"], check=True, capture_output=True)
-    out = pm.cutpattern(etfe, tmp, "round", path, ["-cutpattern_strip_width", 950, "-cutpattern_strip_layout", "radial"])
+    out = pm.cutpattern(etfe, tmp, "round", path, ["-cutpattern_strip_width", 950,
+                                                   "-cutpattern_strip_layout", "radial"])
     errs = pm.link_errors(out)
     m = re.search(r"radial strips of top: .*", out)
     print("round cushion, radial gores: %s; link error max %.2e" % (m.group(0) if m else "?",
@@ -186,7 +188,7 @@ with scratch_dir() as tmp:
     # 4. The form-found DD1511 saddle (physical surfaces corner and middle) cut on a 600 mm roll.
     msh = form_found_saddle(etfe, tmp)
     out = pm.cutpattern(etfe, tmp, "dd", msh, ["-cutpattern_roll_width", 600, "-cutpattern_seam_allowance", 15,
-                                      "-cutpattern_strip_fit_roll"])
+                                               "-cutpattern_strip_fit_roll"])
     errs = pm.link_errors(out)
     widths = strip_widths(tmp, "dd", errs)
     print("DD1511 saddle on a 600 mm roll: %s" % ", ".join("%s %.1f mm" % kv for kv in sorted(widths.items())))
