@@ -12,6 +12,9 @@ Usage: python3 meshes/cable_panel.py [n [a,b [cables_x,cables_y [path]]]]
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+from etfepy import msh22  # noqa: E402  (scripts/etfepy/msh22.py)
+
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 8
 a, b = (float(v) for v in (sys.argv[2] if len(sys.argv) > 2 else "3000,3000").split(","))
 kx, ky = (int(v) for v in (sys.argv[3] if len(sys.argv) > 3 else "2,2").split(","))
@@ -19,12 +22,7 @@ path = sys.argv[4] if len(sys.argv) > 4 else os.path.join(os.path.dirname(os.pat
 nx, ny = n * (ky + 1), n * (kx + 1)  # squares along x (ky + 1 bays between the y cables) and along y
 idx = lambda i, j: j * (nx + 1) + i  # noqa: E731
 nodes = [(a * i / nx, b * j / ny, 0.0) for j in range(ny + 1) for i in range(nx + 1)]
-tris = []
-for j in range(ny):
-    for i in range(nx):
-        p, q, r, s = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-        # Alternating diagonals: the mesh has no preferred shear direction.
-        tris += [(p, q, r), (p, r, s)] if (i + j) % 2 == 0 else [(p, q, s), (q, r, s)]
+tris = msh22.grid_triangles(nx, ny)
 lines = {"frame": [(idx(i, 0), idx(i + 1, 0)) for i in range(nx)] + [(idx(nx, j), idx(nx, j + 1)) for j in range(ny)]
          + [(idx(i + 1, ny), idx(i, ny)) for i in range(nx)] + [(idx(0, j + 1), idx(0, j)) for j in range(ny)]}
 for k in range(1, kx + 1):
@@ -32,20 +30,5 @@ for k in range(1, kx + 1):
 for k in range(1, ky + 1):
     lines["cable_y%d" % k] = [(idx(k * n, j), idx(k * n, j + 1)) for j in range(ny)]
 corners = {"corner_1": idx(0, 0), "corner_2": idx(nx, 0), "corner_3": idx(nx, ny), "corner_4": idx(0, ny)}
-names = list(corners) + list(lines) + ["film"]
-tag = {k: t + 1 for t, k in enumerate(names)}
-elems = ["15 2 %d %d %d" % (tag[k], tag[k], v + 1) for k, v in corners.items()]
-elems += ["1 2 %d %d %d %d" % (tag[k], tag[k], p + 1, q + 1) for k, ls in lines.items() for p, q in ls]
-elems += ["2 2 %d %d %d %d %d" % (tag["film"], tag["film"], p + 1, q + 1, r + 1) for p, q, r in tris]
-with open(path, "w") as f:
-    f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(names))
-    for k in names:
-        f.write('%d %d "%s"\n' % (0 if k in corners else 1 if k in lines else 2, tag[k], k))
-    f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(nodes))
-    for i, (x, y, z) in enumerate(nodes):
-        f.write("%d %.17g %.17g %.17g\n" % (i + 1, x, y, z))
-    f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
-    for i, e in enumerate(elems):
-        f.write("%d %s\n" % (i + 1, e))
-    f.write("$EndElements\n")
+msh22.write(path, nodes, points={k: [v] for k, v in corners.items()}, lines=lines, surfaces={"film": tris})
 print(path)

@@ -9,6 +9,9 @@ Usage: python3 meshes/sail_4point.py [n [rows [path]]] (default 12 2 meshes/sail
 import os
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+from etfepy import msh22  # noqa: E402  (scripts/etfepy/msh22.py)
+
 n = int(sys.argv[1]) if len(sys.argv) > 1 else 12
 rows = int(sys.argv[2]) if len(sys.argv) > 2 else 2
 L, H = 6000.0, 1500.0
@@ -18,33 +21,15 @@ for j in range(n + 1):
     for i in range(n + 1):
         x, y = L * i / n, L * j / n
         nodes.append((x, y, H * (x / L + y / L - 2 * x * y / (L * L))))
-tris = []
-for j in range(n):
-    for i in range(n):
-        a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-        tris += [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+tris = msh22.grid_triangles(n, n)
 edges = {"edge_1": [(idx(i, 0), idx(i + 1, 0)) for i in range(n)],
          "edge_2": [(idx(n, j), idx(n, j + 1)) for j in range(n)],
          "edge_3": [(idx(n - i, n), idx(n - i - 1, n)) for i in range(n)],
          "edge_4": [(idx(0, n - j), idx(0, n - j - 1)) for j in range(n)]}
 corners = {"c1": idx(0, 0), "c2": idx(n, 0), "c3": idx(n, n), "c4": idx(0, n)}
 strips = ["strip_%d" % (k + 1) for k in range((n + rows - 1) // rows)]
-names = list(corners) + list(edges) + strips
-tag = {k: t + 1 for t, k in enumerate(names)}
-elems = ["15 2 %d %d %d" % (tag[k], tag[k], v + 1) for k, v in corners.items()]
-elems += ["1 2 %d %d %d %d" % (tag[k], tag[k], a + 1, b + 1) for k, ls in edges.items() for a, b in ls]
-strip_of = lambda k: tag[strips[k // (2 * n) // rows]]  # noqa: E731  (2 n triangles per row of squares)
-elems += ["2 2 %d %d %d %d %d" % (strip_of(k), strip_of(k), a + 1, b + 1, c + 1) for k, (a, b, c) in enumerate(tris)]
 path = sys.argv[3] if len(sys.argv) > 3 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "sail_4point.msh")
-with open(path, "w") as f:
-    f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(names))
-    for k in names:
-        f.write('%d %d "%s"\n' % (0 if k in corners else 1 if k in edges else 2, tag[k], k))
-    f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(nodes))
-    for i, (x, y, z) in enumerate(nodes):
-        f.write("%d %.17g %.17g %.17g\n" % (i + 1, x, y, z))
-    f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
-    for i, e in enumerate(elems):
-        f.write("%d %s\n" % (i + 1, e))
-    f.write("$EndElements\n")
+# Row of squares r holds triangles 2 n r .. 2 n (r + 1) - 1, so each strip's triangles are one run.
+surfaces = {s: tris[2 * n * rows * k:2 * n * rows * (k + 1)] for k, s in enumerate(strips)}
+msh22.write(path, nodes, points={k: [v] for k, v in corners.items()}, lines=edges, surfaces=surfaces)
 print(path)

@@ -62,15 +62,14 @@ FrictionLaw ContactLawAt(const ContactSet &c, int support, double time) {
 // The laws named in names[0..n) (freed here), checked by the option's name.
 static PetscErrorCode ParseFrictionLaws(MPI_Comm comm, const std::string &option, char **names, PetscInt n,
                                         std::vector<FrictionLaw> *out) {
-  static const char *const laws[] = {"lagged", "implicit", "none", "fixed"};
   PetscFunctionBeginUser;
   out->clear();
   PetscErrorCode bad = 0;
   for (PetscInt i = 0; i < n; ++i) {
     PetscInt k = 0;
-    while (k < 4 && std::strcmp(names[i], laws[k]) != 0) ++k;
-    if (k == 4 && !bad) bad = (PetscErrorCode)(i + 1);
-    out->push_back(k < 4 ? (FrictionLaw)k : FrictionLaw::Implicit);
+    while (k < kFrictionLawCount && std::strcmp(names[i], kFrictionLawNames[k]) != 0) ++k;
+    if (k == kFrictionLawCount && !bad) bad = (PetscErrorCode)(i + 1);
+    out->push_back(k < kFrictionLawCount ? (FrictionLaw)k : FrictionLaw::Implicit);
   }
   std::string bad_name = bad ? names[bad - 1] : "";
   for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i]));

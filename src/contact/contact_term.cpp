@@ -159,7 +159,6 @@ PetscErrorCode ContactSet::SetupLines(const Problem &, std::vector<std::string> 
   PetscFunctionBeginUser;
   if (!support_mu.empty()) {
     std::string line = "contact: friction coefficient per support (-contact_<support>_mu):";
-    static const char *const names[] = {"lagged", "implicit", "none", "fixed"};
     for (size_t s = 0; s < supports.size(); ++s) {
       PetscCall(PetscSNPrintf(buf, sizeof buf, "%s %s %g", s ? "," : "", supports[s].name.c_str(), support_mu[s]));
       line += buf;
@@ -167,7 +166,7 @@ PetscErrorCode ContactSet::SetupLines(const Problem &, std::vector<std::string> 
       if (!support_laws.empty() && !support_laws[s].empty()) {
         line += " (";
         for (size_t k = 0; k < support_laws[s].size(); ++k)
-          line += std::string(k ? "," : "") + names[(int)support_laws[s][k]];
+          line += std::string(k ? "," : "") + kFrictionLawNames[(int)support_laws[s][k]];
         line += ")";
       }
     }

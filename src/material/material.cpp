@@ -139,24 +139,14 @@ PetscErrorCode ReadPlasticMaterial(const char *pre, PlasticMaterial *mp) {
   PetscReal yield[kMaxHardeningSegments] = {13.28, 23.04}, H[kMaxHardeningSegments] = {80.5, 3.0};
   PetscInt ny = 2, nH = 2;
   for (int pass = 0; pass < MaterialPasses(pre); ++pass) {
-    // A pass that does not give an array leaves the one before it (PETSc zeroes the count then).
-    PetscReal y[kMaxHardeningSegments], h[kMaxHardeningSegments];
-    PetscInt n_y = kMaxHardeningSegments, n_h = kMaxHardeningSegments;
-    PetscBool sety = PETSC_FALSE, setH = PETSC_FALSE;
-    for (int k = 0; k < kMaxHardeningSegments; ++k) y[k] = yield[k], h[k] = H[k];
     PetscOptionsBegin(PETSC_COMM_WORLD, MaterialPassPrefix(pre, pass), "Plastic material", "Material");
-    PetscCall(PetscOptionsRealArray("-material_yield",
+    PetscCall(MaterialPassRealArray(PetscOptionsObject, "-material_yield",
                                     "Yield stresses where the hardening segments start [MPa, 2nd Piola-Kirchhoff] "
                                     "(default 13.28,23.04: thesis Table 4.2, case 1)",
-                                    "", y, &n_y, &sety));
-    PetscCall(PetscOptionsRealArray("-material_hardening",
-                                    "Plastic modulus H' of each segment [MPa] (default 80.5,3.0)", "", h,
-                                    &n_h, &setH));
+                                    yield, &ny));
+    PetscCall(MaterialPassRealArray(PetscOptionsObject, "-material_hardening",
+                                    "Plastic modulus H' of each segment [MPa] (default 80.5,3.0)", H, &nH));
     PetscOptionsEnd();
-    if (sety)
-      for (int k = 0; k < kMaxHardeningSegments; ++k) yield[k] = y[k], ny = n_y;
-    if (setH)
-      for (int k = 0; k < kMaxHardeningSegments; ++k) H[k] = h[k], nH = n_h;
   }
   PetscCheck(ny == nH && ny >= 1, PETSC_COMM_WORLD, PETSC_ERR_ARG_SIZ,
              "-%smaterial_yield has %" PetscInt_FMT " values but -%smaterial_hardening has %" PetscInt_FMT

@@ -18,6 +18,25 @@ inline const char *MaterialPassPrefix(const char *pre, int pass) { return pass ?
 // The prefix in a message: "-%smaterial_young" names the option the value came from.
 inline const char *MaterialPre(const char *pre) { return pre ? pre : ""; }
 
+// Inside a pass's PetscOptionsBegin/End: a real array of at most N values into values[0..N) and
+// its count *n. A pass that does not give the array leaves the one before it: PETSc zeroes the
+// count of an array it does not find, so the pass reads into a copy and keeps it only if given.
+template <int N>
+PetscErrorCode MaterialPassRealArray(PetscOptionItems *PetscOptionsObject, const char *name, const char *help,
+                                     PetscReal (&values)[N], PetscInt *n) {
+  PetscReal v[N];
+  PetscInt nv = N;
+  PetscBool set = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  for (int k = 0; k < N; ++k) v[k] = values[k];
+  PetscCall(PetscOptionsRealArray(name, help, "", v, &nv, &set));
+  if (set) {
+    for (int k = 0; k < N; ++k) values[k] = v[k];
+    *n = nv;
+  }
+  PetscFunctionReturn(0);
+}
+
 // -material_young, -material_poisson, -material_yield, -material_hardening into m (thesis
 // Table 4.2, case 1, by default), checked.
 PetscErrorCode ReadPlasticMaterial(const char *pre, PlasticMaterial *m);

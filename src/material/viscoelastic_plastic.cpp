@@ -84,11 +84,6 @@ PetscErrorCode ReadSpectrum(const char *pre, ViscoelasticPlasticMaterial *m) {
   const char *measures[] = {"green_lagrange", "engineering"};
   PetscInt measure = m->measure;
   for (int pass = 0; pass < MaterialPasses(pre); ++pass) {
-    // A pass that does not give an array leaves the one before it (PETSc zeroes the count then).
-    PetscReal tau_p[kMaxPronyTerms], g_p[kMaxPronyTerms];
-    PetscInt nt_p = kMaxPronyTerms, ng_p = kMaxPronyTerms;
-    PetscBool set_t = PETSC_FALSE, set_g = PETSC_FALSE;
-    for (int i = 0; i < kMaxPronyTerms; ++i) tau_p[i] = tau[i], g_p[i] = g[i];
     PetscOptionsBegin(PETSC_COMM_WORLD, MaterialPassPrefix(pre, pass), "Viscoelastic-plastic material", "Material");
     PetscCall(PetscOptionsEList("-material_strain_measure",
                                 "Strain and stress the law's numbers are in: green_lagrange (Green-Lagrange strain, PK2 "
@@ -96,19 +91,15 @@ PetscErrorCode ReadSpectrum(const char *pre, ViscoelasticPlasticMaterial *m) {
                                 "uniaxially the engineering strain and nominal stress of a lab curve, for parameters "
                                 "fitted to one)",
                                 "", measures, 2, measures[measure], &measure, nullptr));
-    PetscCall(PetscOptionsRealArray("-material_prony_tau",
+    PetscCall(MaterialPassRealArray(PetscOptionsObject, "-material_prony_tau",
                                     "Relaxation times of the Maxwell branches [s at the reference temperature], "
                                     "increasing (none: the plastic law)",
-                                    "", tau_p, &nt_p, &set_t));
-    PetscCall(PetscOptionsRealArray("-material_prony_g",
+                                    tau, &nt));
+    PetscCall(MaterialPassRealArray(PetscOptionsObject, "-material_prony_g",
                                     "Moduli of the Maxwell branches as fractions of -material_young (the instantaneous "
                                     "modulus E0); E(t) = E0 (1 - sum g_i (1 - exp(-t/tau_i)))",
-                                    "", g_p, &ng_p, &set_g));
+                                    g, &ng));
     PetscOptionsEnd();
-    if (set_t)
-      for (int i = 0; i < kMaxPronyTerms; ++i) tau[i] = tau_p[i], nt = nt_p;
-    if (set_g)
-      for (int i = 0; i < kMaxPronyTerms; ++i) g[i] = g_p[i], ng = ng_p;
   }
   m->measure = measure == 1 ? kMeasureBiot : kMeasureGreenLagrange;
   const char *p = MaterialPre(pre);

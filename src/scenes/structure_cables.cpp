@@ -241,12 +241,9 @@ std::string Clamps(const SceneSpec &scene, const CableInput &c, CableSpec *s) {
     }
   }
   if (c.mu_set) {  // saddles: interior nodes held in all three directions
-    std::map<int, int> held;
-    for (const DofConstraint &d : scene.constraints) held[d.node] |= 1 << d.comp;
-    for (size_t k = 1; k + 1 < s->nodes.size(); ++k) {
-      const auto h = held.find(s->nodes[k]);
-      if (h != held.end() && h->second == 7) chosen.insert((int)k);
-    }
+    const std::vector<int> held = StructureHeldMask(scene);
+    for (size_t k = 1; k + 1 < s->nodes.size(); ++k)
+      if (held[s->nodes[k]] == 7) chosen.insert((int)k);
     if (chosen.empty())
       return "-cable_" + c.group + "_mu: cable " + c.group + " has no clamp and no saddle (an interior node held in x, "
              "y and z) for the friction to act at; give -cable_" + c.group + "_clamps <node group>";
@@ -269,8 +266,7 @@ std::string FreeEdge(const SceneSpec &scene) {
   for (const CableSpec &c : scene.cables)
     for (size_t k = 0; k + 1 < c.nodes.size(); ++k)
       cable.insert({std::min(c.nodes[k], c.nodes[k + 1]), std::max(c.nodes[k], c.nodes[k + 1])});
-  std::vector<char> held(m.NumNodes(), 0);
-  for (const DofConstraint &d : scene.constraints) held[d.node] = 1;
+  const std::vector<int> held = StructureHeldMask(scene);  // nonzero: some component held
   for (const auto &kv : count) {
     if (kv.second != 1 || cable.count(kv.first)) continue;
     if (held[kv.first.first] && held[kv.first.second]) continue;
@@ -297,8 +293,7 @@ std::string SagForce(const SceneSpec &scene, const CableInput &c, const CableSpe
                      std::string *note) {
   const MeshData &m = scene.mesh;
   const std::string opt = "-cable_" + c.group + "_sag";
-  std::vector<int> held(m.NumNodes(), 0);
-  for (const DofConstraint &d : scene.constraints) held[d.node] |= 1 << d.comp;
+  const std::vector<int> held = StructureHeldMask(scene);
   for (int end : {s.nodes.front(), s.nodes.back()})
     if (held[end] != 7)
       return opt + ": cable " + c.group + "'s end " + NodeName(m, end) + " is not held in x, y and z; the sag is "

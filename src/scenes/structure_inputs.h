@@ -178,6 +178,10 @@ struct StructureInputs {
 // Rank 0: the area vector times 2 of element e, (x2 - x1) x (x3 - x1).
 void StructureTriangleNormal(const MeshData &m, int e, double n[3]);
 
+// Rank 0: per node of the scene's mesh, bit i set where its component i is prescribed
+// (scene.constraints so far): 7 is a node held in x, y and z, 0 a free one.
+std::vector<int> StructureHeldMask(const SceneSpec &scene);
+
 // Rank 0's names (group names) on every rank (collective).
 PetscErrorCode BroadcastNames(MPI_Comm comm, std::vector<std::string> *names);
 

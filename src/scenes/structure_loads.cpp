@@ -23,6 +23,12 @@ void StructureTriangleNormal(const MeshData &m, int e, double n[3]) {
   n[0] = u[1] * v[2] - u[2] * v[1], n[1] = u[2] * v[0] - u[0] * v[2], n[2] = u[0] * v[1] - u[1] * v[0];
 }
 
+std::vector<int> StructureHeldMask(const SceneSpec &scene) {
+  std::vector<int> held(scene.mesh.NumNodes(), 0);
+  for (const DofConstraint &d : scene.constraints) held[d.node] |= 1 << d.comp;
+  return held;
+}
+
 namespace {
 
 const double kPaToMPa = 1e-3;
@@ -345,8 +351,7 @@ PetscErrorCode StructureAddChambers(MPI_Comm comm, const StructureInputs &in, in
   std::string err;
   PetscFunctionBeginUser;
   if (SceneHoldsMesh(comm) && !in.chambers.empty()) {
-    held_mask.assign(scene->mesh.NumNodes(), 0);
-    for (const DofConstraint &d : scene->constraints) held_mask[d.node] |= 1 << d.comp;
+    held_mask = StructureHeldMask(*scene);
     for (const ChamberInput &c : in.chambers)
       if (err.empty()) err = ChamberOpenEdge(scene->mesh, c, held_mask);
     for (const ChamberInput &c : in.chambers)

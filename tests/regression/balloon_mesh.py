@@ -4,6 +4,9 @@ sphere), normals out, surface group "skin", point groups "sym_x", "sym_y", "sym_
 symmetry planes. write() returns the faceted octant's volume (mm^3) at its nodes' radius."""
 import math
 
+import etfe_testlib  # noqa: F401  (puts <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
+
 
 def write(path, n, R):
     pts, idx = [], {}
@@ -26,18 +29,9 @@ def write(path, n, R):
                 a[2] * (b[0] * c[1] - b[1] * c[0])) / 6
     tris = [t if signed(t) > 0 else (t[0], t[2], t[1]) for t in tris]
     groups = [("sym_%s" % "xyz"[d], [m for m, p in enumerate(pts) if abs(p[d]) < 1e-9 * R]) for d in range(3)]
-    with open(path, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n2 1 \"skin\"\n")
-        for k, (g, _) in enumerate(groups):
-            f.write('0 %d "%s"\n' % (k + 2, g))
-        f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(pts))
-        for m, p in enumerate(pts):
-            f.write("%d %.17g %.17g %.17g\n" % (m + 1, p[0], p[1], p[2]))
-        els = [(2, 1, t) for t in tris] + [(15, k + 2, (m,)) for k, (_, ms) in enumerate(groups) for m in ms]
-        f.write("$EndNodes\n$Elements\n%d\n" % len(els))
-        for e, (ty, tag, nodes) in enumerate(els):
-            f.write("%d %d 2 %d %d %s\n" % (e + 1, ty, tag, tag, " ".join(str(x + 1) for x in nodes)))
-        f.write("$EndElements\n")
+    names = [(2, 1, "skin")] + [(0, k + 2, g) for k, (g, _) in enumerate(groups)]
+    els = [(2, 1, 1, t) for t in tris] + [(15, k + 2, k + 2, (m,)) for k, (_, ms) in enumerate(groups) for m in ms]
+    msh22.write_elements(path, pts, names, els)
     return sum(signed(t) for t in tris)
 
 

@@ -4,34 +4,14 @@ strip(): a strip of film one element wide, x in [0, L], y in [0, W]; the row y =
 group "cable" (n segments), the row y = W the 1-D group "far", the first and last node of the
 cable the point groups "anchor" and "end". square(): a flat film [0, L]^2 on an n x n grid, its
 edges the 1-D groups "south" (y = 0), "north", "west" (x = 0) and "east". Node tags are the
-node indices + 1; the film is the surface group "film".
+node indices + 1; the film is the surface group "film". read_nodes41(): the nodes of a Gmsh 4.1
+file etfe writes (a found form, -formfind_mesh_out). strip_model(): a cable strip model for the
+design-run tests.
 """
+import os
 
-
-def _write(path, nodes, tris, lines, points):
-    """lines: {name: [(a, b), ...]}, points: {name: [node, ...]} (0-based node indices)."""
-    names = list(points) + list(lines) + ["film"]
-    dims = {n: 0 for n in points}
-    dims.update({n: 1 for n in lines})
-    dims["film"] = 2
-    tag = {n: i + 1 for i, n in enumerate(names)}
-    elems = []
-    for n, ps in points.items():
-        elems += ["15 2 %d %d %d" % (tag[n], tag[n], p + 1) for p in ps]
-    for n, ls in lines.items():
-        elems += ["1 2 %d %d %d %d" % (tag[n], tag[n], a + 1, b + 1) for a, b in ls]
-    elems += ["2 2 %d %d %d %d %d" % (tag["film"], tag["film"], a + 1, b + 1, c + 1) for a, b, c in tris]
-    with open(path, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(names))
-        for n in names:
-            f.write('%d %d "%s"\n' % (dims[n], tag[n], n))
-        f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(nodes))
-        for i, (x, y, z) in enumerate(nodes):
-            f.write("%d %.17g %.17g %.17g\n" % (i + 1, x, y, z))
-        f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
-        for i, e in enumerate(elems):
-            f.write("%d %s\n" % (i + 1, e))
-        f.write("$EndElements\n")
+import etfe_testlib  # noqa: F401  (puts <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
 
 
 def strip(path, L, W, n, points=None, lines=None, z=None):
@@ -47,21 +27,60 @@ def strip(path, L, W, n, points=None, lines=None, z=None):
     groups.update(lines or {})
     pts = {"anchor": [0], "end": [n]}
     pts.update(points or {})
-    _write(path, nodes, tris, groups, pts)
+    msh22.write(path, nodes, points=pts, lines=groups, surfaces={"film": tris})
     return nodes
+
+
+# A cable of EA 2e6 N prestressed to 500 N along a strip of film without stiffness (E = 0.001
+# MPa), its ends and the far edge held: the model of the design-run tests (strip_model()).
+STRIP_MODEL = """-scene structure
+-mesh_file {mesh}
+-material_type elastic
+-material_young 1e-3
+-material_poisson 0.3
+-membrane_thickness 0.2
+-bc_far_fix xyz
+-bc_anchor_fix xyz
+-bc_end_fix xyz
+-cable_cable_EA 2e6
+-cable_cable_prestress 500
+-output_every 1
+"""
+
+
+def strip_model(tmp, name):
+    """Writes tmp/strip.msh (strip(): 2000 x 200 mm, 10 segments) and the options file tmp/name of
+    STRIP_MODEL on it; returns that file's path."""
+    mesh = os.path.join(tmp, "strip.msh")
+    strip(mesh, 2000.0, 200.0, 10)
+    model = os.path.join(tmp, name)
+    with open(model, "w") as f:
+        f.write(STRIP_MODEL.format(mesh=mesh))
+    return model
 
 
 def square(path, L, n):
     idx = lambda i, j: j * (n + 1) + i  # noqa: E731
     nodes = [(L * i / n, L * j / n, 0.0) for j in range(n + 1) for i in range(n + 1)]
-    tris = []
-    for j in range(n):
-        for i in range(n):
-            a, b, c, d = idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1)
-            tris += [(a, b, c), (a, c, d)] if (i + j) % 2 == 0 else [(a, b, d), (b, c, d)]
+    tris = msh22.grid_triangles(n, n)
     lines = {"south": [(idx(i, 0), idx(i + 1, 0)) for i in range(n)],
              "north": [(idx(i, n), idx(i + 1, n)) for i in range(n)],
              "west": [(idx(0, j), idx(0, j + 1)) for j in range(n)],
              "east": [(idx(n, j), idx(n, j + 1)) for j in range(n)]}
-    _write(path, nodes, tris, lines, {})
+    msh22.write(path, nodes, lines=lines, surfaces={"film": tris})
     return nodes
+
+
+def read_nodes41(path):
+    """Node tag -> (x, y, z) of a Gmsh 4.1 ASCII file."""
+    lines = open(path).read().split("\n")
+    i = lines.index("$Nodes")
+    nb = int(lines[i + 1].split()[0])
+    p, xyz = i + 2, {}
+    for _ in range(nb):
+        k = int(lines[p].split()[3])
+        tags = [int(lines[p + 1 + j]) for j in range(k)]
+        for j in range(k):
+            xyz[tags[j]] = tuple(map(float, lines[p + 1 + k + j].split()))
+        p += 1 + 2 * k
+    return xyz

@@ -129,6 +129,15 @@ def scratch_dir(name="etfe-test"):
             shutil.rmtree(d, ignore_errors=True)
 
 
+def stop_and_restart(etfe, args, part, ck, stop_after, full):
+    """Runs args (results into part) stopped after stop_after increments with a checkpoint ck, then
+    restarted from ck, and compares part with the uninterrupted run's results full bit for bit:
+    (the differences, as h5compare lists them, and the restarted run's printed output)."""
+    run(etfe, args + ["-output_file", part, "-load_stop_after", stop_after, "-checkpoint_file", ck])
+    _, out = run(etfe, args + ["-output_file", part, "-restart", ck])
+    return h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0), out
+
+
 def read_history(path):
     """Rows of a `<case>_history.csv` (-saddle_history) as dicts of strings."""
     with open(path) as f:
@@ -161,9 +170,14 @@ FAMILIES = {"u": ("_uX", "_uY", "_uZ"), "strain": ("_Exx", "_Eyy", "_Exy", "_emi
 def largest_family_difference(h0, h):
     """Largest |h - h0| over the rows and the columns of each family, relative to the family's
     largest |h0|, and where it is (step, column)."""
+    return largest_group_difference(h0, h, [[c for c in h0[0] if c.endswith(ends)] for ends in FAMILIES.values()])
+
+
+def largest_group_difference(h0, h, groups):
+    """Largest |h - h0| over the rows and the columns of each group of columns, relative to the
+    group's largest |h0| (1 where that is 0), and where it is (step, column)."""
     worst, where = 0.0, None
-    for ends in FAMILIES.values():
-        cols = [c for c in h0[0] if c.endswith(ends)]
+    for cols in groups:
         if not cols:
             continue
         scale = max(abs(float(r[c])) for r in h0 for c in cols) or 1.0

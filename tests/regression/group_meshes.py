@@ -5,6 +5,8 @@ each cut into two triangles; split "x" makes the surface groups "left" (x < L/2)
 split "y" the groups "bottom" (y < W/2) and "top" (nx, ny even). Node groups: "x0" (x = 0),
 "x1" (x = L) and "all" (every node). Node tags are the node indices + 1.
 """
+import etfe_testlib  # noqa: F401  (puts <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
 
 
 def halves(path, L, W, nx, ny, split):
@@ -19,24 +21,7 @@ def halves(path, L, W, nx, ny, split):
             tris[groups[0] if first else groups[1]] += [(a, b, c), (a, c, d)]
     points = {"x0": [idx(0, j) for j in range(ny + 1)], "x1": [idx(nx, j) for j in range(ny + 1)],
               "all": list(range(len(nodes)))}
-    names = list(points) + list(groups)
-    tag = {n: k + 1 for k, n in enumerate(names)}
-    elems = []
-    for n, ps in points.items():
-        elems += ["15 2 %d %d %d" % (tag[n], tag[n], p + 1) for p in ps]
-    for g in groups:
-        elems += ["2 2 %d %d %d %d %d" % (tag[g], tag[g], a + 1, b + 1, c + 1) for a, b, c in tris[g]]
-    with open(path, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(names))
-        for n in names:
-            f.write('%d %d "%s"\n' % (0 if n in points else 2, tag[n], n))
-        f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(nodes))
-        for k, (x, y, z) in enumerate(nodes):
-            f.write("%d %.17g %.17g %.17g\n" % (k + 1, x, y, z))
-        f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
-        for k, e in enumerate(elems):
-            f.write("%d %s\n" % (k + 1, e))
-        f.write("$EndElements\n")
+    msh22.write(path, nodes, points=points, surfaces=tris)
 
 
 def two_sheets(path, L, W, nx, ny, gap):
@@ -54,21 +39,4 @@ def two_sheets(path, L, W, nx, ny, gap):
                 tris["sheet_" + s] += [(a, b, c), (a, c, d)]
         groups[s + "_nodes"] = list(range(base, len(nodes)))
         groups[s + "_right"] = [idx(nx, j) for j in range(ny + 1)]
-    names = list(groups) + list(tris)
-    tag = {n: k + 1 for k, n in enumerate(names)}
-    elems = []
-    for n, ps in groups.items():
-        elems += ["15 2 %d %d %d" % (tag[n], tag[n], p + 1) for p in ps]
-    for g, ts in tris.items():
-        elems += ["2 2 %d %d %d %d %d" % (tag[g], tag[g], a + 1, b + 1, c + 1) for a, b, c in ts]
-    with open(path, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n%d\n" % len(names))
-        for n in names:
-            f.write('%d %d "%s"\n' % (0 if n in groups else 2, tag[n], n))
-        f.write("$EndPhysicalNames\n$Nodes\n%d\n" % len(nodes))
-        for k, (x, y, z) in enumerate(nodes):
-            f.write("%d %.17g %.17g %.17g\n" % (k + 1, x, y, z))
-        f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
-        for k, e in enumerate(elems):
-            f.write("%d %s\n" % (k + 1, e))
-        f.write("$EndElements\n")
+    msh22.write(path, nodes, points=groups, surfaces=tris)

@@ -1,8 +1,16 @@
 """Small surface meshes for the cutting-pattern tests, written as Gmsh 2.2 ASCII with
 physical groups, so that the tests need no Gmsh. A mesh is (nodes, triangles, groups): nodes a
 list of (x, y, z) in mm, triangles 0-based node triples, groups {name: (dim, [elements])} with
-dim 2 (triangle ids: a strip) or 1 (node pairs: a named curve)."""
+dim 2 (triangle ids: a strip) or 1 (node pairs: a named curve). cutpattern() and link_errors(): a
+cutting-pattern run on such a mesh and the link errors it prints, per strip."""
 import math
+import os
+import re
+
+from etfe_testlib import run  # (and <repo>/scripts on sys.path)
+from etfepy import msh22  # scripts/etfepy/msh22.py
+
+NUM = r"([-+]?\d+\.?\d*(?:e[-+]?\d+)?)"
 
 
 def grid(nx, ny, f):
@@ -81,30 +89,16 @@ def write_msh(path, nodes, tris, groups):
     for n in names:
         dim, items = groups[n]
         if dim == 1:
-            elems += ["1 2 %d %d %d %d" % (tag[n], tag[n], a + 1, b + 1) for a, b in items]
-    elems += ["2 2 %d %d %d %d %d" % (p, max(p, 1), t[0] + 1, t[1] + 1, t[2] + 1) for t, p in zip(tris, phys)]
+            elems += [(1, tag[n], tag[n], ab) for ab in items]
+    elems += [(2, p, max(p, 1), t) for t, p in zip(tris, phys)]
     # A triangle in two dim-2 groups (overlapping strips) is written twice, once per group.
     for n in names:
         dim, items = groups[n]
         if dim == 2:
             for e in items:
                 if phys[e] != tag[n]:
-                    t = tris[e]
-                    elems.append("2 2 %d %d %d %d %d" % (tag[n], tag[n], t[0] + 1, t[1] + 1, t[2] + 1))
-    with open(path, "w") as f:
-        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n")
-        if names:
-            f.write("$PhysicalNames\n%d\n" % len(names))
-            for n in names:
-                f.write('%d %d "%s"\n' % (groups[n][0], tag[n], n))
-            f.write("$EndPhysicalNames\n")
-        f.write("$Nodes\n%d\n" % len(nodes))
-        for k, p in enumerate(nodes):
-            f.write("%d %.17g %.17g %.17g\n" % (k + 1, p[0], p[1], p[2]))
-        f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
-        for k, e in enumerate(elems):
-            f.write("%d %s\n" % (k + 1, e))
-        f.write("$EndElements\n")
+                    elems.append((2, tag[n], tag[n], tris[e]))
+    msh22.write_elements(path, nodes, [(groups[n][0], tag[n], n) for n in names], elems)
 
 
 def read_msh41_nodes(path):
@@ -203,3 +197,15 @@ def combine(parts):
         tris += [tuple(base + k for k in tri) for tri in t]
         groups[name] = (2, list(range(first, len(tris))))
     return nodes, tris, groups
+
+
+def cutpattern(etfe, tmp, name, mesh_file, args, expect_fail=False):
+    """etfe -analysis cutpattern on mesh_file (results tmp/name.h5): its printed output."""
+    return run(etfe, ["-analysis", "cutpattern", "-mesh_file", mesh_file, "-output_file",
+                      os.path.join(tmp, name + ".h5")] + list(args), expect_fail=expect_fail)[1]
+
+
+def link_errors(out):
+    """{strip: its largest link error} from a cutting-pattern run's output."""
+    return {m.group(1): float(m.group(2)) for m in re.finditer(
+        r"cutpattern: strip (\S+): \d+ nodes, \d+ links, .*?link error max %s" % NUM, out)}

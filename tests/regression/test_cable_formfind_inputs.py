@@ -24,20 +24,6 @@ SAG = re.compile(r"structure: cable (\w+): target sag (\S+) mm over the chord (\
 EA, N_FILM = 1e5, 1.0 * 0.25
 
 
-def read_nodes41(path):
-    """Node tag -> (x, y, z) of a Gmsh 4.1 ASCII file."""
-    lines = open(path).read().split("\n")
-    i = lines.index("$Nodes")
-    p, xyz = i + 2, {}
-    for _ in range(int(lines[i + 1].split()[0])):
-        k = int(lines[p].split()[3])
-        tags = [int(lines[p + 1 + j]) for j in range(k)]
-        for j in range(k):
-            xyz[tags[j]] = tuple(map(float, lines[p + 1 + k + j].split()))
-        p += 1 + 2 * k
-    return xyz
-
-
 def test(etfe, chk):
     with scratch_dir("etfe-cable-ff") as tmp:
         sq, found = os.path.join(tmp, "square.msh"), os.path.join(tmp, "found.msh")
@@ -53,7 +39,7 @@ def test(etfe, chk):
         R = (2000.0 ** 2 / 4 + s * s) / (2 * s)
         notes = {m.group(1): m for m in SAG.finditer(out)}
         cab = {m.group(1): m for m in LINE.finditer(out)}
-        xyz = read_nodes41(found)
+        xyz = cable_meshes.read_nodes41(found)
         for name, mid, y_chord, inward in (("south", 10, 0.0, 1.0), ("north", 20 * 21 + 10, 2000.0, -1.0)):
             m = notes.get(name)
             chk.check(m is not None, "sag: the force of cable %s is printed before form finding" % name)
@@ -86,7 +72,7 @@ def test(etfe, chk):
                                    "difference" % (min(force), max(force)))
             # The film's isotropic stress pulls each edge node across the edge only, so the segments come
             # out equally long and the edge is the circle of a constant force q l: R = q l / n.
-            xyz = read_nodes41(found)
+            xyz = cable_meshes.read_nodes41(found)
             Rq = q * sum(length) / len(length) / N_FILM
             sag = xyz[11][1]
             circle = Rq - math.sqrt(Rq * Rq - 1000.0 ** 2)

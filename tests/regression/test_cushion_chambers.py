@@ -23,9 +23,9 @@ import os
 import re
 import subprocess
 
-from etfe_testlib import Checker, etfe_path, increments, largest_family_difference, read_history, run, scratch_dir, REPO
+from etfe_testlib import (Checker, etfe_path, increments, largest_family_difference, read_history, run, scratch_dir,
+                          stop_and_restart, REPO)
 import balloon_mesh
-import h5compare
 
 etfe = etfe_path()
 chk = Checker("cushion_chambers")
@@ -136,13 +136,12 @@ with scratch_dir() as tmp:
              "3-layer cushion, one gas: its volume at sealing (%.6f m^3) is the two chambers' (%.6f m^3)"
              % (float(hc[at]["air_V_m3"]), v_two))
     full, part, ck = (os.path.join(tmp, n) for n in ("c3_np1.h5", "c3_part.h5", "c3_ck.h5"))
-    stop = ["-output_file", part, "-structure_history", os.path.join(tmp, "c3_part.csv"), "-load_monitor", 0]
-    run(etfe, common + stop + ["-load_stop_after", 25, "-checkpoint_file", ck])
-    run(etfe, common + stop + ["-restart", ck])
-    fails = h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
+    stop = ["-structure_history", os.path.join(tmp, "c3_part.csv"), "-load_monitor", 0]
+    fails, _ = stop_and_restart(etfe, common + stop, part, ck, 25, full)
     chk.check(not fails, "3-layer cushion: stopped inside the sealed stage and restarted, bit for bit%s"
               % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
-    _, out = run(etfe, common + stop + ["-chamber_upper_kappa", 1.4, "-restart", ck], expect_fail=True)
+    _, out = run(etfe, common + stop + ["-output_file", part, "-chamber_upper_kappa", 1.4, "-restart", ck],
+                 expect_fail=True)
     chk.check("kappa" in out or "physics" in out or "differ" in out,
               "3-layer cushion: a restart with another kappa is refused")
 
@@ -161,11 +160,8 @@ with scratch_dir() as tmp:
         a, b = float(hr[-1][col]), float(hsup[-1][col])
         chk.less(abs(a - b) / abs(b), 1e-8, "power cut: %s at the end %.8g, supplied throughout %.8g" % (col, a, b))
     full, part, ck = (os.path.join(tmp, n) for n in ("cut.h5", "cut_part.h5", "cut_ck.h5"))
-    stop = ["-chamber_air_sealed", "0,1,0", "-output_file", part, "-structure_history",
-            os.path.join(tmp, "cut_part.csv"), "-load_monitor", 0]
-    run(etfe, per_stage + stop + ["-load_stop_after", 24, "-checkpoint_file", ck])
-    run(etfe, per_stage + stop + ["-restart", ck])
-    fails = h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
+    stop = ["-chamber_air_sealed", "0,1,0", "-structure_history", os.path.join(tmp, "cut_part.csv"), "-load_monitor", 0]
+    fails, _ = stop_and_restart(etfe, per_stage + stop, part, ck, 24, full)
     chk.check(not fails, "power cut: restarted after the release, bit for bit%s"
               % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
 

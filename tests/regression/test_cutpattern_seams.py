@@ -27,26 +27,34 @@ import subprocess
 import sys
 
 import pattern_meshes as pm
-from etfe_testlib import Checker, REPO, etfe_path, form_found_saddle, run, scratch_dir
+from etfe_testlib import Checker, REPO, etfe_path, form_found_saddle, scratch_dir
 
 etfe = etfe_path()
 chk = Checker("cutpattern_seams")
-NUM = r"([-+]?\d+\.?\d*(?:e[-+]?\d+)?)"
-
-
-def cutpattern(tmp, name, mesh_file, args, expect_fail=False):
-    return run(etfe, ["-analysis", "cutpattern", "-mesh_file", mesh_file, "-output_file",
-                      os.path.join(tmp, name + ".h5")] + list(args), expect_fail=expect_fail)[1]
-
-
-def link_errors(out):
-    return {m.group(1): float(m.group(2)) for m in re.finditer(
-        r"cutpattern: strip (\S+): \d+ nodes, \d+ links, .*?link error max %s" % NUM, out)}
+NUM = pm.NUM
 
 
 def line_lengths(out):
     return [(float(a), float(b)) for a, b in re.findall(
         r"cutpattern: strip \S+ line cut_\S+: 3D %s mm, 2D %s mm" % (NUM, NUM), out)]
+
+
+SEAMS = re.compile(r"smallest triangle quality %s \(input %s\); seams: (\d+) mesh nodes moved onto them \(%s mm at "
+                   r"most\), (\d+) crossings taken to a node that could not move, seams within %s mm of the traced "
+                   r"lines, largest turn between seam segments %s deg" % (NUM, NUM, NUM, NUM, NUM))
+
+
+def parallel_cut(tmp, name, mesh):
+    """Cuts mesh (nodes, triangles, ...) into strips by planes y = const 205 mm apart: the match of
+    its seams line (SEAMS, None if missing), how far its seam nodes lie off their planes (largest
+    y range of a cut_* group, mm) and its link errors per strip."""
+    path = os.path.join(tmp, name + ".msh")
+    pm.write_msh(path, mesh[0], mesh[1], {})
+    out = pm.cutpattern(etfe, tmp, name, path, ["-cutpattern_strip_width", 205, "-cutpattern_strip_direction", "x",
+                                                "-cutpattern_strip_layout", "parallel"])
+    groups = pm.msh41_point_groups(os.path.join(tmp, name + "_cut.msh"))
+    off_plane = max(max(p[1] for p in v) - min(p[1] for p in v) for k, v in groups.items() if k.startswith("cut_"))
+    return SEAMS.search(out), off_plane, pm.link_errors(out)
 
 
 def least_width(pts):
@@ -83,9 +91,10 @@ with scratch_dir() as tmp:
     path = os.path.join(tmp, "cone.msh")
     pm.write_msh(path, cone[0], cone[1], {})
     for layout in ("geodesic", "parallel"):
-        out = cutpattern(tmp, "cone_" + layout, path, ["-cutpattern_strip_width", 90, "-cutpattern_strip_direction",
-                                                       "z", "-cutpattern_strip_layout", layout])
-        errs, lines = link_errors(out), line_lengths(out)
+        out = pm.cutpattern(etfe, tmp, "cone_" + layout, path, ["-cutpattern_strip_width", 90,
+                                                                "-cutpattern_strip_direction", "z",
+                                                                "-cutpattern_strip_layout", layout])
+        errs, lines = pm.link_errors(out), line_lengths(out)
         worst_line = max(abs(l2 - l3) / l3 for l3, l2 in lines) if lines else float("nan")
         print("cone, %s seams: strips %s, largest link error %.2e, largest seam length error %.2e" % (
             layout, sorted(errs), max(errs.values()) if errs else float("nan"), worst_line))
@@ -96,16 +105,7 @@ with scratch_dir() as tmp:
     # 2. A hypar 1000 x 1000 mm, rise 200 mm, 24 x 24 cells, cut by planes y = const 205 mm
     # apart along the surface (the grid's lines are 41.7 mm apart: the planes pass 3 mm from nodes).
     hyp = pm.hypar(n=24)
-    path = os.path.join(tmp, "hyp.msh")
-    pm.write_msh(path, hyp[0], hyp[1], {})
-    out = cutpattern(tmp, "hyp", path, ["-cutpattern_strip_width", 205, "-cutpattern_strip_direction", "x",
-                                        "-cutpattern_strip_layout", "parallel"])
-    m = re.search(r"smallest triangle quality %s \(input %s\); seams: (\d+) mesh nodes moved onto them \(%s mm at "
-                  r"most\), (\d+) crossings taken to a node that could not move, seams within %s mm of the traced "
-                  r"lines, largest turn between seam segments %s deg" % (NUM, NUM, NUM, NUM, NUM), out)
-    groups = pm.msh41_point_groups(os.path.join(tmp, "hyp_cut.msh"))
-    off_plane = max(max(p[1] for p in v) - min(p[1] for p in v) for k, v in groups.items() if k.startswith("cut_"))
-    errs = link_errors(out)
+    m, off_plane, errs = parallel_cut(tmp, "hyp", hyp)
     print("hypar, planar seams 205 mm apart: %d strips, quality %s (input %s), %s nodes moved onto the seams (up "
           "to %s mm), %s crossings taken to a fixed node, largest turn %s deg, seam nodes off their plane by %.2e mm"
           % ((len(errs),) + (m.groups() if m else ("?",) * 7)[:2] + (m.groups() if m else ("?",) * 7)[2:4] +
@@ -120,16 +120,7 @@ with scratch_dir() as tmp:
     # 2b. The same hypar turned by 45 deg (the saddle z = 0.4 (x^2 - y^2) / 1000 mm over 1000 x 1000 mm,
     # 24 x 24 cells): the planes y = const cut it in parabolas, curved seams.
     sad = pm.grid(24, 24, lambda u, v: ((u - 0.5) * 1000, (v - 0.5) * 1000, 400 * ((u - 0.5) ** 2 - (v - 0.5) ** 2)))
-    path = os.path.join(tmp, "sad.msh")
-    pm.write_msh(path, sad[0], sad[1], {})
-    out = cutpattern(tmp, "sad", path, ["-cutpattern_strip_width", 205, "-cutpattern_strip_direction", "x",
-                                        "-cutpattern_strip_layout", "parallel"])
-    m = re.search(r"smallest triangle quality %s \(input %s\); seams: (\d+) mesh nodes moved onto them \(%s mm at "
-                  r"most\), (\d+) crossings taken to a node that could not move, seams within %s mm of the traced "
-                  r"lines, largest turn between seam segments %s deg" % (NUM, NUM, NUM, NUM, NUM), out)
-    groups = pm.msh41_point_groups(os.path.join(tmp, "sad_cut.msh"))
-    off_plane = max(max(p[1] for p in v) - min(p[1] for p in v) for k, v in groups.items() if k.startswith("cut_"))
-    errs = link_errors(out)
+    m, off_plane, errs = parallel_cut(tmp, "sad", sad)
     print("saddle (hypar at 45 deg), planar seams 205 mm apart: %s" % (m.group(0) if m else "?"))
     print("  seam nodes off their plane by %.2e mm" % off_plane)
     chk.check(off_plane < 1e-9, "saddle: every seam node lies on its plane (1e-9 mm)")
@@ -144,10 +135,10 @@ with scratch_dir() as tmp:
     path = os.path.join(tmp, "cushion.msh")
     subprocess.run([sys.executable, os.path.join(REPO, "scripts", "cushion-mesh"), path, "--rectangle", "3000,8000",
                     "--lens", "300mm", "--size", "150"], check=True, capture_output=True)
-    whole = link_errors(cutpattern(tmp, "whole", path, []))
-    out = cutpattern(tmp, "cush", path, ["-cutpattern_roll_width", 1500, "-cutpattern_seam_allowance", 15,
-                                         "-cutpattern_strip_fit_roll", "-cutpattern_strip_direction", "y"])
-    errs = link_errors(out)
+    whole = pm.link_errors(pm.cutpattern(etfe, tmp, "whole", path, []))
+    out = pm.cutpattern(etfe, tmp, "cush", path, ["-cutpattern_roll_width", 1500, "-cutpattern_seam_allowance", 15,
+                                                  "-cutpattern_strip_fit_roll", "-cutpattern_strip_direction", "y"])
+    errs = pm.link_errors(out)
     widths = strip_widths(tmp, "cush", errs)
     nest = re.search(r"nesting on a roll 1500.0 mm wide: roll length %s mm" % NUM, out)
     print("cushion 3 m x 8 m: uncut foils %s; strips on a 1.5 m roll: %s" % (
@@ -184,8 +175,9 @@ with scratch_dir() as tmp:
     path = os.path.join(tmp, "round.msh")
     subprocess.run([sys.executable, os.path.join(REPO, "scripts", "cushion-mesh"), path, "--circle", "1500",
                     "--lens", "200mm", "--size", "100"], check=True, capture_output=True)
-    out = cutpattern(tmp, "round", path, ["-cutpattern_strip_width", 950, "-cutpattern_strip_layout", "radial"])
-    errs = link_errors(out)
+    out = pm.cutpattern(etfe, tmp, "round", path, ["-cutpattern_strip_width", 950,
+                                                   "-cutpattern_strip_layout", "radial"])
+    errs = pm.link_errors(out)
     m = re.search(r"radial strips of top: .*", out)
     print("round cushion, radial gores: %s; link error max %.2e" % (m.group(0) if m else "?",
                                                                    max(errs.values()) if errs else float("nan")))
@@ -195,9 +187,9 @@ with scratch_dir() as tmp:
 
     # 4. The form-found DD1511 saddle (physical surfaces corner and middle) cut on a 600 mm roll.
     msh = form_found_saddle(etfe, tmp)
-    out = cutpattern(tmp, "dd", msh, ["-cutpattern_roll_width", 600, "-cutpattern_seam_allowance", 15,
-                                      "-cutpattern_strip_fit_roll"])
-    errs = link_errors(out)
+    out = pm.cutpattern(etfe, tmp, "dd", msh, ["-cutpattern_roll_width", 600, "-cutpattern_seam_allowance", 15,
+                                               "-cutpattern_strip_fit_roll"])
+    errs = pm.link_errors(out)
     widths = strip_widths(tmp, "dd", errs)
     print("DD1511 saddle on a 600 mm roll: %s" % ", ".join("%s %.1f mm" % kv for kv in sorted(widths.items())))
     chk.check(any(s.startswith("corner_") for s in errs) and any(s.startswith("middle_") for s in errs) and
@@ -206,7 +198,7 @@ with scratch_dir() as tmp:
     chk.check(re.search(r"nesting on a roll 600.0 mm wide", out) is not None, "DD1511: nested on the roll")
     # The patterns are the fit's own flattenings (no second pass over the strips), and they are what
     # flattening the cut surface's strips (dd_cut.msh) anew gives: the same S and cut line lengths.
-    again = cutpattern(tmp, "again", os.path.join(tmp, "dd_cut.msh"), [])
+    again = pm.cutpattern(etfe, tmp, "again", os.path.join(tmp, "dd_cut.msh"), [])
     strip_s = r"cutpattern: strip (\S+): \d+ nodes, \d+ links, \d+ iterations .*? S = (\S+) mm\^2"
     fit_s, new_s = re.findall(strip_s, out), re.findall(strip_s, again)
     reused = re.search(r"the patterns are the roll fit's flattenings of its last try \((\d+) strips, not flattened "
@@ -221,6 +213,6 @@ with scratch_dir() as tmp:
               "DD1511: the fit's patterns equal the cut strips flattened anew (S and every cut line's lengths)")
 
     # A fit without a roll is refused naming the options.
-    out = cutpattern(tmp, "noroll", path, ["-cutpattern_strip_fit_roll"], expect_fail=True)
+    out = pm.cutpattern(etfe, tmp, "noroll", path, ["-cutpattern_strip_fit_roll"], expect_fail=True)
     chk.check("-cutpattern_strip_fit_roll needs the roll" in out, "a fit without -cutpattern_roll_width is refused")
 chk.finish()

@@ -10,23 +10,12 @@ import math
 import os
 
 import pattern_meshes as pm
-from etfe_testlib import Checker, etfe_path, run, scratch_dir
+from etfe_testlib import Checker, etfe_path, scratch_dir
 import re
 
 etfe = etfe_path()
 chk = Checker("cutpattern_start_line")
-NUM = r"([-+]?\d+\.?\d*(?:e[-+]?\d+)?)"
 N = 24
-
-
-def cutpattern(tmp, name, mesh_file, args, expect_fail=False):
-    return run(etfe, ["-analysis", "cutpattern", "-mesh_file", mesh_file, "-output_file",
-                      os.path.join(tmp, name + ".h5")] + list(args), expect_fail=expect_fail)[1]
-
-
-def link_errors(out):
-    return {m.group(1): float(m.group(2)) for m in re.finditer(
-        r"cutpattern: strip (\S+): \d+ nodes, \d+ links, .*?link error max %s" % NUM, out)}
 
 
 with scratch_dir() as tmp:
@@ -44,14 +33,14 @@ with scratch_dir() as tmp:
         return max(min(math.dist(p, q) for q in seam) for p in pts) if seam else float("inf")
 
     args = ["-cutpattern_strip_width", 205, "-cutpattern_strip_direction", "y"]
-    out = cutpattern(tmp, "old", path, args)
+    out = pm.cutpattern(etfe, tmp, "old", path, args)
     d_old = seam_distance("old")
     print("without -cutpattern_strip_start: the group's nodes lie up to %.3f mm from the seams" % d_old)
     chk.check(d_old > 10, "without the option the seams do not pass through the group (the test can fail)")
 
-    out = cutpattern(tmp, "hyp", path, args + ["-cutpattern_strip_start", "start"])
+    out = pm.cutpattern(etfe, tmp, "hyp", path, args + ["-cutpattern_strip_start", "start"])
     d = seam_distance("hyp")
-    errs = link_errors(out)
+    errs = pm.link_errors(out)
     m = re.search(r"geodesic strips of film: .*", out)
     print(m.group(0) if m else "?")
     print("with -cutpattern_strip_start start: the group's %d nodes lie at most %.3e mm from the seams; %d strips, "
@@ -61,15 +50,15 @@ with scratch_dir() as tmp:
     chk.check(len(errs) >= 4 and max(errs.values()) < 0.05, "at least 4 strips, all flattened")
 
     # Refusals, by name.
-    out = cutpattern(tmp, "none", path, args + ["-cutpattern_strip_start", "nosuch"], expect_fail=True)
+    out = pm.cutpattern(etfe, tmp, "none", path, args + ["-cutpattern_strip_start", "nosuch"], expect_fail=True)
     chk.check("-cutpattern_strip_start nosuch" in out and "no physical group of that name" in out,
               "a group that does not exist is refused by name")
-    out = cutpattern(tmp, "twod", path, args + ["-cutpattern_strip_start", "film"], expect_fail=True)
+    out = pm.cutpattern(etfe, tmp, "twod", path, args + ["-cutpattern_strip_start", "film"], expect_fail=True)
     chk.check("-cutpattern_strip_start film" in out and "not 1-D" in out, "a 2-D group is refused by name")
     off = os.path.join(tmp, "off.msh")
     pm.write_msh(off, nodes + [(0.0, 0.0, 500.0)], tris,
                  {"start": (1, line + [(line[-1][1], len(nodes))]), "film": (2, list(range(len(tris))))})
-    out = cutpattern(tmp, "off", off, args + ["-cutpattern_strip_start", "start"], expect_fail=True)
+    out = pm.cutpattern(etfe, tmp, "off", off, args + ["-cutpattern_strip_start", "start"], expect_fail=True)
     chk.check("-cutpattern_strip_start start" in out and "does not lie on the surface" in out,
               "a line with a node off the surface is refused by name")
 chk.finish()

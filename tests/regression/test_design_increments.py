@@ -28,19 +28,6 @@ import numpy as np  # noqa: E402
 from etfepy import design as designmod  # noqa: E402
 from etfepy import envelope as envmod  # noqa: E402
 
-MODEL = """-scene structure
--mesh_file {mesh}
--material_type elastic
--material_young 1e-3
--material_poisson 0.3
--membrane_thickness 0.2
--bc_far_fix xyz
--bc_anchor_fix xyz
--bc_end_fix xyz
--cable_cable_EA 2e6
--cable_cable_prestress 500
--output_every 1
-"""
 DESIGN = {
     "title": "test: a combination lowering the weight",
     "base": {"stages": 1, "loads": {"cable_cable_weight": [5]}},
@@ -57,11 +44,7 @@ def rows_of(path):
 
 
 def run_case(etfe, chk, tmp):
-    mesh = os.path.join(tmp, "strip.msh")
-    cable_meshes.strip(mesh, 2000.0, 200.0, 10)
-    model = os.path.join(tmp, "model.opts")
-    with open(model, "w") as f:
-        f.write(MODEL.format(mesh=mesh))
+    model = cable_meshes.strip_model(tmp, "model.opts")
     dfile = os.path.join(tmp, "design.json")
     with open(dfile, "w") as f:
         json.dump(dict(DESIGN, model=model), f)

@@ -143,9 +143,7 @@ def test(etfe, chk):
                  "catenary: each support carries half the cable's weight (N off)")
         # Restart mid-load: stop after 5 increments, restart from the checkpoint, compare.
         part, ck = os.path.join(tmp, "part.h5"), os.path.join(tmp, "ck.h5")
-        run(etfe, cat + ["-output", 1, "-output_file", part, "-load_stop_after", 5, "-checkpoint_file", ck])
-        _, outr = run(etfe, cat + ["-output", 1, "-output_file", part, "-restart", ck])
-        fails = T.h5compare.compare(full, part, step="all", default_rtol=0.0, default_atol=0.0)
+        fails, outr = T.stop_and_restart(etfe, cat + ["-output", 1], part, ck, 5, full)
         chk.check(not fails, "catenary: stopped after 5 of 10 increments and restarted, the results equal the "
                              "uninterrupted run bit for bit%s" % ("" if not fails else ": " + "; ".join(map(str, fails[:3]))))
         chk.check(LINE.search(outr) and LINE.search(outr).group(0) == LINE.search(out).group(0),
@@ -183,7 +181,7 @@ def test(etfe, chk):
               "-cable_north_EA", 1e5, "-cable_north_prestress", 500, "-formfind_mesh_out", found, "-output", 0]
         _, out = run(etfe, ff)
         c = cables(out)
-        xyz = read_nodes41(found)
+        xyz = cable_meshes.read_nodes41(found)
         for name, first in (("south", 0), ("north", 20 * 21)):
             R = fit_circle([xyz[first + i + 1][:2] for i in range(21)])
             chk.less(abs(R / 2000.0 - 1), 2e-3, "form finding: edge %s is a circle of radius %.3f mm against T/n = 2000 mm "
@@ -197,7 +195,7 @@ def test(etfe, chk):
         sail = os.path.join(tmp, "sail.msh")
         _, out = run(etfe, ["-options_file", os.path.join(T.OPTIONS, "structure", "sail_formfind.opts"), "-output", 0,
                             "-formfind_monitor", 0, "-formfind_mesh_out", sail])
-        xyz = read_nodes41(sail)
+        xyz = cable_meshes.read_nodes41(sail)
         worst, found_cut = 0.0, {name: c["cut"] for name, c in cables(out).items()}
         for name, c in cables(out).items():
             chain = [xyz[k + 1] for k in chain_nodes(name, 12)]
@@ -254,21 +252,6 @@ def chain_nodes(edge, n):
     idx = lambda i, j: j * (n + 1) + i  # noqa: E731
     return {"edge_1": [idx(i, 0) for i in range(n + 1)], "edge_2": [idx(n, j) for j in range(n + 1)],
             "edge_3": [idx(n - i, n) for i in range(n + 1)], "edge_4": [idx(0, n - j) for j in range(n + 1)]}[edge]
-
-
-def read_nodes41(path):
-    """Node tag -> (x, y, z) of a Gmsh 4.1 ASCII file."""
-    lines = open(path).read().split("\n")
-    i = lines.index("$Nodes")
-    nb = int(lines[i + 1].split()[0])
-    p, xyz = i + 2, {}
-    for _ in range(nb):
-        k = int(lines[p].split()[3])
-        tags = [int(lines[p + 1 + j]) for j in range(k)]
-        for j in range(k):
-            xyz[tags[j]] = tuple(map(float, lines[p + 1 + k + j].split()))
-        p += 1 + 2 * k
-    return xyz
 
 
 def fit_circle(pts):

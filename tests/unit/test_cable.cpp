@@ -9,22 +9,6 @@
 #include <cmath>
 #include <vector>
 
-namespace {
-
-double MaxAbs(const double *v, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(v[i]));
-  return m;
-}
-
-double MaxDiff(const double *a, const double *b, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(a[i] - b[i]));
-  return m;
-}
-
-} // namespace
-
 int main() {
   using namespace etfe;
   const double EA = 1.0e5, L0 = 1000.0;

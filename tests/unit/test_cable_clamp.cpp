@@ -16,18 +16,6 @@
 
 namespace {
 
-double MaxAbs(const double *v, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(v[i]));
-  return m;
-}
-
-double MaxDiff(const double *a, const double *b, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(a[i] - b[i]));
-  return m;
-}
-
 // A bent chain of 7 nodes (clamps at nodes 2 and 4), turning by ~0.3-0.6 rad at each.
 const double kChain[21] = {0, 0, 0, 200, 30, 10, 400, 100, 20, 580, 230, 0, 720, 390, -30, 900, 520, -20, 1100, 600, 0};
 const int kClamps[2] = {2, 4};

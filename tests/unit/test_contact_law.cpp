@@ -38,12 +38,6 @@ ContactState State(double gx, double gy, double gz, double fx, double fy, double
   return s;
 }
 
-double MaxAbs(const double *a, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::max(m, std::fabs(a[i]));
-  return m;
-}
-
 // Largest |dfdg - central FD| relative to max |dfdg| (or absolute when the tangent is zero).
 double ImplicitTangentError(const ContactParameters &p, const ContactState &c, const double g[3],
                             double h) {

@@ -16,18 +16,6 @@ namespace {
 
 using etfe::MembraneReference;
 
-// Deterministic generator so a failure reproduces (splitmix64 -> [-1, 1)).
-struct Rng {
-  std::uint64_t s;
-  double Next() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return 2.0 * static_cast<double>(z >> 11) * 0x1.0p-53 - 1.0;
-  }
-};
-
 const double kX[3] = {1.0, 0.0, 0.0};
 constexpr double kYoung = 800.0;  // ETFE, MPa
 constexpr double kNu = 0.43;
@@ -39,12 +27,6 @@ void Cross(const double *a, const double *b, double *c) {
   c[0] = a[1] * b[2] - a[2] * b[1];
   c[1] = a[2] * b[0] - a[0] * b[2];
   c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-double MaxAbs(const double *v, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(v[i]));
-  return m;
 }
 
 // A random, not too flat triangle of size ~scale around a random centre.

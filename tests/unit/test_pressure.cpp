@@ -10,28 +10,6 @@
 #include <cstdint>
 #include <cstring>
 
-namespace {
-
-// Deterministic generator so a failure reproduces (splitmix64 -> [-1, 1)).
-struct Rng {
-  std::uint64_t s;
-  double Next() {
-    std::uint64_t z = (s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    z ^= z >> 31;
-    return 2.0 * static_cast<double>(z >> 11) * 0x1.0p-53 - 1.0;
-  }
-};
-
-double MaxAbs(const double *v, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(v[i]));
-  return m;
-}
-
-} // namespace
-
 int main() {
   using etfe::PressureLoad;
   Rng rng{12345};

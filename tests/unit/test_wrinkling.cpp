@@ -26,12 +26,6 @@ void StrainFromPrincipal(double e1, double e2, double th, double E[3]) {
   E[2] = 2.0 * (e1 - e2) * c * s;
 }
 
-double MaxAbs(const double *v, int n) {
-  double m = 0.0;
-  for (int i = 0; i < n; ++i) m = std::fmax(m, std::fabs(v[i]));
-  return m;
-}
-
 // Largest |D - dS/dE (central FD)| over the 9 entries, the FD step h per strain component.
 double TangentMismatch(const double E[3], double h, double *dmax) {
   double S[3], D[9];

@@ -20,6 +20,9 @@ namespace etfe {
 struct Problem;
 
 enum class FrictionLaw { Lagged, Implicit, None, Fixed };
+// The laws' names in -contact_friction and in the printed lines, in FrictionLaw's order.
+inline constexpr int kFrictionLawCount = 4;
+inline constexpr const char *kFrictionLawNames[kFrictionLawCount] = {"lagged", "implicit", "none", "fixed"};
 
 // The largest round-off floor of the penalty forces (1e2 eps k |u| sqrt(pairs)) the force-balance
 // test may accept, as a fraction of the forces it balances: above it a penalty is refused.
