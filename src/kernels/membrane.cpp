@@ -148,8 +148,8 @@ void MembraneForce(const MembraneReference &ref, double thickness, const double 
   for (int a = 0; a < 3; ++a) {
     sg[a][0] = S[0] * ref.dNdx[a] + S[2] * ref.dNdy[a];
     sg[a][1] = S[2] * ref.dNdx[a] + S[1] * ref.dNdy[a];
-    for (int i = 0; i < 3; ++i)
-      f[3 * a + i] = w * (F[2 * i] * sg[a][0] + F[2 * i + 1] * sg[a][1]);
+    if (f)
+      for (int i = 0; i < 3; ++i) f[3 * a + i] = w * (F[2 * i] * sg[a][0] + F[2 * i + 1] * sg[a][1]);
   }
   if (!K) return;
 

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace {
@@ -513,9 +514,34 @@ void TestEquilibrium(Rng &rng) {
 
 } // namespace
 
+// The Jacobian loop asks for K without the force (f == nullptr): the same K bit for bit, for a
+// full (unsymmetric) D and for the geometric stiffness alone (D == nullptr).
+void TestTangentWithoutForce(Rng &rng) {
+  for (int trial = 0; trial < 50; ++trial) {
+    double X[9], x[9];
+    const double scale = 10.0 * (1.0 + rng.Next());
+    RandomTriangle(rng, scale, X);
+    for (int k = 0; k < 9; ++k) x[k] = X[k] + 0.1 * scale * rng.Next();
+    MembraneReference ref;
+    CHECK(etfe::MembraneReferenceBuild(X, kX, 0.0, &ref) == etfe::KERNEL_OK, "trial %d", trial);
+    double F[6], E[3], S[3], D[9];
+    etfe::MembraneKinematics(ref, x, F, E);
+    for (int i = 0; i < 3; ++i) S[i] = 10.0 * rng.Next();
+    for (int k = 0; k < 9; ++k) D[k] = 1000.0 * rng.Next();
+    for (const double *Dp : {(const double *)D, (const double *)nullptr}) {
+      double f[9], K[81], K1[81];
+      etfe::MembraneForce(ref, kH, F, S, Dp, f, K);
+      etfe::MembraneForce(ref, kH, F, S, Dp, nullptr, K1);
+      CHECK(std::memcmp(K, K1, sizeof K) == 0, "trial %d (D %s): K without f differs", trial,
+            Dp ? "given" : "nullptr");
+    }
+  }
+}
+
 int main() {
   Rng rng{20190925};
   TestTangent(rng);
+  TestTangentWithoutForce(rng);
   TestRigidBody(rng);
   TestHomogeneous(rng);
   TestDegenerate();
