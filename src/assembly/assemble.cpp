@@ -251,7 +251,7 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
   ElementBlockValues direct;  // the matrix's values when the blocks' places are known
   if (!P->unassembled) PetscCall(ElementBlocksGet(Pmat, P->element_global, &P->element_blocks, &direct));
   for (PetscInt e = 0; e < m.num_elements; ++e) {
-    double x[9], F[6], E[3], S[3], D[9], fe[9], K[81];
+    double x[9], F[6], E[3], S[3], D[9], K[81];  // K only: no force is formed here
     GatherCoordinates(m, e, u, x);
     int st = MembraneElement(P, e, x, S, D, F, E);
     if (st != KERNEL_OK) {
@@ -261,11 +261,11 @@ PetscErrorCode FormJacobian(SNES snes, Vec U, Mat J, Mat Pmat, void *ctx) {
     if (P->tangent_tension_only) {
       double T[3];
       TensilePart(S, T);
-      MembraneForce(m.ref[e], P->Thickness(e), F, T, D, fe, K);
+      MembraneForce(m.ref[e], P->Thickness(e), F, T, D, nullptr, K);
     } else {
-      MembraneForce(m.ref[e], P->Thickness(e), F, S, D, fe, K);
+      MembraneForce(m.ref[e], P->Thickness(e), F, S, D, nullptr, K);
     }
-    if (!pressure.empty() && pressure[e] != 0.0) PressureLoadSubtractTangent(pressure[e], x, fe, K);
+    if (!pressure.empty() && pressure[e] != 0.0) PressureLoadSubtractTangent(pressure[e], x, nullptr, K);
     const int *tri = &m.tri[3 * e];
     if (P->element_constrained[e])
       for (int r = 0; r < 9; ++r) {

@@ -34,7 +34,7 @@ void PressureLoad(double p, const double x[9], double f[9], double L[81]) {
 }
 
 void PressureLoadSubtractTangent(double p, const double x[9], double f[9], double K[81]) {
-  PressureLoad(p, x, f, nullptr);
+  if (f) PressureLoad(p, x, f, nullptr);
   const double s = p / 6.0;
   for (int k = 0; k < 3; ++k) {
     const double *xp = x + 3 * ((k + 2) % 3);

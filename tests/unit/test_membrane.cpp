@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace {
@@ -495,9 +496,64 @@ void TestEquilibrium(Rng &rng) {
 
 } // namespace
 
+// The Jacobian loop asks for K without the force (f == nullptr): the same K bit for bit, for a
+// full (unsymmetric) D and for the geometric stiffness alone (D == nullptr); and K's entries are
+// the formula's, evaluated entry by entry in its order, to the bit (zeros up to their sign, which
+// no sum into a zeroed matrix sees).
+void TestTangentWithoutForce(Rng &rng) {
+  for (int trial = 0; trial < 50; ++trial) {
+    double X[9], x[9];
+    const double scale = 10.0 * (1.0 + rng.Next());
+    RandomTriangle(rng, scale, X);
+    for (int k = 0; k < 9; ++k) x[k] = X[k] + 0.1 * scale * rng.Next();
+    MembraneReference ref;
+    CHECK(etfe::MembraneReferenceBuild(X, kX, 0.0, &ref) == etfe::KERNEL_OK, "trial %d", trial);
+    double F[6], E[3], S[3], D[9];
+    etfe::MembraneKinematics(ref, x, F, E);
+    for (int i = 0; i < 3; ++i) S[i] = 10.0 * rng.Next();
+    for (int k = 0; k < 9; ++k) D[k] = 1000.0 * rng.Next();
+    for (const double *Dp : {(const double *)D, (const double *)nullptr}) {
+      double f[9], K[81], K1[81];
+      etfe::MembraneForce(ref, kH, F, S, Dp, f, K);
+      etfe::MembraneForce(ref, kH, F, S, Dp, nullptr, K1);
+      CHECK(std::memcmp(K, K1, sizeof K) == 0, "trial %d (D %s): K without f differs", trial,
+            Dp ? "given" : "nullptr");
+      // Entry by entry as the formula reads, K_ab = w [B_a^T D B_b + (gradN_a . S gradN_b) I3]
+      // with the sums in that order: the kernel's vectorized rows must give these very bits.
+      const double w = kH * ref.area;
+      bool same = true;
+      for (int a = 0; a < 3; ++a)
+        for (int i = 0; i < 3; ++i)
+          for (int b = 0; b < 3; ++b)
+            for (int j = 0; j < 3; ++j) {
+              const double ba[3] = {ref.dNdx[a] * F[2 * i], ref.dNdy[a] * F[2 * i + 1],
+                                    ref.dNdx[a] * F[2 * i + 1] + ref.dNdy[a] * F[2 * i]};
+              const double bb[3] = {ref.dNdx[b] * F[2 * j], ref.dNdy[b] * F[2 * j + 1],
+                                    ref.dNdx[b] * F[2 * j + 1] + ref.dNdy[b] * F[2 * j]};
+              double v = 0.0;
+              if (Dp) {
+                double db[3];
+                for (int r = 0; r < 3; ++r) db[r] = Dp[3 * r] * bb[0] + Dp[3 * r + 1] * bb[1] + Dp[3 * r + 2] * bb[2];
+                v = w * (ba[0] * db[0] + ba[1] * db[1] + ba[2] * db[2]);
+              }
+              if (i == j) {
+                const double sg0 = S[0] * ref.dNdx[b] + S[2] * ref.dNdy[b];
+                const double sg1 = S[2] * ref.dNdx[b] + S[1] * ref.dNdy[b];
+                v += w * (ref.dNdx[a] * sg0 + ref.dNdy[a] * sg1);
+              }
+              const double k = K[9 * (3 * a + i) + 3 * b + j];
+              same = same && (k == v && std::signbit(k) == std::signbit(v) ? true : k == 0.0 && v == 0.0);
+            }
+      CHECK(same, "trial %d (D %s): K differs in some bit from the formula entry by entry", trial,
+            Dp ? "given" : "nullptr");
+    }
+  }
+}
+
 int main() {
   Rng rng{20190925};
   TestTangent(rng);
+  TestTangentWithoutForce(rng);
   TestRigidBody(rng);
   TestHomogeneous(rng);
   TestDegenerate();

@@ -41,6 +41,12 @@ int main() {
     for (int k = 0; k < 81; ++k) same = same && std::memcmp(&K0[k], &K1[k], sizeof(double)) == 0;
     for (int k = 0; k < 9; ++k) same = same && std::memcmp(&f[k], &f1[k], sizeof(double)) == 0;
     CHECK(same, "trial %d: PressureLoadSubtractTangent differs from PressureLoad and K -= L", trial);
+    // Without the force (the Jacobian loop's call): the same K.
+    double K2[81], K3[81];
+    for (int k = 0; k < 81; ++k) K2[k] = K3[k] = scale * rng.Next();
+    for (int k = 0; k < 81; ++k) K2[k] -= L[k];
+    etfe::PressureLoadSubtractTangent(p, x, nullptr, K3);
+    CHECK(std::memcmp(K2, K3, sizeof K2) == 0, "trial %d: K -= L without the force differs", trial);
 
     // Resultant = p * (area vector) = p * area * unit normal.
     double a[3], b[3], n[3];

@@ -37,7 +37,8 @@ int MembraneCarryAxis(const double X[9], const double Y[9], const double axis[3]
 void MembraneKinematics(const MembraneReference &ref, const double x[9], double F[6], double E[3]);
 
 // Internal force f (9) and, when K != nullptr, tangent K (81) of the element for the PK2 stress S
-// and the material tangent D (may be nullptr when K is nullptr):
+// and the material tangent D (may be nullptr when K is nullptr); f may be nullptr when only K is
+// wanted (the Jacobian loop):
 //   f_a  = h0 A0 F S gradN_a
 //   K_ab = h0 A0 [ (gradN_a . S gradN_b) I3 + B_a^T D B_b ]
 void MembraneForce(const MembraneReference &ref, double thickness, const double F[6],
