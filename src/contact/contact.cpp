@@ -155,6 +155,7 @@ PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, d
              "-contact_normal follow works with -contact_friction implicit, none or fixed; the lagged "
              "(thesis) law keeps the thesis's frozen frame");
   // A single "none" makes the whole run frictionless; in a list only its stages are (ContactEvaluate).
+  o->mu_given = o->params.mu;
   if (one_law && o->law == FrictionLaw::None) o->params.mu = 0.0;
   PetscFunctionReturn(0);
 }
@@ -212,10 +213,6 @@ static PetscErrorCode ScalePenaltiesByLength(Problem *P, const std::vector<Petsc
 // -contact_<name>_mu or _friction whose name is no support is refused, naming the supports.
 static PetscErrorCode ReadSupportFriction(MPI_Comm comm, int stages, const ContactOptions &o,
                                           const std::vector<SupportSpec> &supports, ContactSet *c) {
-  // The coefficient as given: a support with a law of its own has friction even where the set's
-  // "none" made -contact_mu 0.
-  PetscReal mu_given = 0.3;
-  PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-contact_mu", &mu_given, nullptr));
   const bool none = o.law == FrictionLaw::None && std::all_of(o.stage_laws.begin(), o.stage_laws.end(),
                                                               [](FrictionLaw l) { return l == FrictionLaw::None; });
   std::vector<double> mu(supports.size());
@@ -236,7 +233,8 @@ static PetscErrorCode ReadSupportFriction(MPI_Comm comm, int stages, const Conta
                                       "", law_names, &nlaw, &law_set));
     if (!law_set) nlaw = 0;
     PetscCall(ParseFrictionLaws(comm, "-" + prefix + "friction", law_names, nlaw, &laws[s]));
-    mu[s] = !laws[s].empty() ? mu_given : c->params.mu;
+    // A support with a law of its own has friction even where the set's "none" made -contact_mu 0.
+    mu[s] = !laws[s].empty() ? o.mu_given : c->params.mu;
     PetscCall(PetscOptionsReal("-mu", "Coulomb friction coefficient of this support's pairs (default -contact_mu)", "",
                                mu[s], &mu[s], &set));
     PetscOptionsEnd();

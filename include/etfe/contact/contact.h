@@ -143,6 +143,9 @@ struct ContactOptions {
   PetscReal frictionless_until = 0.0, search_tol = 1e-6, penalty_length = 0.0;
   PetscInt lagged_repeat = 0;
   std::vector<PetscInt> probe_nodes;
+  // -contact_mu as given (params.mu is 0 where the law is "none" throughout): a support with a
+  // law of its own takes it.
+  PetscReal mu_given = 0.3;
 };
 PetscErrorCode ContactOptionsFromCommandLine(MPI_Comm comm, double default_kn, double default_search_tol,
                                              ContactOptions *options);
